@@ -1,0 +1,46 @@
+"""Shared command-line options: the case parameters, mapped one to one onto SailParameters."""
+from __future__ import annotations
+
+import argparse
+
+from ..parameters import SailParameters
+
+# option name -> (SailParameters field, type, help)
+CASE_OPTIONS = {
+    "--model": ("model", str, "rigid | torsion | tnt"),
+    "--n": ("n", int, "number of slices"),
+    "--length": ("length", float, "sail length L (m)"),
+    "--width": ("width", float, "sail width W (m)"),
+    "--thickness": ("thickness", float, "thickness h (m)"),
+    "--density": ("density", float, "density ρ (kg/m³)"),
+    "--modulus": ("youngs_modulus", float, "Young's modulus E (Pa)"),
+    "--tension": ("tension", float, "boundary tension T (N), TnT only"),
+    "--intensity": ("intensity", float, "laser intensity I₀ (W/m²)"),
+    "--amplitude": ("amplitude", float, "initial defect amplitude a₀ (m)"),
+    "--mode": ("mode", float, "defect mode number ν"),
+    "--torsional-damping": ("torsional_damping", float, "torsional damping c_T (N·m·s/rad)"),
+    "--axial-damping": ("axial_damping", float, "axial damping c_s (N·s/m)"),
+    "--t-final": ("t_final", float, "final time (s)"),
+    "--output-interval": ("output_interval", float, "output interval (s); default min(1 ms, t_final/1000)"),
+    "--failure-ratio": ("failure_ratio", float, "failure when amplitude ≥ ratio × initial (default 2)"),
+}
+
+
+def add_case_options(parser: argparse.ArgumentParser) -> None:
+    defaults = SailParameters()
+    g = parser.add_argument_group("case (defaults: the paper's torsion case)")
+    for opt, (name, typ, text) in CASE_OPTIONS.items():
+        g.add_argument(opt, dest=name, type=typ, default=None,
+                       help=f"{text} [default {getattr(defaults, name)}]")
+    g.add_argument("--bending", dest="bending", action=argparse.BooleanOptionalAction, default=None,
+                   help="torsional springs k_T = EI/l on/off [default: on for torsion, off for tnt as in the paper]")
+    g.add_argument("--axial-springs", dest="axial_springs", action=argparse.BooleanOptionalAction, default=None,
+                   help="TnT: extensible slices with k_s = (n−1)EhW/L, or their rigid limit [default on]")
+    g.add_argument("--run-past-failure", dest="stop_at_failure", action="store_false", default=None,
+                   help="keep integrating after the amplitude has doubled")
+
+
+def params_from_args(args: argparse.Namespace) -> SailParameters:
+    names = [v[0] for v in CASE_OPTIONS.values()] + ["bending", "axial_springs", "stop_at_failure"]
+    given = {k: getattr(args, k) for k in names if getattr(args, k, None) is not None}
+    return SailParameters(**given)

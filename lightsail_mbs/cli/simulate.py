@@ -1,0 +1,38 @@
+"""`lightsail-mbs simulate`: run one case with one solver, save the Result, print its summary."""
+from __future__ import annotations
+
+import json
+import sys
+
+from ..solvers import SOLVERS, solve
+from .options import add_case_options, params_from_args
+
+
+def register(sub) -> None:
+    p = sub.add_parser("simulate", help="run one case (exudyn or reduced solver)")
+    add_case_options(p)
+    p.add_argument("--solver", choices=sorted(SOLVERS), default="exudyn")
+    p.add_argument("--out", help="write the Result to this .npz (and its .json summary)")
+    p.add_argument("--json", action="store_true", help="print the summary as one JSON object on stdout")
+    p.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    params = params_from_args(args)
+    result = solve(params, args.solver, progress=not args.quiet)
+    if args.out:
+        result.save(args.out)
+    summary = result.summary()
+    if args.json:
+        print(json.dumps(summary))
+    else:
+        ft = summary["failure_time"]
+        print(f"{summary['solver']} {summary['model']} n={summary['n']}: "
+              f"{'FAILED at t = %.6g s' % ft if summary['failed'] else 'not failed'} "
+              f"(max amplitude ratio {summary['max_amplitude_ratio']:.4g}, t_end {summary['t_end']:.6g} s, "
+              f"wall {summary['wall_time']:.3g} s)")
+    if summary["error"]:
+        print(f"solver error: {summary['error']}", file=sys.stderr)
+        return 1
+    return 0

@@ -1,0 +1,187 @@
+"""The case: one validated, immutable parameter set per simulation (SI units throughout).
+
+Paper: Sections III–IV. Derived quantities follow the paper's definitions:
+slice length l = L/n, slice mass m = ρ h W l, centroidal inertia J = m l²/12,
+bending stiffness k_T = E I / l with I = W h³/12 (Sec. III.B),
+axial stiffness k_s = (n − 1) E h W / L (Sec. III.C).
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+
+SPEED_OF_LIGHT = 299_792_458.0  # m/s
+MODELS = ("rigid", "torsion", "tnt")
+
+
+class ParameterError(ValueError):
+    """A parameter is outside its allowed range; the message names it, its value and the range."""
+
+
+def _check(name: str, value, ok: bool, allowed: str) -> None:
+    if not ok:
+        raise ParameterError(f"{name}={value!r} is invalid: allowed {allowed}")
+
+
+def _finite(name: str, value) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name}={value!r} is invalid: allowed a finite real number") from None
+    _check(name, value, math.isfinite(v), "a finite real number (no NaN or inf)")
+    return v
+
+
+@dataclass(frozen=True)
+class SailParameters:
+    """One lightsail case. Defaults: the paper's torsion study (Sec. IV.B, Fig. 6)."""
+
+    model: str = "torsion"
+    n: int = 30                        # number of rigid slices
+    length: float = 1.0                # L, m
+    width: float = 1.0                 # W, m
+    thickness: float = 1e-6            # h, m
+    density: float = 1000.0            # ρ, kg/m³
+    youngs_modulus: float = 4.5e13     # E, Pa
+    tension: float = 0.0               # T, N (paper's per-width value × W); TnT only
+    intensity: float = 1e8             # I₀, W/m²
+    amplitude: float = 1e-5            # a₀, m
+    mode: float = 1.5                  # ν
+    bending: bool | None = None        # torsional springs on? None: on for torsion, off for tnt (paper)
+    axial_springs: bool = True         # TnT: extensible slices (k_s); False: rigid (inextensible) limit
+    torsional_damping: float = 0.0     # c_T, N·m·s/rad
+    axial_damping: float = 0.0         # c_s, N·s/m
+    t_final: float = 6.0               # s
+    output_interval: float | None = None  # s; None: min(1 ms, t_final/1000)
+    stop_at_failure: bool = True       # end the run when the amplitude has doubled
+    failure_ratio: float = 2.0         # failure: amplitude(t) ≥ failure_ratio · amplitude(0)
+    extra: dict = field(default_factory=dict, compare=False, repr=False)
+
+    def __post_init__(self):
+        _check("model", self.model, self.model in MODELS, f"one of {', '.join(MODELS)}")
+        _check("n", self.n, isinstance(self.n, int) and not isinstance(self.n, bool) and 2 <= self.n <= 5000,
+               "an integer 2 ≤ n ≤ 5000")
+        for name in ("length", "width", "thickness", "density"):
+            v = _finite(name, getattr(self, name))
+            _check(name, v, v > 0, "> 0")
+        for name in ("youngs_modulus", "tension", "intensity", "amplitude",
+                     "torsional_damping", "axial_damping"):
+            v = _finite(name, getattr(self, name))
+            _check(name, v, v >= 0, "≥ 0")
+        _check("youngs_modulus", self.youngs_modulus,
+               self.youngs_modulus > 0 or not (self.model == "tnt" and self.axial_springs),
+               "> 0 for the tnt model with axial springs")
+        v = _finite("mode", self.mode)
+        _check("mode", v, v > 0, "> 0 (whole or half integers in the paper)")
+        v = _finite("t_final", self.t_final)
+        _check("t_final", v, v > 0, "> 0")
+        if self.output_interval is not None:
+            v = _finite("output_interval", self.output_interval)
+            _check("output_interval", v, 0 < v <= self.t_final, f"0 < output_interval ≤ t_final={self.t_final}")
+        v = _finite("failure_ratio", self.failure_ratio)
+        _check("failure_ratio", v, v > 1, "> 1")
+        _check("tension", self.tension, self.tension == 0 or self.model == "tnt",
+               "0 unless model='tnt' (boundary tension exists only in the TnT model)")
+        if self.bending is None:
+            object.__setattr__(self, "bending", self.model == "torsion")
+        _check("bending", self.bending, isinstance(self.bending, bool), "True, False or None")
+        _check("amplitude", self.amplitude, self.amplitude < self.length / (2 * math.pi * self.mode),
+               f"< L/(2πν) = {self.length / (2 * math.pi * self.mode):.3g} m (a sine steeper than 45° "
+               "is outside the model)")
+
+    # ---- derived quantities (paper Sec. III) -------------------------------------------------
+    @property
+    def slice_length(self) -> float:
+        """l = L / n."""
+        return self.length / self.n
+
+    @property
+    def slice_mass(self) -> float:
+        """m = ρ h W l."""
+        return self.density * self.thickness * self.width * self.slice_length
+
+    @property
+    def slice_inertia(self) -> float:
+        """J = m l² / 12 about the slice centre."""
+        return self.slice_mass * self.slice_length ** 2 / 12.0
+
+    @property
+    def second_moment_of_area(self) -> float:
+        """I = W h³ / 12."""
+        return self.width * self.thickness ** 3 / 12.0
+
+    @property
+    def torsional_stiffness(self) -> float:
+        """k_T = E I / l (0 for the rigid model or with bending off)."""
+        if self.model == "rigid" or not self.bending:
+            return 0.0
+        return self.youngs_modulus * self.second_moment_of_area / self.slice_length
+
+    @property
+    def axial_stiffness(self) -> float:
+        """k_s = (n − 1) E h W / L (TnT only; inf in the inextensible limit)."""
+        if self.model != "tnt":
+            return math.inf
+        if not self.axial_springs:
+            return math.inf
+        return (self.n - 1) * self.youngs_modulus * self.thickness * self.width / self.length
+
+    @property
+    def extensible(self) -> bool:
+        """True when the chain has axial spring coordinates z₁…z_{n−1}."""
+        return self.model == "tnt" and self.axial_springs
+
+    @property
+    def flat_force(self) -> float:
+        """f₀ = (2 I₀ / c) l W: radiation force on a flat slice (Eq. 11)."""
+        return 2.0 * self.intensity / SPEED_OF_LIGHT * self.slice_length * self.width
+
+    @property
+    def nominal_acceleration(self) -> float:
+        """g₀ = 2 I₀ / (c ρ h), first-order Eq. (4): the flat sail's acceleration."""
+        return 2.0 * self.intensity / (SPEED_OF_LIGHT * self.density * self.thickness)
+
+    @property
+    def sample_interval(self) -> float:
+        """The output interval actually used (s)."""
+        if self.output_interval is not None:
+            return float(self.output_interval)
+        return min(1e-3, self.t_final / 1000.0)
+
+    def replace(self, **changes) -> "SailParameters":
+        """A copy with some fields changed (validated again)."""
+        if "model" in changes and "bending" not in changes:
+            changes["bending"] = None
+        return dataclasses.replace(self, **changes)
+
+    def to_dict(self) -> dict:
+        d = dataclasses.asdict(self)
+        d.pop("extra")
+        d.update(self.extra)
+        return d
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "SailParameters":
+        names = {f.name for f in dataclasses.fields(cls)} - {"extra"}
+        known = {k: v for k, v in d.items() if k in names}
+        return cls(**known, extra={k: v for k, v in d.items() if k not in names})
+
+
+def paper_case(name: str, **changes) -> SailParameters:
+    """The paper's cases by name (Sec. IV): 'rigid' (Fig. 5), 'torsion-stable' (Fig. 6),
+    'torsion-soft' (Fig. 7), 'tnt-stable' (Fig. 10), 'tnt-soft' (Fig. 11)."""
+    cases = {
+        "rigid": dict(model="rigid", n=40, intensity=1e11, amplitude=1e-3, mode=1.5, t_final=0.01),
+        "torsion-stable": dict(model="torsion", youngs_modulus=4.5e13),
+        "torsion-soft": dict(model="torsion", youngs_modulus=4.5e9),
+        "tnt-stable": dict(model="tnt", tension=3.34e-3, youngs_modulus=TNT_DEFAULT_MODULUS),
+        "tnt-soft": dict(model="tnt", tension=3.34e-8, youngs_modulus=TNT_DEFAULT_MODULUS),
+    }
+    if name not in cases:
+        raise ParameterError(f"case={name!r} is invalid: allowed one of {', '.join(cases)}")
+    return SailParameters(**{**cases[name], **changes})
+
+
+# The paper gives no E for its TnT runs; 1e11 Pa (a stiff polymer/ceramic film, k_s ≈ 2.9e6 N/m at n = 30)
+TNT_DEFAULT_MODULUS = 1e11
