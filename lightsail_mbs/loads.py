@@ -12,8 +12,12 @@ import numpy as np
 from .parameters import SailParameters
 
 
-def radiation_forces(p: SailParameters, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(f_x, f_y) on each slice centre, Eq. (11), in the inertial directions (N)."""
+def radiation_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(f_x, f_y) on each slice centre at abscissa x and angle θ, Eq. (11), inertial directions (N).
+
+    The uniform beam of the paper does not depend on x; x is part of the signature so that
+    beam profiles (issue 9) change this module only.
+    """
     c = np.cos(theta)
     s = np.sin(theta)
     mag = p.flat_force * c * c
@@ -25,7 +29,7 @@ def frame_force(p: SailParameters) -> float:
     return -p.slice_mass * p.nominal_acceleration
 
 
-def applied_forces(p: SailParameters, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def applied_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Radiation load plus frame force on each slice centre, as used by the solvers (N)."""
-    fx, fy = radiation_forces(p, theta)
+    fx, fy = radiation_forces(p, x, theta)
     return fx, fy + frame_force(p)
