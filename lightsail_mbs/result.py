@@ -45,11 +45,12 @@ class Result:
         time = np.asarray(time, float)
         steps = time.shape[0]
         empty = np.zeros((steps, 0))
-        arrays = [np.asarray(a, float).reshape(steps, -1) for a in (x, y, theta, vx, vy, omega)]
-        z = empty if z is None else np.asarray(z, float).reshape(steps, -1)
-        z_rate = empty if z_rate is None else np.asarray(z_rate, float).reshape(steps, -1)
-        return cls(params, solver, time, *arrays, z=z, z_rate=z_rate,
-                   amplitude=np.atleast_1d(analysis.amplitude(arrays[0], arrays[1])),
+        names = ("x", "y", "theta", "vx", "vy", "omega")
+        arrays = {k: np.asarray(a, float).reshape(steps, -1) for k, a in zip(names, (x, y, theta, vx, vy, omega))}
+        arrays["z"] = empty if z is None else np.asarray(z, float).reshape(steps, -1)
+        arrays["z_rate"] = empty if z_rate is None else np.asarray(z_rate, float).reshape(steps, -1)
+        return cls(params, solver, time, **arrays,
+                   amplitude=np.atleast_1d(analysis.amplitude(arrays["x"], arrays["y"])),
                    wall_time=float(wall_time), error=error, info=dict(info or {}))
 
     # ---- summary ---------------------------------------------------------------------------

@@ -50,7 +50,7 @@ def hinge_points(p: SailParameters, profile=None) -> np.ndarray:
     for k, c in enumerate(chords):
         x0, y0 = pts[k]
         gap = lambda x: np.hypot(x - x0, w(x) - y0) - c  # noqa: E731
-        x1 = brentq(gap, x0, x0 + c, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
+        x1 = brentq(gap, x0, x0 + c * (1 + 1e-9), xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
         pts[k + 1] = (x1, w(x1))
     return pts
 
