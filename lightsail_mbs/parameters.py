@@ -48,6 +48,10 @@ class SailParameters:
     intensity: float = 1e8             # I₀, W/m²
     amplitude: float = 1e-5            # a₀, m
     mode: float = 1.5                  # ν
+    beam_waist: float = math.inf       # w, m: Gaussian beam I₀ exp(−2(x − x_c)²/w²); inf = uniform (paper)
+    beam_center: float | None = None   # x_c, m; None: the sail's middle L/2
+    reflectivity: float = 1.0          # R, specular (paper: 1)
+    absorptivity: float = 0.0          # α; transmissivity 1 − R − α
     bending: bool | None = None        # torsional springs on? None: on for torsion, off for tnt (paper)
     axial_springs: bool = True         # TnT: extensible slices (k_s); False: rigid (inextensible) limit
     torsional_damping: float = 0.0     # c_T, N·m·s/rad
@@ -72,6 +76,18 @@ class SailParameters:
         _check("youngs_modulus", self.youngs_modulus,
                self.youngs_modulus > 0 or not (self.model == "tnt" and self.axial_springs),
                "> 0 for the tnt model with axial springs")
+        _check("beam_waist", self.beam_waist, not math.isnan(float(self.beam_waist)) and self.beam_waist > 0,
+               "> 0 (inf for a uniform beam)")
+        if self.beam_center is None:
+            object.__setattr__(self, "beam_center", 0.5 * self.length)
+        _finite("beam_center", self.beam_center)
+        for name in ("reflectivity", "absorptivity"):
+            v = _finite(name, getattr(self, name))
+            _check(name, v, 0 <= v <= 1, "0 ≤ value ≤ 1")
+        _check("absorptivity", self.absorptivity, self.reflectivity + self.absorptivity <= 1,
+               f"≤ 1 − reflectivity = {1 - self.reflectivity:g} (R + α + transmissivity = 1)")
+        _check("reflectivity", self.reflectivity, 2 * self.reflectivity + self.absorptivity > 0,
+               "> 0 or absorptivity > 0 (a transparent sail feels no load)")
         v = _finite("mode", self.mode)
         _check("mode", v, v > 0, "> 0 (whole or half integers in the paper)")
         v = _finite("t_final", self.t_final)
@@ -138,9 +154,24 @@ class SailParameters:
         return 2.0 * self.intensity / SPEED_OF_LIGHT * self.slice_length * self.width
 
     @property
+    def uniform_beam(self) -> bool:
+        return math.isinf(self.beam_waist)
+
+    @property
+    def mean_intensity(self) -> float:
+        """Ī: the beam intensity averaged over the flat sail 0 ≤ x ≤ L (I₀ for the uniform beam)."""
+        if self.uniform_beam:
+            return self.intensity
+        w, xc, L = self.beam_waist, self.beam_center, self.length
+        r = math.sqrt(2.0) / w
+        return self.intensity * math.sqrt(math.pi / 8.0) * w / L * (math.erf(r * (L - xc)) + math.erf(r * xc))
+
+    @property
     def nominal_acceleration(self) -> float:
-        """g₀ = 2 I₀ / (c ρ h), first-order Eq. (4): the flat sail's acceleration."""
-        return 2.0 * self.intensity / (SPEED_OF_LIGHT * self.density * self.thickness)
+        """g₀ = (2R + α) Ī / (c ρ h): the flat sail's acceleration (Eq. 4, first order, for R = 1,
+        α = 0 and a uniform beam: 2 I₀ / (c ρ h))."""
+        momentum = 2.0 * self.reflectivity + self.absorptivity
+        return momentum * self.mean_intensity / (SPEED_OF_LIGHT * self.density * self.thickness)
 
     @property
     def sample_interval(self) -> float:
