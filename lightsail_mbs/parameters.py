@@ -48,6 +48,9 @@ class SailParameters:
     intensity: float = 1e8             # I₀, W/m²
     amplitude: float = 1e-5            # a₀, m
     mode: float = 1.5                  # ν
+    defect_seed: int | None = None     # None: the paper's sine; an int: random multi-mode defect (shapes.py)
+    defect_modes: int = 10             # multi-mode defect: modes ν_k = k/2, k = 1…K
+    defect_spectrum: float = 1.0       # multi-mode defect: mean amplitude ∝ ν_k^(−β)
     beam_waist: float = math.inf       # w, m: Gaussian beam I₀ exp(−2(x − x_c)²/w²); inf = uniform (paper)
     beam_center: float | None = None   # x_c, m; None: the sail's middle L/2
     reflectivity: float = 1.0          # R, specular (paper: 1)
@@ -76,6 +79,12 @@ class SailParameters:
         _check("youngs_modulus", self.youngs_modulus,
                self.youngs_modulus > 0 or not (self.model == "tnt" and self.axial_springs),
                "> 0 for the tnt model with axial springs")
+        _check("defect_seed", self.defect_seed, self.defect_seed is None
+               or (isinstance(self.defect_seed, int) and not isinstance(self.defect_seed, bool)
+                   and self.defect_seed >= 0), "None or an integer ≥ 0")
+        _check("defect_modes", self.defect_modes, isinstance(self.defect_modes, int) and 1 <= self.defect_modes <= 200,
+               "an integer 1 ≤ K ≤ 200")
+        _finite("defect_spectrum", self.defect_spectrum)
         _check("beam_waist", self.beam_waist, not math.isnan(float(self.beam_waist)) and self.beam_waist > 0,
                "> 0 (inf for a uniform beam)")
         if self.beam_center is None:

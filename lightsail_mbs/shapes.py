@@ -31,6 +31,36 @@ def sine_profile(p: SailParameters):
     return lambda x: p.amplitude * np.sin(k * x)
 
 
+def multimode_coefficients(p: SailParameters) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Modes ν_k = k/2 (k = 1…K), amplitudes a_k and phases φ_k of a random defect.
+
+    a_k = ν_k^(−β) |g_k| with g_k standard normal and φ_k uniform in [0, 2π), drawn from
+    numpy's default generator seeded with params.defect_seed, then scaled so that the RMS
+    of w over 0 ≤ x ≤ L equals a₀/√2, the RMS of the paper's sine of amplitude a₀.
+    """
+    rng = np.random.default_rng(p.defect_seed)
+    nu = 0.5 * np.arange(1, p.defect_modes + 1)
+    a = nu ** (-p.defect_spectrum) * np.abs(rng.standard_normal(nu.size))
+    phase = rng.uniform(0.0, 2.0 * np.pi, nu.size)
+    x = np.linspace(0.0, p.length, 4097)
+    w = (a[:, None] * np.sin(2 * np.pi * nu[:, None] * x / p.length + phase[:, None])).sum(axis=0)
+    rms = np.sqrt(np.trapezoid(w * w, x) / p.length)
+    return nu, a * (p.amplitude / np.sqrt(2.0) / rms), phase
+
+
+def multimode_profile(p: SailParameters):
+    """w(x) = Σ_k a_k sin(2πν_k x/L + φ_k): a seeded random multi-mode defect (issue 9)."""
+    nu, a, phase = multimode_coefficients(p)
+    k = 2.0 * np.pi * nu / p.length
+    return lambda x: float(np.dot(a, np.sin(k * x + phase))) if np.ndim(x) == 0 else \
+        (a[:, None] * np.sin(k[:, None] * np.asarray(x)[None, :] + phase[:, None])).sum(axis=0)
+
+
+def defect_profile(p: SailParameters):
+    """The initial defect of a case: the paper's sine, or the multi-mode defect if defect_seed is set."""
+    return sine_profile(p) if p.defect_seed is None else multimode_profile(p)
+
+
 def initial_spring_extension(p: SailParameters) -> np.ndarray:
     """z_k = T / k_s for the extensible TnT chain (pre-tension), else zeros (length n − 1)."""
     z = np.zeros(p.n - 1)
@@ -40,8 +70,8 @@ def initial_spring_extension(p: SailParameters) -> np.ndarray:
 
 
 def hinge_points(p: SailParameters, profile=None) -> np.ndarray:
-    """(n+1, 2) hinge points on `profile` (default: the sine of Eq. 1) with exact chord lengths."""
-    w = profile or sine_profile(p)
+    """(n+1, 2) hinge points on `profile` (default: defect_profile(p)) with exact chord lengths."""
+    w = profile or defect_profile(p)
     z = initial_spring_extension(p)
     chords = np.full(p.n, p.slice_length)
     chords[:-1] += z

@@ -37,3 +37,19 @@ def test_flat_sail_for_zero_amplitude():
     s = initial_state(SailParameters(amplitude=0.0, n=10))
     assert not s.theta.any() and not s.y.any()
     np.testing.assert_allclose(s.x, (np.arange(10) + 0.5) / 10, atol=1e-15)
+
+
+def test_multimode_defect_seeded_rms_and_chords():
+    from lightsail_mbs.shapes import multimode_coefficients, multimode_profile
+    p = SailParameters(n=60, amplitude=1e-4, defect_seed=3, defect_modes=12, defect_spectrum=1.5)
+    nu, a, phase = multimode_coefficients(p)
+    nu2, a2, phase2 = multimode_coefficients(p)
+    np.testing.assert_array_equal(a, a2)                    # same seed, same defect
+    assert not np.allclose(a, multimode_coefficients(p.replace(defect_seed=4))[1])
+    np.testing.assert_allclose(nu, 0.5 * np.arange(1, 13))
+    x = np.linspace(0, 1, 20001)
+    w = multimode_profile(p)(x)
+    assert np.sqrt(np.trapezoid(w * w, x)) == pytest.approx(1e-4 / np.sqrt(2), rel=1e-3)
+    pts = hinge_points(p)
+    np.testing.assert_allclose(pts[:, 1], multimode_profile(p)(pts[:, 0]), atol=1e-15)
+    np.testing.assert_allclose(np.hypot(*np.diff(pts, axis=0).T), p.slice_length, rtol=1e-13)
