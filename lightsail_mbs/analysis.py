@@ -50,3 +50,18 @@ def fails_at_trough(x: np.ndarray, y: np.ndarray) -> bool:
     """True when the largest deviation from the line of one state is a trough (negative offset)."""
     off = line_offsets(x, y)
     return bool(-off.min() > off.max())
+
+
+def mechanical_energy(result) -> np.ndarray:
+    """Kinetic plus elastic energy of a Result over time (J), Eqs (12), (23), (29):
+
+    ½ m Σ(ẋ² + ẏ²) + ½ J Σ θ̇² + ½ k_T Σ(θ_j − θ_{j−1})² + ½ k_s Σ z_j².
+    Conserved in free vibration (zero intensity, no damping, no tension).
+    """
+    p = result.params
+    kinetic = 0.5 * p.slice_mass * (result.vx ** 2 + result.vy ** 2).sum(axis=1) \
+        + 0.5 * p.slice_inertia * (result.omega ** 2).sum(axis=1)
+    elastic = 0.5 * p.torsional_stiffness * (np.diff(result.theta, axis=1) ** 2).sum(axis=1)
+    if result.z.shape[1]:
+        elastic = elastic + 0.5 * p.axial_stiffness * (result.z ** 2).sum(axis=1)
+    return kinetic + elastic

@@ -44,3 +44,15 @@ def test_trough_detection():
     y[np.argmin(y)] -= 5e-5          # a deep trough
     assert analysis.fails_at_trough(x, y)
     assert not analysis.fails_at_trough(x, -y)
+
+
+def test_mechanical_energy_of_a_synthetic_state():
+    from lightsail_mbs import Result, SailParameters
+    p = SailParameters(n=3, youngs_modulus=1e12)
+    t = np.array([0.0])
+    theta = np.array([[0.0, 0.1, 0.3]])
+    vx = np.array([[1.0, 0.0, 0.0]])
+    omega = np.array([[0.0, 2.0, 0.0]])
+    r = Result.from_trajectory(p, "test", t, [[0, 1, 2]], [[0, 0, 0]], theta, vx, 0 * vx, omega)
+    expected = 0.5 * p.slice_mass * 1.0 + 0.5 * p.slice_inertia * 4.0 + 0.5 * p.torsional_stiffness * (0.01 + 0.04)
+    assert analysis.mechanical_energy(r)[0] == pytest.approx(expected, rel=1e-14)
