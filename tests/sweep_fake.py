@@ -1,0 +1,45 @@
+"""A fast, deterministic stand-in for a solver, importable by sweep worker processes.
+
+Fails when E < E_cr,max (paper Eq. 8), so the boundary of the fake map is known exactly.
+Options (part of the case key): marker_dir (one file per execution, to count them), sleep (s),
+raise_modes / error_modes / crash_modes (modes ν that raise, return an error, kill the worker).
+Run as a script, it runs a small sweep (the interrupted-sweep test kills it part-way).
+"""
+import os
+import sys
+import time
+import uuid
+from pathlib import Path
+
+from lightsail_mbs import SailParameters, theory
+
+
+def fake_case(case):
+    options = case.options
+    if options.get("marker_dir"):
+        Path(options["marker_dir"], f"{case.key}.{uuid.uuid4().hex}").touch()
+    time.sleep(options.get("sleep", 0.0))
+    p = case.params
+    if p.mode in options.get("raise_modes", ()):
+        raise RuntimeError("fake solver blew up")
+    if p.mode in options.get("crash_modes", ()):
+        os._exit(3)
+    threshold = theory.critical_modulus_max(p)
+    failed = p.youngs_modulus < threshold
+    return {"failed": bool(failed), "failure_time": 0.1 * p.youngs_modulus / threshold if failed else None,
+            "error": "fake divergence" if p.mode in options.get("error_modes", ()) else None,
+            "threshold": threshold}
+
+
+def small_sweep(marker_dir, sleep=0.0, **options):
+    """12 torsion cases: 4 moduli × 3 thicknesses."""
+    from lightsail_mbs.sweep import Case
+    return [Case(SailParameters(thickness=h, youngs_modulus=e), "fake",
+                 dict(marker_dir=str(marker_dir), sleep=sleep, **options))
+            for h in (1e-7, 1e-6, 1e-5) for e in (1e9, 1e11, 1e13, 1e15)]
+
+
+if __name__ == "__main__":
+    from lightsail_mbs.sweep import run_sweep
+    store, markers, sleep = sys.argv[1], sys.argv[2], float(sys.argv[3])
+    run_sweep(small_sweep(markers, sleep), store, workers=2, progress=False, case_function=fake_case)
