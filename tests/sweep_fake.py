@@ -1,7 +1,7 @@
 """A fast, deterministic stand-in for a solver, importable by sweep worker processes.
 
 Fails when E < E_cr,max (paper Eq. 8), so the boundary of the fake map is known exactly.
-Options (part of the case key): marker_dir (one file per execution, to count them), sleep (s),
+Options (part of the case key): as_result (return a Result, not a dict), marker_dir (one file per execution, to count them), sleep (s),
 raise_modes / error_modes / crash_modes (modes ν that raise, return an error, kill the worker).
 Run as a script, it runs a small sweep (the interrupted-sweep test kills it part-way).
 """
@@ -11,7 +11,9 @@ import time
 import uuid
 from pathlib import Path
 
-from lightsail_mbs import SailParameters, theory
+import numpy as np
+
+from lightsail_mbs import Result, SailParameters, theory
 
 
 def fake_case(case):
@@ -26,9 +28,20 @@ def fake_case(case):
         os._exit(3)
     threshold = theory.critical_modulus_max(p)
     failed = p.youngs_modulus < threshold
+    if options.get("as_result"):
+        return fake_result(p, growth_rate=np.log(4.0) if failed else 0.0)
     return {"failed": bool(failed), "failure_time": 0.1 * p.youngs_modulus / threshold if failed else None,
             "error": "fake divergence" if p.mode in options.get("error_modes", ()) else None,
             "threshold": threshold}
+
+
+def fake_result(p, growth_rate):
+    """A Result whose sine shape grows as exp(growth_rate · t) over 1 s."""
+    t = np.linspace(0.0, 1.0, 21)
+    x = np.tile((np.arange(p.n) + 0.5) / p.n * p.length, (t.size, 1))
+    y = p.amplitude * np.exp(growth_rate * t)[:, None] * np.sin(2 * np.pi * p.mode * x / p.length)
+    zero = np.zeros_like(x)
+    return Result.from_trajectory(p, "fake", t, x, y, zero, zero, zero, zero)
 
 
 def small_sweep(marker_dir, sleep=0.0, **options):
