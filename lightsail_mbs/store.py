@@ -30,6 +30,14 @@ def _jsonable(value):
     raise TypeError(f"not JSON serialisable: {type(value).__name__}")
 
 
+def _jsonable_or_repr(value):
+    """For records: an odd solver statistic is kept as its repr rather than losing the case."""
+    try:
+        return _jsonable(value)
+    except TypeError:
+        return repr(value)
+
+
 class CaseStore:
     """A directory of finished cases: ``<key>.json`` records and optional ``results/<key>.npz``."""
 
@@ -55,10 +63,14 @@ class CaseStore:
     def keys(self) -> list[str]:
         return sorted(p.stem for p in self.directory.glob("*.json"))
 
+    def records(self) -> list[dict]:
+        """Every finished case in the store (e.g. to plot a map without rerunning anything)."""
+        return [self.load(key) for key in self.keys()]
+
     def write(self, key: str, record: dict) -> Path:
         """Write the record atomically: a reader sees the old file, or the whole new one."""
         path = self.record_path(key)
-        text = json.dumps(record, indent=1, sort_keys=True, default=_jsonable) + "\n"
+        text = json.dumps(record, indent=1, sort_keys=True, default=_jsonable_or_repr) + "\n"
         fd, tmp = tempfile.mkstemp(dir=self.directory, prefix=f".{key}.", suffix=".tmp")
         try:
             with os.fdopen(fd, "w") as handle:

@@ -124,6 +124,8 @@ def run_sweep(cases, store_dir, *, workers: int | None = None, scheduler=None, p
     for case in cases:
         if not isinstance(case, Case):
             raise ParameterError(f"cases contains {case!r}: allowed Case objects only")
+    if workers is not None and (not isinstance(workers, int) or isinstance(workers, bool) or workers < 1):
+        raise ParameterError(f"workers={workers!r} is invalid: allowed an integer ≥ 1 or None (all cores)")
     store = CaseStore(store_dir)
     unique: dict[str, Case] = {}
     for case in cases:
@@ -131,8 +133,6 @@ def run_sweep(cases, store_dir, *, workers: int | None = None, scheduler=None, p
     todo = [case for key, case in unique.items()
             if not store.has(key, with_result=case.save_result)
             or (retry_errors and store.load(key)["status"] == "error")]
-    if workers is not None and (not isinstance(workers, int) or workers < 1):
-        raise ParameterError(f"workers={workers!r} is invalid: allowed an integer ≥ 1 or None (all cores)")
 
     from tqdm import tqdm
     bar = tqdm(total=len(unique), initial=len(unique) - len(todo), desc=label, unit="case",

@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from lightsail_mbs import ParameterError, Result, SailParameters, theory
-from lightsail_mbs.bisection import BoundaryProblem, bisect_boundaries, bisect_boundary
+from lightsail_mbs.bisection import BoundaryProblem, bisect_boundaries, bisect_boundary, default_stable
 from lightsail_mbs.store import CaseStore
 from lightsail_mbs.sweep import Case, run_sweep
 
@@ -51,10 +51,11 @@ def test_key_identifies_parameters_solver_and_options():
         Case(p, "fake", {"bad": object()})
 
 
-def test_sweep_records_outcomes_and_skips_finished_cases(tmp_path, markers):
+def test_sweep_records_outcomes_and_skips_finished_cases(tmp_path, markers, capsys):
     cases = small_sweep(markers)
-    records = run_sweep(cases + cases[:2], tmp_path / "store", workers=2, progress=False,
+    records = run_sweep(cases + cases[:2], tmp_path / "store", workers=2, progress=True,
                         case_function=fake_case)
+    assert "12/12" in capsys.readouterr().err                          # progress: cases done / total
     assert len(records) == 14 and records[12] == records[0]          # duplicates computed once
     assert set(executions(markers).values()) == {1} and len(executions(markers)) == 12
     for case, record in zip(cases, records):
@@ -164,6 +165,14 @@ def test_bisection_brackets_and_converges_to_the_known_threshold(tmp_path, lo, h
     assert {h: b.evaluations for h, b in again.items()} == {h: b.evaluations for h, b in found.items()}
 
 
+def test_default_stability_verdict():
+    assert default_stable({"status": "ok", "failed": False}) is True
+    assert default_stable({"status": "ok", "failed": True}) is False
+    assert default_stable({"status": "error", "failed": True}) is False    # failed before diverging
+    assert default_stable({"status": "error", "failed": False}) is None
+    assert default_stable({"status": "error", "failed": None}) is None
+
+
 def test_bisection_reports_what_it_cannot_decide(tmp_path):
     unbracketed = bisect_boundary(lambda e: SailParameters(youngs_modulus=e), 1e25, 1e26, store_dir=tmp_path,
                                   solver="fake", max_expansions=0, workers=1, progress=False,
@@ -175,3 +184,19 @@ def test_bisection_reports_what_it_cannot_decide(tmp_path):
     assert errored.status == "error" and "fake divergence" in errored.message
     with pytest.raises(ParameterError, match="bracket"):
         bisect_boundary(lambda e: SailParameters(youngs_modulus=e), 1e9, 1e8, store_dir=tmp_path)
+    with pytest.raises(ParameterError, match="workers"):
+        run_sweep([], tmp_path, workers=0)
+
+
+@pytest.mark.parametrize("solver, module", [("reduced", "reduced"), ("exudyn", "exudyn_chain")])
+def test_real_solver_sweep_matches_a_direct_solve(tmp_path, solver, module):
+    pytest.importorskip(f"lightsail_mbs.solvers.{module}")
+    from lightsail_mbs import solve
+    cases = [Case(SailParameters(n=8, youngs_modulus=e, t_final=0.02), solver, save_result=True)
+             for e in (4.5e9, 4.5e13)]
+    records = run_sweep(cases, tmp_path, workers=2, progress=False)
+    for case, record in zip(cases, records):
+        direct = solve(case.params, solver)
+        assert record["status"] == ("error" if direct.error else "ok")
+        assert record["failed"] == direct.failed and record["t_end"] == pytest.approx(direct.time[-1])
+        assert Result.load(tmp_path / record["result_path"]).amplitude == pytest.approx(direct.amplitude)
