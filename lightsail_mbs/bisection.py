@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 from .parameters import ParameterError
-from .sweep import Case, run_sweep, solve_case
+from .sweep import Case, dask_client, run_sweep, solve_case
 
 
 def default_stable(record: dict) -> bool | None:
@@ -168,6 +168,14 @@ def bisect_boundaries(problems: dict, *, store_dir, solver: str = "exudyn", opti
     searches = {label: _Search(label, problem, factor=factor, log=log, stable_above=stable_above,
                                points_per_round=points_per_round, max_expansions=max_expansions)
                 for label, problem in problems.items()}
+    with dask_client(scheduler) as client:   # one connection for all rounds
+        _advance(searches, store_dir, solver, options, stable,
+                 dict(workers=workers, scheduler=client, progress=progress, case_function=case_function))
+    return {label: search.out for label, search in searches.items()}
+
+
+def _advance(searches: dict, store_dir, solver, options, stable, run_options: dict) -> None:
+    """Rounds until every search has stopped: each round, one sweep of the values all searches want."""
     round_number = 0
     while True:
         batch = []   # (search, value, case)
@@ -184,15 +192,13 @@ def bisect_boundaries(problems: dict, *, store_dir, solver: str = "exudyn", opti
         if not batch:
             break
         round_number += 1
-        records = run_sweep([case for _, _, case in batch], store_dir, workers=workers, scheduler=scheduler,
-                            progress=progress, case_function=case_function,
-                            label=f"bisection round {round_number}")
+        records = run_sweep([case for _, _, case in batch], store_dir, label=f"bisection round {round_number}",
+                            **run_options)
         for search in searches.values():
             mine = [(v, r) for (s, v, _), r in zip(batch, records) if s is search]
             if mine:
                 search.take([v for v, _ in mine], [stable(r) for _, r in mine], [r["key"] for _, r in mine],
                             [r.get("error") for _, r in mine])
-    return {label: search.out for label, search in searches.items()}
 
 
 def bisect_boundary(make_params: Callable, lo: float, hi: float, **kwargs) -> Boundary:

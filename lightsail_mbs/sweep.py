@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import collections
 import concurrent.futures as cf
+import contextlib
 import hashlib
 import multiprocessing
 import os
@@ -214,22 +215,30 @@ def _run_pool(todo, case_function, workers, finished) -> None:
     pool.shutdown(wait=True)
 
 
+@contextlib.contextmanager
+def dask_client(scheduler):
+    """A ``distributed.Client`` for a scheduler address (closed on exit), a given Client as is, or None."""
+    if scheduler is None or not isinstance(scheduler, str):
+        yield scheduler
+        return
+    from distributed import Client
+    with Client(scheduler) as client:
+        yield client
+
+
 def _run_dask(todo, case_function, scheduler, finished) -> None:
     """The same cases on a Dask cluster; Dask itself retries cases whose worker died."""
-    from distributed import Client, as_completed
-    client = scheduler if isinstance(scheduler, Client) else Client(scheduler)
-    futures = {client.submit(execute, case_function, case, pure=False): case for case in todo}
-    try:
-        for future in as_completed(futures):
-            case = futures[future]
-            try:
-                outcome = future.result()
-            except Exception as exc:  # e.g. KilledWorker: the case took down every worker it ran on
-                outcome = (_lost_record(case, f"{type(exc).__name__}: {exc}"), None)
-            finished(case, *outcome)
-    except BaseException:
-        client.cancel(list(futures))
-        raise
-    finally:
-        if client is not scheduler:
-            client.close()
+    from distributed import as_completed
+    with dask_client(scheduler) as client:
+        futures = {client.submit(execute, case_function, case, pure=False): case for case in todo}
+        try:
+            for future in as_completed(futures):
+                case = futures[future]
+                try:
+                    outcome = future.result()
+                except Exception as exc:  # e.g. KilledWorker: the case took down every worker it ran on
+                    outcome = (_lost_record(case, f"{type(exc).__name__}: {exc}"), None)
+                finished(case, *outcome)
+        except BaseException:
+            client.cancel(list(futures))
+            raise

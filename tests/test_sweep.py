@@ -139,8 +139,15 @@ def test_dask_cluster_gives_the_local_results(tmp_path, markers):
                                   dashboard_address=None, protocol="tcp://", host="127.0.0.1") as cluster:
         remote = run_sweep(cases, tmp_path / "dask", scheduler=cluster.scheduler_address, progress=False,
                            case_function=fake_case)
+        remote_boundary = bisect_boundary(lambda e: SailParameters(youngs_modulus=e), 1e8, 1e20,
+                                          store_dir=tmp_path / "dask", solver="fake", progress=False,
+                                          scheduler=cluster.scheduler_address, case_function=fake_case)
     assert outcomes(remote) == outcomes(local)
     assert sum(executions(markers).values()) == 24
+    local_boundary = bisect_boundary(lambda e: SailParameters(youngs_modulus=e), 1e8, 1e20,
+                                     store_dir=tmp_path / "local", solver="fake", progress=False, workers=2,
+                                     case_function=fake_case)
+    assert remote_boundary.status == "converged" and remote_boundary.evaluations == local_boundary.evaluations
 
 
 def fake_threshold(thickness):
