@@ -3,11 +3,12 @@
 For a one-parameter family of cases ``make_params(value)`` (e.g. the Young's modulus at a given
 thickness) the boundary between stable and failed runs is bracketed — the bracket grows
 geometrically (its log-width doubles per step) until its ends differ — then bisected in log space
-until ``hi / lo ≤ factor``. Several boundaries advance in lock-step, one batch of cases per round
-through :func:`~lightsail_mbs.sweep.run_sweep`, so all cores (or a cluster) stay busy, and a rerun
-finds every case it already computed in the store: a killed bisection resumes without recomputing.
-With ``points_per_round = k`` each round evaluates k interior points, shrinking the bracket
-(log-width) by k + 1 per round — for clusters with more workers than boundaries.
+until ``hi / lo ≤ factor``. Several boundaries advance at once on one
+:class:`~lightsail_mbs.sweep.Sweep`, each taking its next step as soon as its own cases are back, so
+all cores (or a cluster) stay busy; every case goes through the store, so a rerun finds every case it
+already computed and a killed bisection resumes without recomputing (the path of each boundary depends
+only on its own outcomes). With ``points_per_round = k`` each step evaluates k interior points at
+once, shrinking the bracket's log-width k + 1 times — for clusters with more workers than boundaries.
 """
 from __future__ import annotations
 
@@ -16,7 +17,7 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 from .parameters import ParameterError
-from .sweep import Case, dask_client, run_sweep, solve_case
+from .sweep import Case, Sweep, solve_case
 
 
 def default_stable(record: dict) -> bool | None:
@@ -35,7 +36,7 @@ class Boundary:
 
     status: "converged" (bracket ≤ factor wide), "unbracketed" (no sign change within
     ``max_expansions`` expansions) or "error" (a case's stability could not be decided).
-    evaluations: (value, stable, key) in the order evaluated; ``monotone`` False if a round saw
+    evaluations: (value, stable, key) in the order evaluated; ``monotone`` False if a step saw
     more than one stable/unstable change (then the change nearest the lower end was kept).
     """
 
@@ -45,7 +46,7 @@ class Boundary:
     status: str = "running"
     message: str = ""
     monotone: bool = True
-    rounds: int = 0
+    steps: int = 0
     evaluations: list = field(default_factory=list)
 
     @property
@@ -106,7 +107,7 @@ class _Search:
 
     def take(self, values: list[float], stable: list[bool | None], keys: list[str],
              errors: list[str | None]) -> None:
-        self.out.rounds += 1
+        self.out.steps += 1
         self.out.evaluations += list(zip(values, stable, keys))
         for v, s, e in zip(values, stable, errors):
             if s is None:
@@ -136,9 +137,18 @@ class _Search:
             if self.hi / self.lo <= self.factor:
                 self.stop("converged", "")
         elif self.expansions >= self.max_expansions:
-            self._record_bracket()
             self.stop("unbracketed", f"{'stable' if self.s_lo else 'unstable'} over "
                                       f"[{self.lo:.6g}, {self.hi:.6g}] after {self.expansions} expansions")
+
+    def remaining(self) -> int:
+        """A guess of the evaluations still to come (for the progress bar's total and ETA)."""
+        if self.out.status != "running":
+            return 0
+        known = self.s_lo is not None and self.s_hi is not None
+        outward = known and self.s_lo == self.s_hi
+        ratio = (self.hi / self.lo) ** (2 if outward else 1) if self.log else self.hi / self.lo
+        steps = math.ceil(math.log(max(math.log(ratio) / math.log(self.factor), 1.0)) / math.log(self.k + 1))
+        return (0 if known else 2) + outward + self.k * steps
 
     def _record_bracket(self) -> None:
         if self.s_lo != self.s_hi:
@@ -165,40 +175,42 @@ def bisect_boundaries(problems: dict, *, store_dir, solver: str = "exudyn", opti
         raise ParameterError(f"factor={factor!r} is invalid: allowed > 1")
     if not (isinstance(points_per_round, int) and points_per_round >= 1):
         raise ParameterError(f"points_per_round={points_per_round!r} is invalid: allowed an integer ≥ 1")
-    searches = {label: _Search(label, problem, factor=factor, log=log, stable_above=stable_above,
-                               points_per_round=points_per_round, max_expansions=max_expansions)
-                for label, problem in problems.items()}
-    with dask_client(scheduler) as client:   # one connection for all rounds
-        _advance(searches, store_dir, solver, options, stable,
-                 dict(workers=workers, scheduler=client, progress=progress, case_function=case_function))
-    return {label: search.out for label, search in searches.items()}
+    searches = [_Search(label, problem, factor=factor, log=log, stable_above=stable_above,
+                        points_per_round=points_per_round, max_expansions=max_expansions)
+                 for label, problem in problems.items()]
+    with Sweep(store_dir, workers=workers, scheduler=scheduler, progress=progress,
+               case_function=case_function, label="bisection") as sweep:
+        waiting: dict[str, list] = {}   # case key -> [(search, value)] in submission order
 
-
-def _advance(searches: dict, store_dir, solver, options, stable, run_options: dict) -> None:
-    """Rounds until every search has stopped: each round, one sweep of the values all searches want."""
-    round_number = 0
-    while True:
-        batch = []   # (search, value, case)
-        for search in searches.values():
+        def step(search: _Search) -> None:
+            """Submit the cases of the search's next step."""
+            search.answers = {}
             for value in search.wanted():
                 try:
                     case = Case(search.problem.make_params(value), solver, dict(options or {}))
                 except ParameterError as exc:
                     search.out.evaluations.append((value, None, None))
                     search.stop("error", f"no case at {value:.6g}: {exc}")
-                    break
-                batch.append((search, value, case))
-        batch = [item for item in batch if item[0].out.status == "running"]
-        if not batch:
-            break
-        round_number += 1
-        records = run_sweep([case for _, _, case in batch], store_dir, label=f"bisection round {round_number}",
-                            **run_options)
-        for search in searches.values():
-            mine = [(v, r) for (s, v, _), r in zip(batch, records) if s is search]
-            if mine:
-                search.take([v for v, _ in mine], [stable(r) for _, r in mine], [r["key"] for _, r in mine],
-                            [r.get("error") for _, r in mine])
+                    return
+                search.answers[value] = None
+                waiting.setdefault(case.key, []).append((search, value))
+                sweep.submit(case)
+
+        for search in searches:
+            step(search)
+        while finished := sweep.wait():
+            for case, record in finished:
+                search, value = waiting[case.key].pop(0)
+                if search.out.status != "running":
+                    continue
+                search.answers[value] = record
+                if None not in search.answers.values():
+                    values, records = list(search.answers), list(search.answers.values())
+                    search.take(values, [stable(r) for r in records], [r["key"] for r in records],
+                                [r.get("error") for r in records])
+                    step(search)
+            sweep.set_total(sweep.bar.n + sum(s.remaining() for s in searches))
+    return {search.out.label: search.out for search in searches}
 
 
 def bisect_boundary(make_params: Callable, lo: float, hi: float, **kwargs) -> Boundary:

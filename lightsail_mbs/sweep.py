@@ -7,30 +7,27 @@ the rest in parallel and writes each record the moment its case finishes
 recomputes nothing it had finished. A case whose solver raises, returns ``Result.error`` or kills
 its worker process is recorded with ``status="error"`` and the sweep goes on.
 
-Where the cases run:
+Where the cases run (:mod:`lightsail_mbs.runners`):
   * ``workers=1``: in this process, one after the other;
   * default: a local process pool with one worker per core (``concurrent.futures``);
   * ``scheduler="tcp://host:8786"`` (or a ``distributed.Client``): the same cases on a Dask cluster.
 Records are written by this (the submitting) process, so cluster workers need no shared disk.
+:class:`Sweep` is the live form: submit cases at any time and collect them as they finish (the
+stability bisections of :mod:`lightsail_mbs.bisection` choose each case from the previous ones).
 """
 from __future__ import annotations
 
-import collections
-import concurrent.futures as cf
-import contextlib
 import hashlib
-import multiprocessing
-import os
 import sys
-import time
-import traceback
-from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
 from typing import Callable
 
 from .parameters import ParameterError, SailParameters
 from .result import Result
+from .runners import available_cores, dask_client, make_runner
 from .store import CaseStore, to_json
+
+__all__ = ["Case", "Sweep", "run_sweep", "solve_case", "available_cores", "dask_client"]
 
 KEY_LENGTH = 20  # hex digits of the SHA-256 of a case's description
 
@@ -67,45 +64,92 @@ def solve_case(case: Case) -> Result:
     return solve(case.params, case.solver, progress=False, **case.options)
 
 
-def execute(case_function: Callable, case: Case) -> tuple[dict, Result | None]:
-    """Run one case in a worker and build its record; never raises for a failing case.
+class Sweep:
+    """A live sweep on a store: ``submit`` cases at any time, ``wait`` for finished ones.
 
-    ``case_function(case)`` returns a Result (its ``summary()`` is recorded) or a summary dict.
-    Returns ``(record, result)`` with ``result`` the Result if it is to be saved, else None.
+    Used as a context manager (it owns the worker pool or the Dask connection). A case already in the
+    store comes back from the next ``wait`` without running; every other finished case is written to
+    the store (Result first if ``save_result``, then its record, atomically) before ``wait`` returns
+    it. A case submitted again while it runs is run once and returned once per submission.
+    Arguments: see :func:`run_sweep`.
     """
-    start = time.perf_counter()
-    result = None
-    try:
-        out = case_function(case)
-    except Exception as exc:  # a failing case is a record, not a crash of the sweep
-        record = {"status": "error", "error": f"{type(exc).__name__}: {exc}", "failed": None,
-                  "traceback": traceback.format_exc(limit=-8)}
-    else:
-        if isinstance(out, Result):
-            record = out.summary()
-            result = out if case.save_result else None
+
+    def __init__(self, store_dir, *, workers: int | None = None, scheduler=None, progress: bool = True,
+                 case_function: Callable = solve_case, retry_errors: bool = False, label: str = "sweep"):
+        if workers is not None and (not isinstance(workers, int) or isinstance(workers, bool) or workers < 1):
+            raise ParameterError(f"workers={workers!r} is invalid: allowed an integer ≥ 1 or None (all cores)")
+        self.store = CaseStore(store_dir)
+        self.workers, self.scheduler, self.progress = workers, scheduler, progress
+        self.case_function, self.retry_errors, self.label = case_function, retry_errors, label
+        self.errors = 0
+        self._ready: list[tuple[Case, dict]] = []
+        self._waiting: dict[str, list[Case]] = {}   # key -> submissions of a case now running
+
+    def __enter__(self) -> "Sweep":
+        from tqdm import tqdm
+        self._client_context = dask_client(self.scheduler)
+        client = self._client_context.__enter__()
+        self._runner = make_runner(self.case_function, workers=self.workers, client=client)
+        self.bar = tqdm(total=0, desc=self.label, unit="case", file=sys.stderr, disable=not self.progress,
+                        dynamic_ncols=True, smoothing=0.1)
+        return self
+
+    def __exit__(self, kind, value, tb) -> None:
+        try:
+            self._runner.close(cancel=kind is not None)
+        finally:
+            self.bar.close()
+            self._client_context.__exit__(kind, value, tb)
+
+    def done(self, case: Case) -> bool:
+        """Is the case finished in the store (with its Result if asked; not an error, if retrying them)?"""
+        if not self.store.has(case.key, with_result=case.save_result):
+            return False
+        return not (self.retry_errors and self.store.load(case.key)["status"] == "error")
+
+    def submit(self, case: Case) -> None:
+        if not isinstance(case, Case):
+            raise ParameterError(f"case={case!r} is invalid: allowed a Case")
+        if case.key in self._waiting:
+            self._waiting[case.key].append(case)
+        elif self.done(case):
+            self._ready.append((case, self.store.load(case.key)))
+            self._count_found()
         else:
-            record = dict(out)
-        record["error"] = record.get("error")
-        record["status"] = "error" if record["error"] else "ok"
-    record.update(_identity(case), case_wall_time=time.perf_counter() - start)
-    return record, result
+            self._waiting[case.key] = [case]
+            self._runner.submit(case)
+        self.set_total(self.bar.total)
 
+    def _count_found(self) -> None:
+        """One more case done without computing: counted, but kept out of the rate and the ETA."""
+        self.bar.n += 1
+        if not self.bar.disable:
+            self.bar.initial += 1
+            self.bar.last_print_n += 1
 
-def _identity(case: Case) -> dict:
-    return {"key": case.key, "solver": case.solver, "options": case.options,
-            "parameters": case.params.to_dict()}
+    def set_total(self, total: int) -> None:
+        """Tell the progress bar how many cases to expect in all (at least those found or submitted)."""
+        self.bar.total = max(total, self.bar.n + sum(map(len, self._waiting.values())))
+        if not self.bar.disable:
+            self.bar.refresh()
 
-
-def _lost_record(case: Case, why: str) -> dict:
-    return {"status": "error", "error": why, "failed": None, **_identity(case)}
-
-
-def available_cores() -> int:
-    try:
-        return len(os.sched_getaffinity(0))
-    except AttributeError:
-        return os.cpu_count() or 1
+    def wait(self) -> list[tuple[Case, dict]]:
+        """Block until some submitted cases are finished; return them as (case, record); [] if none is left."""
+        if self._ready:
+            ready, self._ready = self._ready, []
+            return ready
+        finished = []
+        for case, record, result in self._runner.wait():
+            if result is not None:
+                path = self.store.save_result(case.key, result)
+                record["result_path"] = str(path.relative_to(self.store.directory))
+            self.store.write(case.key, record)
+            self.errors += record["status"] == "error"
+            submissions = self._waiting.pop(case.key)
+            finished += [(c, record) for c in submissions]
+            self.bar.set_postfix(errors=self.errors, refresh=False)
+            self.bar.update(len(submissions))
+        return finished
 
 
 def run_sweep(cases, store_dir, *, workers: int | None = None, scheduler=None, progress: bool = True,
@@ -122,123 +166,20 @@ def run_sweep(cases, store_dir, *, workers: int | None = None, scheduler=None, p
     "error"), ``error``, ``options``, ``case_wall_time`` and, if saved, ``result_path``.
     """
     cases = list(cases)
-    for case in cases:
-        if not isinstance(case, Case):
-            raise ParameterError(f"cases contains {case!r}: allowed Case objects only")
-    if workers is not None and (not isinstance(workers, int) or isinstance(workers, bool) or workers < 1):
-        raise ParameterError(f"workers={workers!r} is invalid: allowed an integer ≥ 1 or None (all cores)")
-    store = CaseStore(store_dir)
-    unique: dict[str, Case] = {}
-    for case in cases:
-        unique.setdefault(case.key, case)
-    todo = [case for key, case in unique.items()
-            if not store.has(key, with_result=case.save_result)
-            or (retry_errors and store.load(key)["status"] == "error")]
-
-    from tqdm import tqdm
-    bar = tqdm(total=len(unique), initial=len(unique) - len(todo), desc=label, unit="case",
-               file=sys.stderr, disable=not progress, dynamic_ncols=True, smoothing=0.1)
-    errors = 0
-
-    def finished(case: Case, record: dict, result: Result | None) -> None:
-        nonlocal errors
-        if result is not None:
-            record["result_path"] = str(store.save_result(case.key, result).relative_to(store.directory))
-        store.write(case.key, record)
-        errors += record["status"] == "error"
-        bar.set_postfix(errors=errors, refresh=False)
-        bar.update(1)
-
-    try:
-        if todo:
-            if scheduler is not None:
-                _run_dask(todo, case_function, scheduler, finished)
-            elif (workers or available_cores()) == 1:
-                for case in todo:
-                    finished(case, *execute(case_function, case))
-            else:
-                _run_pool(todo, case_function, min(workers or available_cores(), len(todo)), finished)
-    finally:
-        bar.close()
-    return [store.load(case.key) for case in cases]
+    unique = {getattr(case, "key", id(case)): case for case in cases}
+    with Sweep(store_dir, workers=_fewer(workers, len(unique)), scheduler=scheduler, progress=progress,
+               case_function=case_function, retry_errors=retry_errors, label=label) as sweep:
+        sweep.set_total(len(unique))
+        for case in unique.values():
+            sweep.submit(case)
+        records = {}
+        while finished := sweep.wait():
+            records.update((case.key, record) for case, record in finished)
+    return [records[case.key] for case in cases]
 
 
-def _run_pool(todo, case_function, workers, finished) -> None:
-    """Local processes, at most 2 cases in flight per worker. A case whose worker dies is rerun alone
-    in a fresh pool; if it kills that one too, it is recorded as an error (the others are innocent).
-
-    Workers are forked where the OS allows (no re-import of the caller's ``__main__``, so scripts
-    without a ``__main__`` guard and functions defined in them work), else spawned.
-    """
-    method = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
-    context = multiprocessing.get_context(method)
-    queue, suspects = collections.deque(todo), collections.deque()
-    running: dict[cf.Future, tuple[Case, bool]] = {}   # future -> (case, running alone?)
-    pool = cf.ProcessPoolExecutor(workers, mp_context=context)
-
-    def submit(case: Case, alone: bool) -> None:
-        running[pool.submit(execute, case_function, case)] = (case, alone)
-
-    try:
-        while queue or suspects or running:
-            broken = False
-            try:
-                if suspects and not running:
-                    submit(suspects[0], True)
-                    suspects.popleft()
-                while not suspects and queue and len(running) < 2 * workers:
-                    submit(queue[0], False)
-                    queue.popleft()
-                done, _ = cf.wait(running, return_when=cf.FIRST_COMPLETED)
-            except BrokenProcessPool:   # the pool broke while cases were being submitted
-                done, broken = set(), True
-            for future in done:
-                case, alone = running.pop(future)
-                try:
-                    outcome = future.result()
-                except BrokenProcessPool:
-                    broken = True
-                    if alone:
-                        finished(case, _lost_record(case, "worker process died running this case"), None)
-                    else:
-                        suspects.append(case)
-                else:
-                    finished(case, *outcome)
-            if broken:
-                suspects.extend(case for case, _ in running.values())
-                running.clear()
-                pool.shutdown(wait=False, cancel_futures=True)
-                pool = cf.ProcessPoolExecutor(workers, mp_context=context)
-    except BaseException:
-        pool.shutdown(wait=False, cancel_futures=True)
-        raise
-    pool.shutdown(wait=True)
-
-
-@contextlib.contextmanager
-def dask_client(scheduler):
-    """A ``distributed.Client`` for a scheduler address (closed on exit), a given Client as is, or None."""
-    if scheduler is None or not isinstance(scheduler, str):
-        yield scheduler
-        return
-    from distributed import Client
-    with Client(scheduler) as client:
-        yield client
-
-
-def _run_dask(todo, case_function, scheduler, finished) -> None:
-    """The same cases on a Dask cluster; Dask itself retries cases whose worker died."""
-    from distributed import as_completed
-    with dask_client(scheduler) as client:
-        futures = {client.submit(execute, case_function, case, pure=False): case for case in todo}
-        try:
-            for future in as_completed(futures):
-                case = futures[future]
-                try:
-                    outcome = future.result()
-                except Exception as exc:  # e.g. KilledWorker: the case took down every worker it ran on
-                    outcome = (_lost_record(case, f"{type(exc).__name__}: {exc}"), None)
-                finished(case, *outcome)
-        except BaseException:
-            client.cancel(list(futures))
-            raise
+def _fewer(workers: int | None, cases: int) -> int | None:
+    """No more local workers than cases (at least one)."""
+    if workers is not None and not (isinstance(workers, int) and workers >= 1):
+        return workers   # let Sweep reject it with its message
+    return max(1, min(workers or available_cores(), cases))

@@ -1,8 +1,9 @@
 """A fast, deterministic stand-in for a solver, importable by sweep worker processes.
 
 Fails when E < E_cr,max (paper Eq. 8), so the boundary of the fake map is known exactly.
-Options (part of the case key): as_result (return a Result, not a dict), marker_dir (one file per execution, to count them), sleep (s),
-raise_modes / error_modes / crash_modes (modes ν that raise, return an error, kill the worker).
+Options (part of the case key): as_result (return a Result, not a dict), marker_dir (one file per
+execution, to count them), sleep (s; stable_sleep for stable cases), raise_modes / error_modes /
+crash_modes (modes ν that raise, return an error, kill the worker).
 Run as a script, it runs a small sweep (the interrupted-sweep test kills it part-way).
 """
 import os
@@ -20,14 +21,15 @@ def fake_case(case):
     options = case.options
     if options.get("marker_dir"):
         Path(options["marker_dir"], f"{case.key}.{uuid.uuid4().hex}").touch()
-    time.sleep(options.get("sleep", 0.0))
     p = case.params
+    threshold = theory.critical_modulus_max(p)
+    failed = p.youngs_modulus < threshold
+    sleep = options.get("sleep", 0.0)
+    time.sleep(sleep if failed else options.get("stable_sleep", sleep))
     if p.mode in options.get("raise_modes", ()):
         raise RuntimeError("fake solver blew up")
     if p.mode in options.get("crash_modes", ()):
         os._exit(3)
-    threshold = theory.critical_modulus_max(p)
-    failed = p.youngs_modulus < threshold
     if options.get("as_result"):
         return fake_result(p, growth_rate=np.log(4.0) if failed else 0.0)
     return {"failed": bool(failed), "failure_time": 0.1 * p.youngs_modulus / threshold if failed else None,

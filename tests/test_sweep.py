@@ -155,21 +155,25 @@ def fake_threshold(thickness):
 
 
 @pytest.mark.parametrize("lo, hi, points", [(1e8, 1e20, 1), (1e20, 1e21, 1), (1e3, 1e4, 2)])
-def test_bisection_brackets_and_converges_to_the_known_threshold(tmp_path, lo, hi, points):
+def test_bisection_brackets_and_converges_to_the_known_threshold(tmp_path, markers, lo, hi, points):
     thicknesses = (1e-7, 1e-6, 1e-5)
     problems = {h: BoundaryProblem(lambda e, h=h: SailParameters(thickness=h, youngs_modulus=e), lo, hi)
                 for h in thicknesses}
-    found = bisect_boundaries(problems, store_dir=tmp_path, solver="fake", factor=1.5, workers=2,
-                              points_per_round=points, progress=False, case_function=fake_case)
+    options = {"marker_dir": str(markers)}
+    found = bisect_boundaries(problems, store_dir=tmp_path, solver="fake", options=options, factor=1.5,
+                              workers=2, points_per_round=points, progress=False, case_function=fake_case)
     for h, b in found.items():
         lo_b, hi_b = b.bracket
         assert b.status == "converged" and b.monotone and hi_b / lo_b <= 1.5
         assert b.stable_value == hi_b and b.unstable_value == lo_b           # stiff side stable
         assert lo_b <= fake_threshold(h) <= hi_b
-    # a rerun (as after a kill) finds every case in the store and takes the same path
-    again = bisect_boundaries(problems, store_dir=tmp_path, solver="fake", factor=1.5, workers=2,
-                              points_per_round=points, progress=False, case_function=fake_case)
+    ran = executions(markers)
+    assert set(ran.values()) == {1} and len(ran) == sum(len(b.evaluations) for b in found.values())
+    # a rerun (as after a kill) finds every case in the store, takes the same path, computes nothing
+    again = bisect_boundaries(problems, store_dir=tmp_path, solver="fake", options=options, factor=1.5,
+                              workers=2, points_per_round=points, progress=False, case_function=fake_case)
     assert {h: b.evaluations for h, b in again.items()} == {h: b.evaluations for h, b in found.items()}
+    assert executions(markers) == ran
 
 
 def test_default_stability_verdict():
