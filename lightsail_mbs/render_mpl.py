@@ -24,7 +24,7 @@ class MatplotlibCanvas:
         self.axes = self.figure.add_axes((0.0, 0.0, 1.0, 1.0))
         self.axes.set_axis_off()
         self.lines = LineCollection([], capstyle="butt", joinstyle="round")
-        self.polys = PolyCollection([], linewidths=0.5)
+        self.polys = PolyCollection([], edgecolors="none")
         self.axes.add_collection(self.lines)
         self.axes.add_collection(self.polys)
         self.texts = []
@@ -40,7 +40,6 @@ class MatplotlibCanvas:
         self.lines.set_linewidth(scene.stroke_width * POINTS_PER_PIXEL)
         self.polys.set_verts(scene.triangles)
         self.polys.set_facecolor(scene.triangle_rgba)
-        self.polys.set_edgecolor(scene.triangle_rgba)       # closes the antialiasing seams between neighbours
         while len(self.texts) < len(scene.texts):
             self.texts.append(ax.text(0, 0, "", ha="left", va="top", family="DejaVu Sans Mono"))
         for artist, item in zip(self.texts, scene.texts):

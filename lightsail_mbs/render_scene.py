@@ -163,13 +163,14 @@ def _offsets(result: Result, index: int):
 @dataclass
 class Style:
     """What is shared by every frame of a sequence (or of both runs side by side): the exaggeration E,
-    the colour range ±vmax of the hinge values, and the layout."""
+    the colour range ±vmax of the hinge values, the time axis (t_start, t_end) and the layout."""
 
     layout: Layout
     exaggeration: float
     color_by: str | None
     vmax: float
     arrows: bool
+    time_span: tuple
 
 
 def auto_exaggeration(results, indices, layout: Layout) -> float:
@@ -202,7 +203,9 @@ def make_style(results, indices, layout: Layout, exaggeration=None, color_by="cu
         raise ParameterError(f"exaggeration={exaggeration!r} is invalid: allowed a finite number > 0 (None: automatic)")
     vmax = max((float(np.abs(hinge_values(r, i, color_by)).max(initial=0.0)) for r, idx in zip(results, indices)
                 for i in idx), default=0.0)
-    return Style(layout, float(exaggeration), color_by, vmax, bool(arrows))
+    time_span = (min(float(r.time[0]) for r in results),
+                 max(max(float(r.params.t_final), float(r.time[-1])) for r in results))
+    return Style(layout, float(exaggeration), color_by, vmax, bool(arrows), time_span)
 
 
 def _arrow(start, vector, width_px, pix, rgba, strokes, triangles):
@@ -322,8 +325,8 @@ def _legend(result: Result, index: int, style: Style, strokes, triangles, texts)
     pix = 1.1 / lay.width
     y_bar = lay.box[2] + (8 + 0.5 * lay.small_font) * lay.scale * pix
     y_text = y_bar + (6 * lay.scale + 1.2 * lay.small_font) * pix
-    t0, t1 = float(result.time[0]), float(result.params.t_final)
-    span = max(t1, float(result.time[-1])) - t0 or 1.0
+    t0, t1 = style.time_span
+    span = t1 - t0 or 1.0
     x0, x1 = 0.0, 0.45
     frac = (float(result.time[index]) - t0) / span
     strokes.append((np.array([[x0, y_bar], [x1, y_bar]]), GHOST_RGBA, 6 * lay.scale))
@@ -333,18 +336,15 @@ def _legend(result: Result, index: int, style: Style, strokes, triangles, texts)
         xf = x0 + (fail - t0) / span * (x1 - x0)
         strokes.append((np.array([[xf, y_bar - 8 * lay.scale * pix], [xf, y_bar + 8 * lay.scale * pix]]),
                         FAIL_RGBA, 3 * lay.scale))
-    texts.append(Text(x0, y_text, f"time 0 - {t0 + span:g} s" + ("" if fail is None else " (red: failure)"),
+    texts.append(Text(x0, y_text, f"time {t0:g} - {t1:g} s" + ("" if fail is None else " (red: failure)"),
                       lay.small_font))
     if style.color_by is None:
         return
     c0, c1, cells = 0.65, 1.0, 48
-    h = 5 * lay.scale * pix
     edges = np.linspace(c0, c1, cells + 1)
     for k in range(cells):
-        rgba = _color((k + 0.5) / cells * 2 - 1, 1.0)
-        a, b = edges[k], edges[k + 1]
-        triangles.append((np.array([[a, y_bar - h], [b, y_bar - h], [b, y_bar + h]]), rgba))
-        triangles.append((np.array([[a, y_bar - h], [b, y_bar + h], [a, y_bar + h]]), rgba))
+        strokes.append((np.array([[edges[k], y_bar], [edges[k + 1], y_bar]]),
+                        _color((k + 0.5) / cells * 2 - 1, 1.0), 10 * lay.scale))
     unit = "1/m" if style.color_by == "curvature" else "N m"
     texts.append(Text(c0, y_text, f"{style.color_by} +-{style.vmax:.2g} {unit}", lay.small_font))
 

@@ -1,0 +1,51 @@
+"""`lightsail-mbs render`: a saved Result as numbered PNG frames (and an MP4/GIF), headless."""
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..render import RENDERERS, make_movie, parse_size, render_comparison, render_frames
+from ..result import Result
+
+COLOR_CHOICES = {"curvature": "curvature", "moment": "moment", "none": None}
+
+
+def register(sub) -> None:
+    p = sub.add_parser("render", help="render a saved run (.npz) as PNG frames and optionally a movie, no display")
+    p.add_argument("run", help="a Result saved by `lightsail-mbs simulate --out RUN.npz`")
+    p.add_argument("--out", required=True, help="output folder: frame_0000.png, ... (and RUN.mp4 / RUN.gif)")
+    which = p.add_mutually_exclusive_group()
+    which.add_argument("--frames", type=int, help="number of frames, evenly spaced in time [default 100]")
+    which.add_argument("--every-seconds", type=float, help="one frame per this much simulated time (s)")
+    p.add_argument("--size", default=None, help="WIDTHxHEIGHT in pixels [default 800x400; 800x800 with --compare]")
+    p.add_argument("--exaggeration", type=float, help="deflection factor [default: automatic, printed on each frame]")
+    p.add_argument("--renderer", choices=RENDERERS, default="auto",
+                   help="exudyn (raytracer) or matplotlib (Agg); auto: the faster, exudyn [default auto]")
+    p.add_argument("--color-by", choices=sorted(COLOR_CHOICES), default="curvature",
+                   help="colour the slices by hinge curvature Δθ/l or bending moment k_T Δθ [default curvature]")
+    p.add_argument("--no-arrows", dest="arrows", action="store_false",
+                   help="omit the radiation-load and boundary-tension arrows")
+    p.add_argument("--compare", metavar="RUN2", help="a second run drawn below the first at the same times")
+    p.add_argument("--labels", nargs=2, metavar=("LABEL1", "LABEL2"), help="panel labels with --compare")
+    p.add_argument("--movie", choices=("mp4", "gif", "both"), help="also encode the frames into OUT/RUN.mp4/.gif")
+    p.add_argument("--fps", type=float, default=20.0, help="movie frame rate [default 20]")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    result = Result.load(args.run)
+    options = dict(frames=args.frames, every_seconds=args.every_seconds, exaggeration=args.exaggeration,
+                   renderer=args.renderer, color_by=COLOR_CHOICES[args.color_by], arrows=args.arrows)
+    if args.compare:
+        other = Result.load(args.compare)
+        labels = args.labels or (Path(args.run).stem, Path(args.compare).stem)
+        size = parse_size(args.size or "800x800")
+        paths = render_comparison(result, other, args.out, labels=labels, size=size, **options)
+    else:
+        size = parse_size(args.size or "800x400")
+        paths = render_frames(result, args.out, size=size, **options)
+    print(f"wrote {len(paths)} frames of {size[0]}x{size[1]} px to {args.out}/")
+    kinds = {"mp4": ["mp4"], "gif": ["gif"], "both": ["mp4", "gif"], None: []}[args.movie]
+    for kind in kinds:
+        movie = make_movie(paths, Path(args.out) / f"{Path(args.run).stem}.{kind}", fps=args.fps)
+        print(f"wrote {movie}")
+    return 0
