@@ -46,7 +46,6 @@ class ExudynCanvas:
         gl.light0.diffuse = 1.0
         gl.light0.specular = 0.0
         gl.light1.enable = False
-        gl.shadow = 0.0
         vs.raytracer.numberOfThreads = threads or os.cpu_count() or 1
         self.box = None
 
