@@ -8,7 +8,7 @@ import sys
 from ..parameters import ParameterError
 
 # subcommand modules of this package; each defines register(subparsers) and sets `func`
-COMMANDS = ["theory", "simulate", "render"]
+COMMANDS = ["theory", "simulate", "render", "montecarlo"]
 
 
 def build_parser() -> argparse.ArgumentParser:
