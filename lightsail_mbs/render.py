@@ -120,7 +120,7 @@ def render_frames(result: Result, out_dir, frames: int | None = None, every_seco
 
     exaggeration: the factor E on the deflection (None: render_scene.auto_exaggeration);
     color_by: 'curvature' (Δθ/l), 'moment' (k_T Δθ) or None; arrows: radiation load and boundary tension;
-    progress: a callable called with the number of frames written so far, or None.
+    progress: True for a bar on stderr, or a callable called with the number of frames written so far.
     """
     _check_options(color_by)
     width, height = parse_size(size)
@@ -129,15 +129,16 @@ def render_frames(result: Result, out_dir, frames: int | None = None, every_seco
     style = make_style([result], [picks], layout, exaggeration, color_by, arrows)
     out = _prepare(out_dir)
     canvas = open_canvas(renderer, width, height)
+    report, done = _progress(progress, len(picks))
     try:
         paths = []
         for k, i in enumerate(picks):
             image = canvas.draw(build_scene(result, int(i), style, label))
             paths.append(_write_png(image, out / f"frame_{k:04d}.png"))
-            if progress:
-                progress(k + 1)
+            report(k + 1)
     finally:
         canvas.close()
+        done()
     return paths
 
 
@@ -161,6 +162,7 @@ def render_comparison(first: Result, second: Result, out_dir, labels=("run 1", "
     style = make_style(runs, per_run, panel, exaggeration, color_by, arrows)
     out = _prepare(out_dir)
     canvas = open_canvas(renderer, width, panel.height)
+    report, done = _progress(progress, len(times))
     try:
         paths = []
         for k, t in enumerate(times):
@@ -170,11 +172,24 @@ def render_comparison(first: Result, second: Result, out_dir, labels=("run 1", "
                                       images[1]])
             stacked[panel.height - 1:panel.height + 1] = 120     # a grey rule between the panels
             paths.append(_write_png(stacked, out / f"frame_{k:04d}.png"))
-            if progress:
-                progress(k + 1)
+            report(k + 1)
     finally:
         canvas.close()
+        done()
     return paths
+
+
+def _progress(progress, total: int):
+    """(report(count), done()) for progress=True (a tqdm bar on stderr), a callable, or None/False."""
+    if progress is True:
+        import sys
+
+        from tqdm import tqdm
+        bar = tqdm(total=total, desc="rendering", unit="frame", file=sys.stderr, mininterval=0.5)
+        return (lambda k: bar.update(k - bar.n)), bar.close
+    if callable(progress):
+        return progress, lambda: None
+    return (lambda k: None), (lambda: None)
 
 
 def _prepare(out_dir) -> Path:

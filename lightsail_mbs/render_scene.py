@@ -114,11 +114,11 @@ class Layout:
 
     @property
     def big_font(self) -> float:
-        return round(17 * self.scale)
+        return max(13, round(17 * self.scale))
 
     @property
     def small_font(self) -> float:
-        return round(12 * self.scale)
+        return max(10, round(12 * self.scale))
 
     @property
     def top_band(self) -> float:
@@ -277,10 +277,11 @@ def build_scene(result: Result, index: int, style: Style, label: str | None = No
     y1 = lay.box[3] - 6 * lay.scale * pix
     y2 = y1 - 1.3 * lay.big_font * pix
     y3 = y2 - 1.25 * lay.small_font * pix
-    texts.append(Text(x0, y1, f"t = {t:.4f} s   a/a0 = {ratio:.3f}", lay.big_font))
+    decimals = max(0, 3 - math.floor(math.log10(style.time_span[1] - style.time_span[0] or 1.0)))
+    texts.append(Text(x0, y1, f"t = {t:.{decimals}f} s   a/a0 = {ratio:.3f}", lay.big_font))
     fail = result.failure_time
     if fail is not None and t >= fail:
-        note = f"FAILED at t = {fail:.4f} s"
+        note = f"FAILED at t = {fail:.{decimals}f} s"
         texts.append(Text(x1 - text_width(note, lay.big_font) * pix, y1, note, lay.big_font, FAIL_RGBA))
         _mark_failure(ends, E * v / L, lay, strokes, triangles)
     what = f"{label}: " if label else ""

@@ -28,13 +28,15 @@ def register(sub) -> None:
     p.add_argument("--labels", nargs=2, metavar=("LABEL1", "LABEL2"), help="panel labels with --compare")
     p.add_argument("--movie", choices=("mp4", "gif", "both"), help="also encode the frames into OUT/RUN.mp4/.gif")
     p.add_argument("--fps", type=float, default=20.0, help="movie frame rate [default 20]")
+    p.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
     result = Result.load(args.run)
     options = dict(frames=args.frames, every_seconds=args.every_seconds, exaggeration=args.exaggeration,
-                   renderer=args.renderer, color_by=COLOR_CHOICES[args.color_by], arrows=args.arrows)
+                   renderer=args.renderer, color_by=COLOR_CHOICES[args.color_by], arrows=args.arrows,
+                   progress=not args.quiet)
     if args.compare:
         other = Result.load(args.compare)
         labels = args.labels or (Path(args.run).stem, Path(args.compare).stem)
