@@ -17,7 +17,7 @@ from PIL import Image
 
 from .parameters import ParameterError
 from .result import Result
-from .render_scene import COLOR_BY, Layout, build_scene, make_style
+from .render_scene import Layout, build_scene, make_style
 
 RENDERERS = ("auto", "matplotlib", "exudyn")
 # "auto": the faster of the two for 200 frames at 800×400 on the 2-core reference machine (README), then the other
@@ -71,15 +71,22 @@ def _nearest(time: np.ndarray, targets: np.ndarray) -> np.ndarray:
     return np.where(np.abs(time[left] - targets) <= np.abs(time[right] - targets), left, right)
 
 
+MIN_WIDTH, MIN_HEIGHT, MAX_SIDE = 200, 120, 8192
+
+
 def parse_size(size) -> tuple[int, int]:
-    """(width, height) from a pair or 'WxH'; each 64 … 8192 pixels."""
+    """(width, height) from a pair or 'WxH': width 200 … 8192, height 120 … 8192 pixels."""
+    given = size
     if isinstance(size, str):
         try:
             size = tuple(int(v) for v in size.lower().split("x"))
         except ValueError:
-            size = (size,)
-    if not (len(size) == 2 and all(isinstance(v, (int, np.integer)) and 64 <= v <= 8192 for v in size)):
-        raise ParameterError(f"size={size!r} is invalid: allowed WIDTHxHEIGHT, each an integer 64 … 8192 pixels")
+            size = ()
+    ok = (len(size) == 2 and all(isinstance(v, (int, np.integer)) for v in size)
+          and MIN_WIDTH <= size[0] <= MAX_SIDE and MIN_HEIGHT <= size[1] <= MAX_SIDE)
+    if not ok:
+        raise ParameterError(f"size={given!r} is invalid: allowed WIDTHxHEIGHT with integers "
+                             f"{MIN_WIDTH} ≤ WIDTH ≤ {MAX_SIDE} and {MIN_HEIGHT} ≤ HEIGHT ≤ {MAX_SIDE} pixels")
     return int(size[0]), int(size[1])
 
 
@@ -102,11 +109,6 @@ def open_canvas(renderer: str, width: int, height: int):
     raise RuntimeError("no renderer available")
 
 
-def _check_options(color_by) -> None:
-    if color_by not in COLOR_BY:
-        raise ParameterError(f"color_by={color_by!r} is invalid: allowed 'curvature', 'moment' or None")
-
-
 def _write_png(image: np.ndarray, path: Path) -> Path:
     Image.fromarray(image).save(path, compress_level=1)
     return path
@@ -122,7 +124,6 @@ def render_frames(result: Result, out_dir, frames: int | None = None, every_seco
     color_by: 'curvature' (Δθ/l), 'moment' (k_T Δθ) or None; arrows: radiation load and boundary tension;
     progress: True for a bar on stderr, or a callable called with the number of frames written so far.
     """
-    _check_options(color_by)
     width, height = parse_size(size)
     picks = frame_indices(result.time, frames, every_seconds, result.failure_time)
     layout = Layout(width, height)
@@ -149,11 +150,10 @@ def render_comparison(first: Result, second: Result, out_dir, labels=("run 1", "
     """Frames of two runs at the same simulated times, `first` above `second` (each half the height),
     with one exaggeration and one colour scale. A run that ended earlier (e.g. stopped at failure)
     keeps showing its last state."""
-    _check_options(color_by)
     width, height = parse_size(size)
     panel = Layout(width, height // 2)
-    if panel.height < 64:
-        raise ParameterError(f"size={size!r} is invalid: allowed a height ≥ 128 pixels for two panels")
+    if panel.height < MIN_HEIGHT:
+        raise ParameterError(f"size={size!r} is invalid: allowed a height ≥ {2 * MIN_HEIGHT} pixels for two panels")
     longer = first if first.time[-1] >= second.time[-1] else second
     picks = frame_indices(longer.time, frames, every_seconds)
     times = longer.time[picks]

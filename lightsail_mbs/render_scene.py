@@ -272,13 +272,14 @@ def build_scene(result: Result, index: int, style: Style, label: str | None = No
 
     # texts: title line (time, amplitude ratio; failure on the right), case line, arrow legend
     t = float(result.time[index])
-    ratio = float(result.amplitude[index] / result.amplitude[0])
+    a0 = float(result.amplitude[0])
     x0, x1 = lay.box[0] + 8 * lay.scale * pix, lay.box[1] - 8 * lay.scale * pix
     y1 = lay.box[3] - 6 * lay.scale * pix
     y2 = y1 - 1.3 * lay.big_font * pix
     y3 = y2 - 1.25 * lay.small_font * pix
     decimals = max(0, 3 - math.floor(math.log10(style.time_span[1] - style.time_span[0] or 1.0)))
-    texts.append(Text(x0, y1, f"t = {t:.{decimals}f} s   a/a0 = {ratio:.3f}", lay.big_font))
+    growth = f"a/a0 = {result.amplitude[index] / a0:.3f}" if a0 > 0 else f"a = {result.amplitude[index]:.3g} m"
+    texts.append(Text(x0, y1, f"t = {t:.{decimals}f} s   {growth}", lay.big_font))
     fail = result.failure_time
     if fail is not None and t >= fail:
         note = f"FAILED at t = {fail:.{decimals}f} s"
