@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from matplotlib import colormaps
 
+from .analysis import fails_at_trough
 from .loads import radiation_forces
 from .parameters import ParameterError
 from .result import Result
@@ -282,7 +283,8 @@ def build_scene(result: Result, index: int, style: Style, label: str | None = No
     texts.append(Text(x0, y1, f"t = {t:.{decimals}f} s   {growth}", lay.big_font))
     fail = result.failure_time
     if fail is not None and t >= fail:
-        note = f"FAILED at t = {fail:.{decimals}f} s"
+        where = "trough" if fails_at_trough(result.x[index], result.y[index]) else "crest"
+        note = f"FAILED at t = {fail:.{decimals}f} s ({where})"
         texts.append(Text(x1 - text_width(note, lay.big_font) * pix, y1, note, lay.big_font, FAIL_RGBA))
         _mark_failure(ends, E * v / L, lay, strokes, triangles)
     what = f"{label}: " if label else ""
@@ -302,7 +304,8 @@ def build_scene(result: Result, index: int, style: Style, label: str | None = No
 
 
 def _mark_failure(ends, deflection, lay: Layout, strokes, triangles) -> None:
-    """A red border round the frame and a red wedge pointing at the largest deflection (where it fails)."""
+    """A red border round the frame and a red wedge pointing at the largest deflection (where it fails:
+    from below at a trough, from above at a crest)."""
     pix = 1.1 / lay.width
     k = int(np.argmax(np.abs(deflection).max(axis=1)))
     tip = ends[k].mean(axis=0)
