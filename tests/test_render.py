@@ -177,3 +177,22 @@ def test_cli_render_writes_frames_and_movie(run, tmp_path, capsys):
     assert read(out / "frame_0002.png").shape == (160, 320, 3)
     assert main(["render", str(path), "--out", str(out), "--frames", "0"]) == 2
     assert "frames=0" in capsys.readouterr().err
+
+
+def test_animations_script_renders_saved_runs(tmp_path):
+    """scenarios/animations.py: reads RUNS/<case>.npz when present, cuts at the amplitude ratio, writes the GIF."""
+    import importlib.util
+    from pathlib import Path
+
+    script = Path(__file__).resolve().parents[1] / "scenarios" / "animations.py"
+    spec = importlib.util.spec_from_file_location("animations", script)
+    animations = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(animations)
+    growing_sine(rate=3.0).save(tmp_path / "runs" / "soft_torsion.npz")
+    animations.main(["--out", str(tmp_path / "docs"), "--runs", str(tmp_path / "runs"), "--cases", "soft_torsion",
+                     "--frames", "4", "--size", "300x150", "--until-ratio", "3"])
+    import imageio.v2 as imageio
+    frames = imageio.mimread(tmp_path / "docs" / "soft_torsion.gif")
+    assert len(frames) == 4 and frames[0].shape[:2] == (150, 300)
+    cut = animations.until_ratio(growing_sine(rate=3.0), 3.0)
+    assert cut.amplitude[-1] >= 3 * cut.amplitude[0] > cut.amplitude[-2]
