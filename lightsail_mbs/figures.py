@@ -1,0 +1,182 @@
+"""Shared pieces of the paper-figure scenarios (scenarios/fig*.py): run cases through the sweep engine,
+write CSV, print tables, draw the recurring plots (slice angles, shapes, stability maps).
+
+Plots use matplotlib's object API on an Agg canvas (no display, no pyplot global state).
+"""
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+
+from . import analysis
+from .result import Result
+from .sweep import Case, run_sweep
+
+MICRO = 1e6  # m → µm
+
+
+# ---- running ---------------------------------------------------------------------------------
+def run_cases(params_list, store_dir, *, solver: str = "exudyn", workers=None, scheduler=None,
+              label: str = "cases", progress: bool = True) -> list[tuple[dict, Result | None]]:
+    """Run (or find in the store) every case with its full Result saved; return (record, Result) pairs
+    in order. A case whose solver failed comes back with its record and, if any, its partial Result."""
+    cases = [Case(p, solver, save_result=True) for p in params_list]
+    records = run_sweep(cases, store_dir, workers=workers, scheduler=scheduler, label=label, progress=progress)
+    out = []
+    for record in records:
+        path = record.get("result_path")
+        out.append((record, Result.load(Path(store_dir) / path) if path else None))
+    return out
+
+
+def angle_slices(n: int, count: int = 5) -> list[int]:
+    """Indices of `count` slices spread from the first to the last (the paper's 'select elements')."""
+    return sorted({int(round(i)) for i in np.linspace(0, n - 1, count)})
+
+
+# ---- files and tables -----------------------------------------------------------------------
+def write_csv(path, rows: list[dict]) -> Path:
+    """Rows of dicts (same keys) to a CSV file; returns its path."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with path.open("w", newline="") as handle:
+        writer = csv.DictWriter(handle, fieldnames=list(rows[0]) if rows else [])
+        writer.writeheader()
+        writer.writerows(rows)
+    return path
+
+
+def series_csv(path, time: np.ndarray, columns: dict) -> Path:
+    """A time series CSV: column 'time_s' and one column per entry of `columns` (same length)."""
+    rows = [dict(time_s=t, **{k: v[i] for k, v in columns.items()}) for i, t in enumerate(time)]
+    return write_csv(path, rows)
+
+
+def fmt(value) -> str:
+    """A table cell: 4 significant digits for numbers, '–' for None/nan."""
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "–"
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if isinstance(value, (int, np.integer)):
+        return str(value)
+    if isinstance(value, (float, np.floating)):
+        return f"{value:.4g}"
+    return str(value)
+
+
+def print_table(title: str, rows: list[dict]) -> None:
+    """A Markdown table of the rows (keys as the header) under a title line."""
+    print(f"\n{title}")
+    if not rows:
+        print("(no rows)")
+        return
+    keys = list(rows[0])
+    print("| " + " | ".join(keys) + " |")
+    print("|" + "---|" * len(keys))
+    for row in rows:
+        print("| " + " | ".join(fmt(row[k]) for k in keys) + " |")
+
+
+# ---- plots ----------------------------------------------------------------------------------
+def new_figure(rows: int = 1, cols: int = 1, size=(7.0, 4.0)):
+    """(figure, axes array) on an Agg canvas."""
+    fig = Figure(figsize=size, dpi=110, layout="constrained")
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(rows, cols, squeeze=False)
+    return fig, axes
+
+
+def save_figure(fig, path) -> Path:
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path)
+    return path
+
+
+def plot_angles(ax, result: Result, slices=None, t_max: float | None = None, title: str = "") -> None:
+    """θ_i(t) of a few slices (radians) against time, the paper's Figs 6–8, 10–11; failure time marked."""
+    slices = angle_slices(result.params.n) if slices is None else slices
+    keep = result.time <= (t_max if t_max is not None else np.inf)
+    for i in slices:
+        ax.plot(result.time[keep], result.theta[keep, i], lw=0.9, label=f"slice {i + 1}")
+    ft = result.failure_time
+    if ft is not None and (t_max is None or ft <= t_max):
+        ax.axvline(ft, color="k", ls="--", lw=0.8, label=f"failure {ft:.3g} s")
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("θ (rad)")
+    ax.set_title(title, fontsize=9)
+    ax.legend(fontsize=7, loc="best")
+
+
+def plot_shape(ax, result: Result, index: int, label: str, **style) -> None:
+    """Offsets of the slice centres from their least-squares line (analysis.line_offsets) at one output
+    sample, in mm against x."""
+    off = analysis.line_offsets(result.x[index], result.y[index])
+    ax.plot(result.x[index], off * 1e3, marker=".", ms=3, label=label, **style)
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("offset from line (mm)")
+
+
+def plot_map(ax, points: list[tuple[float, float, bool]], boundary: list[tuple[float, float, float]],
+             analytic: tuple[np.ndarray, np.ndarray], ylabel: str, label: str = "", color: str = "C0",
+             marker_offset: float = 1.0) -> None:
+    """A stability map on log-log axes: evaluated (thickness, value, stable) points, the bisected
+    boundary (thickness, low, high) as a bracket bar through its geometric mean, the analytic line."""
+    for stable in (True, False):
+        xs = [h * MICRO * marker_offset for h, v, s in points if s is stable]
+        ys = [v for h, v, s in points if s is stable]
+        if xs:
+            ax.scatter(xs, ys, s=16, marker="o" if stable else "x", linewidths=1.0,
+                       facecolors="none" if stable else color, edgecolors=color,
+                       label=f"{label}{'stable' if stable else 'failed'}")
+    if boundary:
+        h, lo, hi = (np.array(c, float) for c in zip(*boundary))
+        mid = np.sqrt(lo * hi)
+        ax.errorbar(h * MICRO * marker_offset, mid, yerr=[mid - lo, hi - mid], color=color, lw=1.2,
+                    capsize=3, label=f"{label}bisected boundary")
+    ax.plot(analytic[0] * MICRO, analytic[1], "k-", lw=1.0, label="analytic")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("thickness h (µm)")
+    ax.set_ylabel(ylabel)
+    ax.grid(True, which="major", lw=0.3)
+
+
+# ---- the angle-history figures of a stable and a soft case (Figs 6–8, 10–11) ------------------
+def angle_history_figures(out, name: str, cases: dict, figures: list[tuple[int, str, float | None]],
+                          describe, *, solver="exudyn", workers=None, scheduler=None, store=None,
+                          progress=True) -> list[dict]:
+    """Run the labelled cases ({label: SailParameters}), then per (figure number, label, t_max) draw
+    θ_i(t) of a few slices into OUT/fig<number>.png. Writes OUT/<name>_summary.csv (failure, frequency
+    of the stable runs by spectral.angle_frequency) and OUT/<name>_angles_<label>.csv; returns the rows.
+    describe(params) -> the case's title text (e.g. its E and E_cr,max).
+    """
+    from .spectral import angle_frequency
+    out = Path(out)
+    runs = dict(zip(cases, run_cases(list(cases.values()), Path(store or out / "store") / name, solver=solver,
+                                     workers=workers, scheduler=scheduler, label=name, progress=progress)))
+    rows = []
+    for label, (record, result) in runs.items():
+        stable = result is not None and not record["failed"] and not record["error"]
+        rows.append({"case": label, "failed": record["failed"], "failure_time_s": record["failure_time"],
+                     "max_amplitude_ratio": record.get("max_amplitude_ratio"), "t_end_s": record.get("t_end"),
+                     "frequency_Hz": angle_frequency(result) if stable else None, "error": record["error"] or ""})
+        if result is not None:
+            series_csv(out / f"{name}_angles_{label}.csv", result.time,
+                       {f"theta_slice{i + 1}_rad": result.theta[:, i] for i in angle_slices(result.params.n)})
+    write_csv(out / f"{name}_summary.csv", rows)
+    for number, label, t_max in figures:
+        result = runs[label][1]
+        if result is None:
+            continue
+        fig, ax = new_figure(size=(7, 3.6))
+        zoom = f", first {t_max * 1e3:g} ms" if t_max else ""
+        plot_angles(ax[0, 0], result, t_max=t_max, title=f"Fig. {number}: {describe(result.params)}{zoom}")
+        save_figure(fig, out / f"fig{number}.png")
+    return rows

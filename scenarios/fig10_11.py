@@ -1,0 +1,36 @@
+"""Paper Figs 10–11: the TnT sail (k_T = 0; h = 1 µm, ν = 3/2, I₀ = 0.1 GW/m², a₀ = 0.01 mm, n = 30, 6 s).
+
+Fig. 10: T = 3.34e-3 N (1000 × T_cr,max = 3.34e-6 N) — stable oscillatory; Fig. 11: T = 3.34e-8 N
+(T_cr,max / 100) — fails (the paper: at roughly 2 s). E = 1e11 Pa for the axial springs (the paper
+gives none). Writes fig10.png, fig11.png, fig10_11_angles_{stable,soft}.csv and fig10_11_summary.csv.
+Usage: python scenarios/fig10_11.py --out DIR [--quick].
+"""
+from __future__ import annotations
+
+import sys
+
+from lightsail_mbs import paper_case, theory
+from lightsail_mbs.figures import angle_history_figures, print_table
+
+FIGURES = (10, 11)
+
+
+def describe(p) -> str:
+    return (f"TnT, h = {p.thickness * 1e6:g} µm, ν = {p.mode:g}, T = {p.tension:.3g} N "
+            f"(T_cr,max = {theory.critical_tension_max(p):.3g} N)")
+
+
+def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
+    changes = dict(n=10, t_final=1.0) if quick else {}
+    cases = {"stable": paper_case("tnt-stable", **changes), "soft": paper_case("tnt-soft", **changes)}
+    rows = angle_history_figures(out, "fig10_11", cases, [(10, "stable", None), (11, "soft", None)], describe,
+                                 solver=solver, workers=workers, scheduler=scheduler, store=store, progress=progress)
+    for row, p in zip(rows, cases.values()):
+        row.update(T_N=p.tension, T_cr_max_N=theory.critical_tension_max(p))
+    print_table(f"Figs 10–11 — TnT sail, h = 1 µm, ν = 3/2, {cases['soft'].t_final:g} s", rows)
+    return {"rows": rows}
+
+
+if __name__ == "__main__":
+    from lightsail_mbs.cli.reproduce import main_for_scenario
+    sys.exit(main_for_scenario(FIGURES, sys.argv[1:]))
