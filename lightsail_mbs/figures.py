@@ -132,9 +132,8 @@ def plot_map(ax, points: list[tuple[float, float, bool]], boundary: list[tuple[f
         xs = [h * MICRO * marker_offset for h, v, s in points if s is stable]
         ys = [v for h, v, s in points if s is stable]
         if xs:
-            ax.scatter(xs, ys, s=16, marker="o" if stable else "x", linewidths=1.0,
-                       facecolors="none" if stable else color, edgecolors=color,
-                       label=f"{label}{'stable' if stable else 'failed'}")
+            style = dict(marker="o", facecolors="none", edgecolors=color) if stable else dict(marker="x", c=color)
+            ax.scatter(xs, ys, s=16, linewidths=1.0, label=f"{label}{'stable' if stable else 'failed'}", **style)
     if boundary:
         h, lo, hi = (np.array(c, float) for c in zip(*boundary))
         mid = np.sqrt(lo * hi)
@@ -179,4 +178,60 @@ def angle_history_figures(out, name: str, cases: dict, figures: list[tuple[int, 
         zoom = f", first {t_max * 1e3:g} ms" if t_max else ""
         plot_angles(ax[0, 0], result, t_max=t_max, title=f"Fig. {number}: {describe(result.params)}{zoom}")
         save_figure(fig, out / f"fig{number}.png")
+    return rows
+
+
+# ---- stability maps (Figs 9, 12) -------------------------------------------------------------
+def stability_map_figure(out, name: str, number: int, base, thicknesses, modes, *, factor=1.5, solver="exudyn",
+                         workers=None, scheduler=None, store=None, progress=True, ratio_limit=10.0) -> list[dict]:
+    """Bisect and draw a stability map: OUT/<name>.png, <name>_boundaries.csv, <name>_points.csv.
+
+    Every (thickness, mode) boundary is bisected (stability_map.boundary_map) at base.t_final; those
+    whose boundary/analytic ratio is outside [1/ratio_limit, ratio_limit] (or not bracketed) are
+    bisected again at 2 × t_final, to show how the boundary moves with the run time. Returns the rows
+    (one per thickness and mode, with ratio_2t and boundary_2t where rechecked).
+    """
+    from .stability_map import SWEPT, boundary_map
+    out = Path(out)
+    store = Path(store or out / "store") / name
+    pairs = [(float(h), float(nu)) for h in thicknesses for nu in modes]
+    kwargs = dict(store_dir=store, solver=solver, factor=factor, workers=workers, scheduler=scheduler,
+                  progress=progress)
+    found = boundary_map(base, pairs, **kwargs)
+    odd = [(r.thickness, r.mode) for r in found
+           if r.ratio is None or not 1.0 / ratio_limit <= r.ratio <= ratio_limit]
+    longer = {}
+    if odd:
+        longer = {(r.thickness, r.mode): r for r in boundary_map(base.replace(t_final=2 * base.t_final), odd, **kwargs)}
+    rows = []
+    for r in found:
+        row = r.as_dict()
+        again = longer.get((r.thickness, r.mode))
+        row.update(boundary_2t=again.boundary if again else None, ratio_2t=again.ratio if again else None,
+                   status_2t=again.status if again else "")
+        rows.append(row)
+    write_csv(out / f"{name}_boundaries.csv", rows)
+    write_csv(out / f"{name}_points.csv",
+              [{"thickness_m": r.thickness, "mode": r.mode, "t_final_s": r.t_final, "value": v, "stable": s}
+               for r in [*found, *longer.values()] for v, s in r.points])
+
+    swept, critical = SWEPT[base.model]
+    label = {"youngs_modulus": "Young's modulus E (Pa)", "tension": "boundary tension T (N)"}[swept]
+    fig, ax = new_figure(size=(7, 5))
+    h_line = np.logspace(np.log10(min(thicknesses)) - 0.2, np.log10(max(thicknesses)) + 0.2, 50)
+    for k, nu in enumerate(modes):
+        mine = [r for r in found if r.mode == float(nu)]
+        offset = 10 ** (0.04 * (k - (len(modes) - 1) / 2))
+        analytic = (h_line, np.array([critical(base.replace(thickness=h, mode=float(nu))) for h in h_line]))
+        plot_map(ax[0, 0], [(r.thickness, v, s) for r in mine for v, s in r.points if s is not None],
+                 [(r.thickness, *sorted((r.stable_value, r.unstable_value))) for r in mine if r.boundary],
+                 analytic, label, label=f"ν = {nu:g}: " if len(modes) > 1 else "", color=f"C{k}",
+                 marker_offset=offset)
+    ax[0, 0].set_title(f"Fig. {number}: {base.model} stability map, {base.t_final:g} s runs, n = {base.n}, "
+                       f"analytic: {'E_cr,max (Eq. 8)' if swept == 'youngs_modulus' else 'T_cr,max (Eq. 10)'}",
+                       fontsize=9)
+    handles, labels = ax[0, 0].get_legend_handles_labels()
+    unique = dict(zip(labels, handles))
+    ax[0, 0].legend(unique.values(), unique.keys(), fontsize=7, loc="best")
+    save_figure(fig, out / f"{name}.png")
     return rows

@@ -52,12 +52,11 @@ class MapRow:
                 "status": self.status, "evaluations": len(self.points)}
 
 
-def boundary_map(base: SailParameters, thicknesses, modes, *, store_dir, solver: str = "exudyn",
+def boundary_map(base: SailParameters, cases, *, store_dir, solver: str = "exudyn",
                  factor: float = 1.5, span: float = 30.0, workers=None, scheduler=None,
                  progress: bool = True, options: dict | None = None) -> list[MapRow]:
-    """Bisect the boundary of ``base`` (model torsion: E; tnt: T) at every (thickness, mode).
-
-    Rows come back in the order thickness-major, mode-minor.
+    """Bisect the boundary of ``base`` (model torsion: E; tnt: T) at every (thickness, mode) of
+    ``cases``; one row per case, in their order. All boundaries advance at once on one sweep.
     """
     if base.model not in SWEPT:
         raise ParameterError(f"model={base.model!r} is invalid: allowed one of {', '.join(SWEPT)} for a map")
@@ -65,13 +64,12 @@ def boundary_map(base: SailParameters, thicknesses, modes, *, store_dir, solver:
         raise ParameterError(f"span={span!r} is invalid: allowed > 1")
     name, critical = SWEPT[base.model]
     problems, analytic = {}, {}
-    for h in thicknesses:
-        for nu in modes:
-            p = base.replace(thickness=float(h), mode=float(nu))
-            a = float(critical(p))
-            analytic[(float(h), float(nu))] = a
-            problems[(float(h), float(nu))] = BoundaryProblem(
-                lambda value, p=p: p.replace(**{name: float(value)}), a / span, a * span)
+    for h, nu in cases:
+        p = base.replace(thickness=float(h), mode=float(nu))
+        a = float(critical(p))
+        analytic[(float(h), float(nu))] = a
+        problems[(float(h), float(nu))] = BoundaryProblem(
+            lambda value, p=p: p.replace(**{name: float(value)}), a / span, a * span)
     found = bisect_boundaries(problems, store_dir=store_dir, solver=solver, options=options, factor=factor,
                               workers=workers, scheduler=scheduler, progress=progress)
     return [MapRow(h, nu, base.t_final, analytic[(h, nu)], b.stable_value, b.unstable_value, b.status,
