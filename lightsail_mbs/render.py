@@ -116,18 +116,19 @@ def _write_png(image: np.ndarray, path: Path) -> Path:
 
 def render_frames(result: Result, out_dir, frames: int | None = None, every_seconds: float | None = None,
                   size=(800, 400), exaggeration: float | None = None, renderer: str = "auto",
-                  color_by: str | None = "curvature", arrows: bool = True, label: str | None = None,
-                  progress=None) -> list[Path]:
+                  color_by: str | None = "curvature", color_scale: str = "frame", arrows: bool = True,
+                  label: str | None = None, progress=None) -> list[Path]:
     """Write out_dir/frame_0000.png, ... of `result` sampled by frame_indices; returns the paths.
 
     exaggeration: the factor E on the deflection (None: render_scene.auto_exaggeration);
-    color_by: 'curvature' (Δθ/l), 'moment' (k_T Δθ) or None; arrows: radiation load and boundary tension;
+    color_by: 'curvature' (Δθ/l), 'moment' (k_T Δθ) or None; color_scale: 'frame' (each frame its own range,
+    shows where it concentrates) or 'run' (one range, shows growth); arrows: radiation load and boundary tension;
     progress: True for a bar on stderr, or a callable called with the number of frames written so far.
     """
     width, height = parse_size(size)
     picks = frame_indices(result.time, frames, every_seconds, result.failure_time)
     layout = Layout(width, height)
-    style = make_style([result], [picks], layout, exaggeration, color_by, arrows)
+    style = make_style([result], [picks], layout, exaggeration, color_by, arrows, color_scale)
     out = _prepare(out_dir)
     canvas = open_canvas(renderer, width, height)
     report, done = _progress(progress, len(picks))
@@ -146,7 +147,8 @@ def render_frames(result: Result, out_dir, frames: int | None = None, every_seco
 def render_comparison(first: Result, second: Result, out_dir, labels=("run 1", "run 2"),
                       frames: int | None = None, every_seconds: float | None = None, size=(800, 800),
                       exaggeration: float | None = None, renderer: str = "auto",
-                      color_by: str | None = "curvature", arrows: bool = True, progress=None) -> list[Path]:
+                      color_by: str | None = "curvature", color_scale: str = "frame", arrows: bool = True,
+                      progress=None) -> list[Path]:
     """Frames of two runs at the same simulated times, `first` above `second` (each half the height),
     with one exaggeration and one colour scale. A run that ended earlier (e.g. stopped at failure)
     keeps showing its last state."""
@@ -159,7 +161,7 @@ def render_comparison(first: Result, second: Result, out_dir, labels=("run 1", "
     times = longer.time[picks]
     runs = (first, second)
     per_run = [np.unique(_nearest(r.time, np.minimum(times, r.time[-1]))) for r in runs]
-    style = make_style(runs, per_run, panel, exaggeration, color_by, arrows)
+    style = make_style(runs, per_run, panel, exaggeration, color_by, arrows, color_scale)
     out = _prepare(out_dir)
     canvas = open_canvas(renderer, width, panel.height)
     report, done = _progress(progress, len(times))

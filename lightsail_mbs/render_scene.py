@@ -17,7 +17,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from matplotlib import colormaps
+from matplotlib.colors import LinearSegmentedColormap
 
 from .analysis import fails_at_trough
 from .loads import radiation_forces
@@ -33,7 +33,9 @@ FAIL_RGBA = (0.85, 0.0, 0.0, 1.0)
 TEXT_RGBA = (0.0, 0.0, 0.0, 1.0)
 TIME_RGBA = (0.2, 0.35, 0.7, 1.0)
 CHAR_WIDTH = 0.6      # advance of a monospace character in font sizes (DejaVu Sans Mono; Exudyn's font scaled to it)
-COLORMAP = colormaps["coolwarm"]
+# diverging: blue (negative) - dark grey (zero, distinct from the light grey initial shape) - red (positive)
+COLORMAP = LinearSegmentedColormap.from_list("sail", ["#1f5bd6", "#7f9fe0", "#303030", "#e07a7a", "#d11f1f"])
+COLOR_SCALES = ("frame", "run")
 
 
 def text_width(text: str, size: float) -> float:
@@ -164,11 +166,13 @@ def _offsets(result: Result, index: int):
 @dataclass
 class Style:
     """What is shared by every frame of a sequence (or of both runs side by side): the exaggeration E,
-    the colour range ±vmax of the hinge values, the time axis (t_start, t_end) and the layout."""
+    the colour range ±vmax of the hinge values (color_scale 'run': the largest of all frames; 'frame':
+    each frame its own, vmax unused), the time axis (t_start, t_end) and the layout."""
 
     layout: Layout
     exaggeration: float
     color_by: str | None
+    color_scale: str
     vmax: float
     arrows: bool
     time_span: tuple
@@ -195,9 +199,13 @@ def auto_exaggeration(results, indices, layout: Layout) -> float:
     return math.floor(e / digits) * digits
 
 
-def make_style(results, indices, layout: Layout, exaggeration=None, color_by="curvature", arrows=True) -> Style:
+def make_style(results, indices, layout: Layout, exaggeration=None, color_by="curvature", arrows=True,
+               color_scale="frame") -> Style:
     for r in results:
         check_color_by(r.params, color_by)
+    if color_scale not in COLOR_SCALES:
+        raise ParameterError(f"color_scale={color_scale!r} is invalid: allowed 'frame' (each frame its own range) "
+                             "or 'run' (one range for the whole sequence)")
     if exaggeration is None:
         exaggeration = auto_exaggeration(results, indices, layout)
     elif not (isinstance(exaggeration, (int, float)) and math.isfinite(exaggeration) and exaggeration > 0):
@@ -206,7 +214,7 @@ def make_style(results, indices, layout: Layout, exaggeration=None, color_by="cu
                 for i in idx), default=0.0)
     time_span = (min(float(r.time[0]) for r in results),
                  max(max(float(r.params.t_final), float(r.time[-1])) for r in results))
-    return Style(layout, float(exaggeration), color_by, vmax, bool(arrows), time_span)
+    return Style(layout, float(exaggeration), color_by, color_scale, vmax, bool(arrows), time_span)
 
 
 def _arrow(start, vector, width_px, pix, rgba, strokes, triangles):
@@ -266,9 +274,10 @@ def build_scene(result: Result, index: int, style: Style, label: str | None = No
 
     # the sail: each slice in two halves, coloured by the hinge value at that end (0 at the free ends)
     values = np.concatenate([[0.0], hinge_values(result, index, style.color_by), [0.0]])
+    vmax = style.vmax if style.color_scale == "run" else float(np.abs(values).max())
     for i in range(p.n):
         for half, (a, b) in enumerate(((ends[i, 0], centres[i]), (centres[i], ends[i, 1]))):
-            rgba = SAIL_RGBA if style.color_by is None else _color(values[i + half], style.vmax)
+            rgba = SAIL_RGBA if style.color_by is None else _color(values[i + half], vmax)
             strokes.append((np.array([a, b]), rgba, 4.0 * lay.scale))
 
     # texts: title line (time, amplitude ratio; failure on the right), case line, arrow legend
@@ -299,7 +308,7 @@ def build_scene(result: Result, index: int, style: Style, label: str | None = No
         note = f"solver stopped: {result.error}"[:60]
         texts.append(Text(x1 - text_width(note, lay.small_font) * pix, y3, note, lay.small_font, FAIL_RGBA))
 
-    _legend(result, index, style, strokes, triangles, texts)
+    _legend(result, index, style, vmax, strokes, triangles, texts)
     return _assemble(lay, strokes, triangles, texts)
 
 
@@ -324,7 +333,7 @@ def _color(value: float, vmax: float) -> tuple:
     return tuple(COLORMAP(0.5 if vmax == 0 else 0.5 + 0.5 * value / vmax))
 
 
-def _legend(result: Result, index: int, style: Style, strokes, triangles, texts) -> None:
+def _legend(result: Result, index: int, style: Style, vmax: float, strokes, triangles, texts) -> None:
     """Time bar (elapsed time, red failure tick) bottom left; colour bar of the hinge values bottom right."""
     lay = style.layout
     pix = 1.1 / lay.width
@@ -351,7 +360,7 @@ def _legend(result: Result, index: int, style: Style, strokes, triangles, texts)
         strokes.append((np.array([[edges[k], y_bar], [edges[k + 1], y_bar]]),
                         _color((k + 0.5) / cells * 2 - 1, 1.0), 10 * lay.scale))
     unit = "1/m" if style.color_by == "curvature" else "N m"
-    texts.append(Text(c0, y_text, f"{style.color_by} +-{style.vmax:.2g} {unit}", lay.small_font))
+    texts.append(Text(c0, y_text, f"{style.color_by} +-{vmax:.2g} {unit}", lay.small_font))
 
 
 def _assemble(lay: Layout, strokes, triangles, texts) -> Scene:

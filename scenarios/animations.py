@@ -2,7 +2,7 @@
 failing at its trough (paper Fig. 5), as GIFs.
 
 Usage: python scenarios/animations.py [--out docs] [--runs runs/animations] [--solver exudyn]
-                                      [--frames 60] [--size 600x300] [--fps 12] [--until-ratio 4]
+                                      [--frames 60] [--size 600x300] [--fps 12] [--until-ratio 3]
 
 Each case is simulated past failure (or read back from RUNS/<name>.npz if that file exists), cut
 where the amplitude first reaches --until-ratio × its initial value, and rendered by
@@ -53,7 +53,7 @@ def main(argv=None) -> None:
     ap.add_argument("--frames", type=int, default=60)
     ap.add_argument("--size", default="600x300")
     ap.add_argument("--fps", type=float, default=12.0)
-    ap.add_argument("--until-ratio", type=float, default=4.0, help="cut each run at this amplitude ratio [default 4]")
+    ap.add_argument("--until-ratio", type=float, default=3.0, help="cut each run at this amplitude ratio [default 3]")
     args = ap.parse_args(argv)
     runs, out = Path(args.runs), Path(args.out)
     runs.mkdir(parents=True, exist_ok=True)

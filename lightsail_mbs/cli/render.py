@@ -22,6 +22,9 @@ def register(sub) -> None:
                    help="exudyn (raytracer) or matplotlib (Agg); auto: the faster, exudyn [default auto]")
     p.add_argument("--color-by", choices=sorted(COLOR_CHOICES), default="curvature",
                    help="colour the slices by hinge curvature Δθ/l or bending moment k_T Δθ [default curvature]")
+    p.add_argument("--color-scale", choices=("frame", "run"), default="frame",
+                   help="colour range: each frame its own (where it concentrates) or one for the run (growth) "
+                        "[default frame]")
     p.add_argument("--no-arrows", dest="arrows", action="store_false",
                    help="omit the radiation-load and boundary-tension arrows")
     p.add_argument("--compare", metavar="RUN2", help="a second run drawn below the first at the same times")
@@ -35,7 +38,7 @@ def register(sub) -> None:
 def run(args) -> int:
     result = Result.load(args.run)
     options = dict(frames=args.frames, every_seconds=args.every_seconds, exaggeration=args.exaggeration,
-                   renderer=args.renderer, color_by=COLOR_CHOICES[args.color_by], arrows=args.arrows,
+                   renderer=args.renderer, color_by=COLOR_CHOICES[args.color_by], color_scale=args.color_scale, arrows=args.arrows,
                    progress=not args.quiet)
     if args.compare:
         other = Result.load(args.compare)
