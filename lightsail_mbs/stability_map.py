@@ -9,10 +9,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Callable
 
 from . import theory
 from .bisection import BoundaryProblem, bisect_boundaries
 from .parameters import ParameterError, SailParameters
+from .sweep import solve_case
 
 # the swept parameter of each model and its analytic critical value
 SWEPT = {"torsion": ("youngs_modulus", theory.critical_modulus_max),
@@ -54,9 +56,11 @@ class MapRow:
 
 def boundary_map(base: SailParameters, cases, *, store_dir, solver: str = "exudyn",
                  factor: float = 1.5, span: float = 30.0, workers=None, scheduler=None,
-                 progress: bool = True, options: dict | None = None) -> list[MapRow]:
+                 progress: bool = True, options: dict | None = None,
+                 case_function: Callable = solve_case) -> list[MapRow]:
     """Bisect the boundary of ``base`` (model torsion: E; tnt: T) at every (thickness, mode) of
     ``cases``; one row per case, in their order. All boundaries advance at once on one sweep.
+    case_function: how a case runs (default: the named solver; tests pass a stand-in).
     """
     if base.model not in SWEPT:
         raise ParameterError(f"model={base.model!r} is invalid: allowed one of {', '.join(SWEPT)} for a map")
@@ -71,7 +75,8 @@ def boundary_map(base: SailParameters, cases, *, store_dir, solver: str = "exudy
         problems[(float(h), float(nu))] = BoundaryProblem(
             lambda value, p=p: p.replace(**{name: float(value)}), a / span, a * span)
     found = bisect_boundaries(problems, store_dir=store_dir, solver=solver, options=options, factor=factor,
-                              workers=workers, scheduler=scheduler, progress=progress)
+                              workers=workers, scheduler=scheduler, progress=progress,
+                              case_function=case_function)
     return [MapRow(h, nu, base.t_final, analytic[(h, nu)], b.stable_value, b.unstable_value, b.status,
                    b.message, [(v, s) for v, s, _ in b.evaluations])
             for (h, nu), b in found.items()]

@@ -22,14 +22,16 @@ QUICK_MODES = (0.5, 1.0, 1.5, 3.0)
 def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
     out = Path(out)
     modes = QUICK_MODES if quick else MODES
-    params = [paper_case("rigid", mode=nu, n=20 if quick else 40) for nu in modes]
+    params = [paper_case("rigid", mode=nu) for nu in modes]
     runs = run_cases(params, Path(store or out / "store") / "fig5", solver=solver, workers=workers,
                      scheduler=scheduler, label="fig 5", progress=progress)
     rows, shapes = [], []
     for nu, (record, result) in zip(modes, runs):
         last = -1
+        end = analysis.line_offsets(result.x[last], result.y[last]) if result else np.array([np.nan])
         rows.append({"mode": nu, "failed": record["failed"], "failure_time_ms": _ms(record["failure_time"]),
                      "at_trough": analysis.fails_at_trough(result.x[last], result.y[last]) if result and record["failed"] else None,
+                     "end_trough_mm": -1e3 * end.min(), "end_crest_mm": 1e3 * end.max(),
                      "max_amplitude_ratio": record.get("max_amplitude_ratio"),
                      "t_end_ms": _ms(record.get("t_end")), "error": record["error"] or ""})
         if result is not None:
