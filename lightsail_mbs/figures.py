@@ -183,13 +183,15 @@ def angle_history_figures(out, name: str, cases: dict, figures: list[tuple[int, 
 
 # ---- stability maps (Figs 9, 12) -------------------------------------------------------------
 def stability_map_figure(out, name: str, number: int, base, thicknesses, modes, *, factor=1.5, solver="exudyn",
-                         workers=None, scheduler=None, store=None, progress=True, ratio_limit=10.0) -> list[dict]:
+                         workers=None, scheduler=None, store=None, progress=True, ratio_limit=10.0,
+                         recheck_all=False) -> list[dict]:
     """Bisect and draw a stability map: OUT/<name>.png, <name>_boundaries.csv, <name>_points.csv.
 
     Every (thickness, mode) boundary is bisected (stability_map.boundary_map) at base.t_final; those
-    whose boundary/analytic ratio is outside [1/ratio_limit, ratio_limit] (or not bracketed) are
-    bisected again at 2 × t_final, to show how the boundary moves with the run time. Returns the rows
-    (one per thickness and mode, with ratio_2t and boundary_2t where rechecked).
+    whose boundary/analytic ratio is outside [1/ratio_limit, ratio_limit] (or not bracketed) — all of
+    them if recheck_all — are bisected again at 2 × t_final, to show how the boundary moves with the
+    run time. Returns the rows (one per thickness and mode, with boundary_2t and ratio_2t where
+    rechecked).
     """
     from .stability_map import SWEPT, boundary_map
     out = Path(out)
@@ -199,7 +201,7 @@ def stability_map_figure(out, name: str, number: int, base, thicknesses, modes, 
                   progress=progress)
     found = boundary_map(base, pairs, **kwargs)
     odd = [(r.thickness, r.mode) for r in found
-           if r.ratio is None or not 1.0 / ratio_limit <= r.ratio <= ratio_limit]
+           if recheck_all or r.ratio is None or not 1.0 / ratio_limit <= r.ratio <= ratio_limit]
     longer = {}
     if odd:
         longer = {(r.thickness, r.mode): r for r in boundary_map(base.replace(t_final=2 * base.t_final), odd, **kwargs)}
@@ -227,6 +229,12 @@ def stability_map_figure(out, name: str, number: int, base, thicknesses, modes, 
                  [(r.thickness, *sorted((r.stable_value, r.unstable_value))) for r in mine if r.boundary],
                  analytic, label, label=f"ν = {nu:g}: " if len(modes) > 1 else "", color=f"C{k}",
                  marker_offset=offset)
+        again = [longer[(r.thickness, r.mode)] for r in mine if (r.thickness, r.mode) in longer]
+        again = [r for r in again if r.boundary]
+        if again:
+            ax[0, 0].plot([r.thickness * MICRO * offset for r in again], [r.boundary for r in again], "s--",
+                          color=f"C{k}", mfc="none", lw=0.8, ms=6,
+                          label=f"{f'ν = {nu:g}: ' if len(modes) > 1 else ''}boundary at {2 * base.t_final:g} s")
     ax[0, 0].set_title(f"Fig. {number}: {base.model} stability map, {base.t_final:g} s runs, n = {base.n}, "
                        f"analytic: {'E_cr,max (Eq. 8)' if swept == 'youngs_modulus' else 'T_cr,max (Eq. 10)'}",
                        fontsize=9)

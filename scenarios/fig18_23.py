@@ -1,4 +1,4 @@
-"""Paper Figs 18–23 (Appendix C): trends of the TnT sail (k_T = 0, E = 1e11 Pa axial springs,
+"""Paper Figs 18–23 (Appendix C): trends of the TnT sail (k_T = 0, inextensible slices as in fig10_11.py,
 I₀ = 0.1 GW/m², a₀ = 0.01 mm, n = 30, 6 s runs).
 
 Stable regime, T = 3.34e-3 N ≫ T_cr,max = 3.34e-6 N (frequency of θ by spectral.angle_frequency):
@@ -41,7 +41,8 @@ UNIT = {"tension": ("T", "N", 1.0), "thickness": ("h", "µm", 1e6), "mode": ("ν
 
 def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
     out = Path(out)
-    base = paper_case("tnt-stable", n=10, t_final=1.0) if quick else paper_case("tnt-stable")
+    base = paper_case("tnt-stable", axial_springs=False)
+    base = base.replace(n=10, t_final=1.0) if quick else base
     params = {(fig, v): base.replace(**fixed, **{field: v})
               for fig, (field, values, fixed, _) in STUDIES.items() for v in values}
     done = dict(zip(params, run_cases(list(params.values()), Path(store or out / "store") / "fig18_23",
