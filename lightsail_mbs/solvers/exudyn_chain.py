@@ -1,0 +1,214 @@
+"""Exudyn solver: the sail as a chain of rigid slices integrated by Exudyn's implicit solver.
+
+Model (paper Sec. III.A–C; details in exudyn_model): n planar rigid slices (m = ρhWl,
+J = ml²/12) joined by revolute joints, as ONE Exudyn ``ObjectKinematicTree`` in the paper's
+own minimal coordinates q = [X, Y, θ₁, (z₁), φ₂, …] (Eqs 13–14, 30–31).
+torsion: torsional spring-dampers k_T = EI/l on θ_{k+1} − θ_k; rigid: none; tnt: k_T per
+params.bending, each hinge also slides along the preceding slice (spring-damper k_s, pre-stretched
+to T/k_s) and the follower tension T acts at both ends along the end slices (Eq. 32); with
+params.axial_springs=False the slides are rigid (plain revolute joints + end tension).
+The frame accelerates at g₀: every slice carries −m g₀ ŷ (the tree's gravity), and x, y are
+slice centres in that frame.
+
+Why this formulation (measured on the 2-core machine, stable 6 s torsion case, n = 30,
+h = 1 ms, relTol 1e-10):
+- redundant bodies (30 × ObjectRigidBody2D + 29 RevoluteJoint2D + an ObjectGenericODE2 spanning
+  all nodes with one vectorised load function) and this tree give the same soft-torsion failure
+  time (2.11121 s vs 2.11122 s) and similar speed (≈1.1 s vs ≈1.2 s), but in the redundant form
+  the TnT spring extension z ≈ 1e-14 m is a difference of hinge coordinates of order 1 m
+  (round-off ≈ 1e-16 m, 1 % of the pre-stretch): its Newton residual sits on a round-off floor.
+  In the tree z is itself a coordinate, exact to relative machine precision.
+- springs, dampers and the frame force are C++ (joint P/D control, gravity); only the
+  state-dependent load is Python: one vectorised force user function for the whole chain
+  (≈ 20–30 µs a call), evaluated at every Newton iterate, so the load is exact, not lagged.
+- Exudyn symbolic user functions would move that into C++, but in Exudyn 1.13.6 a symbolic
+  Vector of 8 or more entries aborts the process (free(): invalid pointer) when indexed, so the
+  tree's force vector (n + 2 ≥ 32 entries) cannot be recorded; per-slice symbolic loads
+  (LoadForceVector) cannot read the state. A Python function per slice costs ≈ 5.6 s.
+
+Solver: Exudyn generalized-α (implicit, second order), modified Newton. Defaults (STEP_FACTOR,
+NEWTON_REL_TOL, NEWTON_ABS_FACTOR) come from a convergence study on the soft torsion case
+(E = 4.5e9 Pa): halving the step and the tolerances moves its failure time by < 1 %
+(validation/benchmark.py --convergence reproduces it). The run stops at t_final or at failure
+(amplitude ≥ failure_ratio × initial, checked at every output sample, chunk by chunk); a Newton
+failure or a non-finite state is recorded in Result.error with the trajectory up to there.
+"""
+from __future__ import annotations
+
+import math
+import time as _time
+
+import numpy as np
+
+from .. import analysis, shapes
+from ..parameters import ParameterError, SailParameters
+from ..progress import Progress
+from ..result import Result
+from .exudyn_model import ChainLayout, generalized_force, tree_arguments
+
+# Step size h = STEP_FACTOR · sqrt(L / g₀) (capped by the output interval): the radiation
+# load sets the time scale of the instability (paper torsion case: sqrt(1 m / 667 m/s²) = 38.7 ms,
+# h = 1 ms; paper rigid case: 1.22 ms, h capped to the 10 µs output interval).
+STEP_FACTOR = 0.026
+NEWTON_REL_TOL = 1e-10          # residual reduction per step
+NEWTON_ABS_FACTOR = 1e-10       # absolute residual tolerance as a fraction of the flat-slice force
+SPECTRAL_RADIUS = 0.9           # generalized-α numerical damping of the highest frequencies
+SAMPLES_PER_CHUNK = 100         # failure check (and progress) after this many output samples
+
+
+def default_step_size(p: SailParameters) -> float:
+    """h = STEP_FACTOR · sqrt(L/g₀), at most the output interval (which it then divides)."""
+    g0 = p.nominal_acceleration
+    h = STEP_FACTOR * math.sqrt(p.length / g0) if g0 > 0 else math.inf
+    return min(h, p.sample_interval)
+
+
+def default_abs_tol(p: SailParameters) -> float:
+    """Absolute Newton tolerance (N per coordinate): NEWTON_ABS_FACTOR × f₀ (or × m·1 m/s² unlit)."""
+    scale = p.flat_force if p.flat_force > 0 else p.slice_mass
+    return NEWTON_ABS_FACTOR * scale
+
+
+def build(p: SailParameters):
+    """The assembled Exudyn system: (SystemContainer, mbs, layout, sensors (q, q̇), force function)."""
+    import exudyn as exu
+    from exudyn.itemInterface import NodeGenericODE2, ObjectKinematicTree, SensorNode
+
+    layout = ChainLayout.of(p)
+    q0 = layout.coordinates(shapes.initial_state(p))
+    load = generalized_force(p, layout)
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    node = mbs.AddNode(NodeGenericODE2(referenceCoordinates=[0.0] * layout.size, initialCoordinates=q0,
+                                       initialCoordinates_t=[0.0] * layout.size,
+                                       numberOfODE2Coordinates=layout.size))
+    mbs.AddObject(ObjectKinematicTree(nodeNumber=node, forceUserFunction=lambda mbs, t, i, q, q_t: load(q),
+                                      **tree_arguments(p, layout, exu)))
+    sensors = [mbs.AddSensor(SensorNode(nodeNumber=node, storeInternal=True, writeToFile=False,
+                                        outputVariableType=kind))
+               for kind in (exu.OutputVariableType.Coordinates, exu.OutputVariableType.Coordinates_t)]
+    mbs.Assemble()
+    return SC, mbs, layout, sensors, load
+
+
+def settings(p: SailParameters, step_size: float, rel_tol: float, abs_tol: float):
+    import exudyn as exu
+
+    s = exu.SimulationSettings()
+    ti = s.timeIntegration
+    ti.endTime = p.t_final
+    ti.numberOfSteps = max(1, int(round(p.t_final / step_size)))
+    ti.newton.relativeTolerance = rel_tol
+    ti.newton.absoluteTolerance = abs_tol
+    ti.generalizedAlpha.spectralRadius = SPECTRAL_RADIUS
+    ti.minimumStepSize = step_size * 1e-4
+    ti.verboseMode = 0
+    s.solution.file.write = False
+    s.solution.sensors.writePeriod = p.sample_interval
+    s.linearSolverType = exu.LinearSolverType.EXUdense
+    return s
+
+
+def run(params: SailParameters, *, progress: bool = False, step_size: float | None = None,
+        newton_rel_tol: float | None = None, newton_abs_tol: float | None = None,
+        samples_per_chunk: int = SAMPLES_PER_CHUNK, **options) -> Result:
+    """Integrate one case to t_final or to failure; see the module docstring."""
+    import exudyn as exu
+
+    if options:
+        raise ParameterError(f"options={sorted(options)} are invalid: the exudyn solver accepts step_size, "
+                             "newton_rel_tol, newton_abs_tol, samples_per_chunk")
+    p = params
+    dt = p.sample_interval
+    h = default_step_size(p) if step_size is None else float(step_size)
+    if not (h > 0 and math.isfinite(h)):
+        raise ParameterError(f"step_size={step_size!r} is invalid: allowed 0 < step_size ≤ output interval {dt:g}")
+    h = dt / math.ceil(dt / h * (1 - 1e-12))        # whole steps per output sample
+    rel_tol = NEWTON_REL_TOL if newton_rel_tol is None else float(newton_rel_tol)
+    abs_tol = default_abs_tol(p) if newton_abs_tol is None else float(newton_abs_tol)
+    for name, v in (("newton_rel_tol", rel_tol), ("newton_abs_tol", abs_tol)):
+        if not (v >= 0 and math.isfinite(v)):
+            raise ParameterError(f"{name}={v!r} is invalid: allowed a finite value ≥ 0")
+
+    start = _time.perf_counter()
+    SC, mbs, layout, sensors, _ = build(p)
+    s = settings(p, h, rel_tol, abs_tol)
+    steps_per_sample = int(round(dt / h))
+    total_samples = int(math.floor(p.t_final / dt + 1e-9))
+    chunk = max(1, int(samples_per_chunk))
+    bar = Progress(p.t_final, progress, label=f"exudyn {p.model} n={p.n}")
+    solver = exu.MainSolverImplicitSecondOrder()
+    error = None
+    limit = None
+    done = 0
+    exu.SetWriteToConsole(False)
+    try:
+        solver.InitializeSolver(mbs, s)
+        initial = shapes.initial_state(p)
+        limit = p.failure_ratio * analysis.amplitude(initial.x, initial.y)
+        while done < total_samples:
+            k = min(chunk, total_samples - done)
+            solver.it.endTime = (done + k) * dt if done + k < total_samples else p.t_final
+            ok = solver.SolveSteps(mbs, s)
+            done += k
+            bar.update(solver.it.currentTime)
+            if not ok:
+                error = f"Newton did not converge at t = {solver.it.currentTime:.9g} s (exudyn: {solver.GetErrorString()})"
+                break
+            state = mbs.systemData.GetODE2Coordinates()
+            if not np.all(np.isfinite(state)):
+                error = f"non-finite state at t = {solver.it.currentTime:.9g} s"
+                break
+            if p.stop_at_failure:
+                q = mbs.GetSensorStoredData(sensors[0])[-(k * 2 + 1):]
+                amp = analysis.amplitude(*layout.positions(q[:, 1:])[:2])
+                if np.any(amp >= limit):
+                    break
+        solver.FinalizeSolver(mbs, s)
+    except exu.ExudynError as exc:       # solver failures are results, not crashes
+        error = f"exudyn: {exc}".strip()
+    finally:
+        exu.SetWriteToConsole(True)
+        bar.close()
+    wall = _time.perf_counter() - start
+
+    q, q_t = (_samples(mbs.GetSensorStoredData(sn), dt) for sn in sensors)
+    rows = min(len(q), len(q_t))
+    if rows == 0:                                     # failed before the first sample
+        q = np.concatenate(([0.0], layout.coordinates(shapes.initial_state(p))))[None, :]
+        q_t = np.zeros_like(q)
+        rows = 1
+    q, q_t = q[:rows], q_t[:rows]
+    x, y, theta, z = layout.positions(q[:, 1:])
+    vx, vy, omega, z_rate = layout.velocities(q[:, 1:], q_t[:, 1:])
+    if p.stop_at_failure and limit is not None:
+        amp = analysis.amplitude(x, y)
+        over = np.nonzero(amp >= limit)[0]
+        if over.size:                                 # end at the first sample past failure
+            cut = over[0] + 1
+            q, x, y, theta, z, vx, vy, omega, z_rate = (a[:cut] for a in (q, x, y, theta, z, vx, vy, omega, z_rate))
+    info = {
+        "formulation": "ObjectKinematicTree (minimal coordinates), generalized-alpha",
+        "step_size": h,
+        "newton_rel_tol": rel_tol,
+        "newton_abs_tol": abs_tol,
+        "spectral_radius": SPECTRAL_RADIUS,
+        "steps": int(round((q[-1, 0] if len(q) else 0.0) / h)),
+        "newton_iterations": int(solver.it.newtonStepsCount),
+        "jacobian_evaluations": int(solver.it.newtonJacobiCount),
+        "steps_per_sample": steps_per_sample,
+        "coordinates": layout.size,
+    }
+    return Result.from_trajectory(p, "exudyn", q[:, 0], x, y, theta, vx, vy, omega,
+                                  z=z if z.shape[-1] else None, z_rate=z_rate if z.shape[-1] else None,
+                                  wall_time=wall, error=error, info=info)
+
+
+def _samples(data: np.ndarray, dt: float) -> np.ndarray:
+    """Stored sensor rows, one per output sample (chunk restarts store their first row again)."""
+    data = np.asarray(data, float)
+    if data.ndim != 2 or not len(data):
+        return np.zeros((0, 0))
+    index = np.round(data[:, 0] / dt).astype(np.int64)
+    keep = np.concatenate(([True], np.diff(index) > 0))
+    return data[keep]
