@@ -235,6 +235,14 @@ def stability_map_figure(out, name: str, number: int, base, thicknesses, modes, 
             ax[0, 0].plot([r.thickness * MICRO * offset for r in again], [r.boundary for r in again], "s--",
                           color=f"C{k}", mfc="none", lw=0.8, ms=6,
                           label=f"{f'ν = {nu:g}: ' if len(modes) > 1 else ''}boundary at {2 * base.t_final:g} s")
+    values = [critical(base.replace(thickness=h, mode=float(nu))) for h in thicknesses for nu in modes]
+    ax[0, 0].set_ylim(min(values) / 1e3, max(values) * 1e3)
+    for r in found:
+        if r.boundary is None:
+            known = [v for v, s in r.points if s is not None]
+            ax[0, 0].annotate(f"{r.status} in {r.t_final:g} s:\n{'stable' if r.points[-1][1] else 'failed'} "
+                              f"from {min(known):.2g} to {max(known):.2g}", (r.thickness * MICRO, min(values) / 1e2),
+                              fontsize=7, ha="center")
     ax[0, 0].set_title(f"Fig. {number}: {base.model} stability map, {base.t_final:g} s runs, n = {base.n}, "
                        f"analytic: {'E_cr,max (Eq. 8)' if swept == 'youngs_modulus' else 'T_cr,max (Eq. 10)'}",
                        fontsize=9)

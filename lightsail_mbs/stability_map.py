@@ -56,10 +56,12 @@ class MapRow:
 
 def boundary_map(base: SailParameters, cases, *, store_dir, solver: str = "exudyn",
                  factor: float = 1.5, span: float = 30.0, workers=None, scheduler=None,
-                 progress: bool = True, options: dict | None = None,
+                 progress: bool = True, options: dict | None = None, max_expansions: int = 1,
                  case_function: Callable = solve_case) -> list[MapRow]:
     """Bisect the boundary of ``base`` (model torsion: E; tnt: T) at every (thickness, mode) of
     ``cases``; one row per case, in their order. All boundaries advance at once on one sweep.
+    max_expansions: widenings of a bracket whose ends agree (each doubles its log-width; one
+    takes the lower end from analytic/span to analytic/span³ — no stiffness to speak of).
     case_function: how a case runs (default: the named solver; tests pass a stand-in).
     """
     if base.model not in SWEPT:
@@ -75,7 +77,7 @@ def boundary_map(base: SailParameters, cases, *, store_dir, solver: str = "exudy
         problems[(float(h), float(nu))] = BoundaryProblem(
             lambda value, p=p: p.replace(**{name: float(value)}), a / span, a * span)
     found = bisect_boundaries(problems, store_dir=store_dir, solver=solver, options=options, factor=factor,
-                              workers=workers, scheduler=scheduler, progress=progress,
+                              workers=workers, scheduler=scheduler, progress=progress, max_expansions=max_expansions,
                               case_function=case_function)
     return [MapRow(h, nu, base.t_final, analytic[(h, nu)], b.stable_value, b.unstable_value, b.status,
                    b.message, [(v, s) for v, s, _ in b.evaluations])
