@@ -10,7 +10,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import stats
 
 from .parameters import ParameterError, SailParameters
 from .sweep import Case, run_sweep, solve_case
@@ -20,9 +19,10 @@ SWEEPABLE = ("youngs_modulus", "tension", "thickness", "intensity", "amplitude")
 
 def wilson_interval(failures: int, trials: int, confidence: float = 0.95) -> tuple[float, float]:
     """Wilson score interval for a binomial proportion (Wilson 1927)."""
+    from statistics import NormalDist
     if trials == 0:
         return (0.0, 1.0)
-    z = stats.norm.ppf(0.5 + confidence / 2)
+    z = NormalDist().inv_cdf(0.5 + confidence / 2)
     p = failures / trials
     centre = (p + z * z / (2 * trials)) / (1 + z * z / trials)
     half = z / (1 + z * z / trials) * np.sqrt(p * (1 - p) / trials + z * z / (4 * trials * trials))
@@ -58,6 +58,7 @@ def cases(base: SailParameters, parameter: str, values, seeds: int, solver: str 
 
 def summarise(values, seeds: int, records: list[dict]) -> list[MonteCarloRow]:
     """Group the records (in the order of `cases`) by value and summarise each group."""
+    from scipy import stats
     rows = []
     for i, value in enumerate(values):
         group = records[i * seeds:(i + 1) * seeds]
