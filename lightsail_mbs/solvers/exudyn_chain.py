@@ -105,7 +105,7 @@ def settings(p: SailParameters, step_size: float, rel_tol: float, abs_tol: float
     ti.verboseMode = 0
     s.solution.file.write = False
     s.solution.sensors.writePeriod = p.sample_interval
-    s.linearSolverType = exu.LinearSolverType.EXUdense
+    s.linearSolver.solverType = exu.LinearSolverType.EXUdense
     return s
 
 
@@ -141,7 +141,8 @@ def run(params: SailParameters, *, progress: bool = False, step_size: float | No
     error = None
     limit = None
     done = 0
-    exu.SetWriteToConsole(False)
+    printing = exu.config.printToConsole
+    exu.config.printToConsole = False      # keep stdout clean (the CLI prints JSON there)
     try:
         solver.InitializeSolver(mbs, s)
         initial = shapes.initial_state(p)
@@ -168,7 +169,7 @@ def run(params: SailParameters, *, progress: bool = False, step_size: float | No
     except exu.ExudynError as exc:       # solver failures are results, not crashes
         error = f"exudyn: {exc}".strip()
     finally:
-        exu.SetWriteToConsole(True)
+        exu.config.printToConsole = printing
         bar.close()
     wall = _time.perf_counter() - start
 
