@@ -60,7 +60,8 @@ class ExudynCanvas:
         if (scene.width, scene.height) != self.size:
             raise ValueError(f"scene of {scene.width}x{scene.height} px on a {self.size[0]}x{self.size[1]} canvas")
         graphics = [_triangle_list(scene)] + [
-            {"type": "Text", "color": list(t.rgba), "text": t.text, "fontSize": FONT_SCALE * t.size, "offset": [0.0, 0.0],
+            {"type": "Text", "color": list(t.rgba), "text": t.text, "fontSize": FONT_SCALE * t.size,
+             "offset": [0.0, 0.0],
              "position": [t.x, t.y - TEXT_TOP * FONT_SCALE * t.size * scene.pixel, LAYER]} for t in scene.texts]
         self.mbs.SetObjectParameter(self.ground, "VgraphicsData", graphics)
         if self.box != tuple(scene.box):

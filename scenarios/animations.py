@@ -48,7 +48,8 @@ def simulated(name: str, runs: Path, solver: str) -> Result:
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", default="docs", help="folder of the GIFs [default docs]")
-    ap.add_argument("--runs", default="results/animations", help="folder of the runs and frames [default results/animations]")
+    ap.add_argument("--runs", default="results/animations",
+                    help="folder of the runs and frames [default results/animations]")
     ap.add_argument("--solver", default="exudyn", choices=("exudyn", "reduced"))
     ap.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
     ap.add_argument("--frames", type=int, default=60)

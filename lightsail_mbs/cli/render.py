@@ -38,7 +38,8 @@ def register(sub) -> None:
 def run(args) -> int:
     result = Result.load(args.run)
     options = dict(frames=args.frames, every_seconds=args.every_seconds, exaggeration=args.exaggeration,
-                   renderer=args.renderer, color_by=COLOR_CHOICES[args.color_by], color_scale=args.color_scale, arrows=args.arrows,
+                   renderer=args.renderer, color_by=COLOR_CHOICES[args.color_by], color_scale=args.color_scale,
+                   arrows=args.arrows,
                    progress=not args.quiet)
     if args.compare:
         other = Result.load(args.compare)
