@@ -3,7 +3,7 @@ Lagrangian, O(n) accelerations against the dense form, energy conservation, the 
 import numpy as np
 import pytest
 
-from lightsail_mbs import ParameterError, SailParameters, analysis, loads, paper_case, solve
+from lightsail_mbs import ParameterError, SailParameters, analysis, crosscheck, loads, paper_case, solve
 from lightsail_mbs.solvers import reduced
 from lightsail_mbs.solvers.reduced_dynamics import ChainDynamics
 from lightsail_mbs.solvers.reduced_kinematics import (ChainModel, centres, dense_accelerations,
@@ -227,16 +227,19 @@ def test_divergence_is_recorded_not_raised(monkeypatch):
 
 @pytest.mark.parametrize("p", [
     SailParameters(n=12, intensity=0.0, youngs_modulus=4.5e13, t_final=0.5),
-    SailParameters(model="tnt", n=8, intensity=0.0, tension=0.0, bending=True, youngs_modulus=1e11, t_final=0.2),
+    crosscheck.free_tnt(),
 ], ids=["torsion", "tnt-T0"])
 def test_free_vibration_conserves_energy(p):
     """Zero intensity, no damping: the Lagrangian conserves kinetic + elastic energy (Eqs 23, 29);
-    the drift is integration error, below 1e-8 at rtol = 1e-10 and shrinking with the tolerance."""
-    loose = solve(p, "reduced", rtol=1e-7)
-    r = solve(p, "reduced", rtol=1e-10)
+    the drift is integration error, below 1e-8 at a tight tolerance and shrinking with it.
+    The TnT chain (T = 0, bending on, h = 1 cm so its axial modes stay resolvable) runs explicitly:
+    an L-stable implicit method would damp the axial vibration the bending excites."""
+    method = "DOP853"
+    loose = solve(p, "reduced", rtol=1e-7, method=method)
+    r = solve(p, "reduced", rtol=1e-9, method=method)
     assert r.error is None and r.time[-1] == pytest.approx(p.t_final)
     energy = analysis.mechanical_energy(r)
-    assert energy[0] > 0 and np.ptp(r.theta[:, 0]) > 1e-6       # it really vibrates
+    assert energy[0] > 0 and np.ptp(r.theta[:, 0]) > 0.5 * abs(r.theta[0, 0])      # it really vibrates
     drift = np.abs(energy / energy[0] - 1).max()
     assert drift < 1e-8
     assert drift < np.abs(analysis.mechanical_energy(loose) / energy[0] - 1).max()
@@ -289,3 +292,21 @@ def test_tnt_soft_fails_like_the_paper_and_converges():
     t2 = solve(p, "reduced", rtol=reduced.DEFAULT_RTOL["Radau"] / 10).failure_time
     assert 1.5 <= t1 <= 2.5
     assert abs(t2 - t1) < 0.01 * t1
+
+
+# ---- agreement with the Exudyn chain -----------------------------------------------------------
+@pytest.mark.parametrize("case", ["torsion-stable", "torsion-soft"])
+def test_agrees_with_exudyn_on_a_short_torsion_run(case):
+    """Independent formulations (Exudyn's KinematicTree + generalized-α vs minimal coordinates + DOP853)
+    give the same angles to < 1e-8 rad (θ ~ 1e-4 rad) over 0.3 s, and the cross-check row passes."""
+    pytest.importorskip("exudyn")
+    p = paper_case(case, n=10, t_final=0.3)
+    row = crosscheck.compare(crosscheck.Case(case, p, "short"), solve(p, "exudyn"), solve(p, "reduced"))
+    assert row["max_dtheta"] < 1e-8 and row["window_end"] == pytest.approx(0.3)
+    assert row["passed"]
+
+
+def test_crosscheck_cli_rejects_unknown_case(tmp_path):
+    from lightsail_mbs.cli import main
+    with pytest.raises(SystemExit):
+        main(["crosscheck", "--cases", "nonsense", "--out", str(tmp_path)])

@@ -1,0 +1,19 @@
+"""`lightsail-mbs crosscheck`: both solvers on the cross-validation cases; Markdown report and plots."""
+from __future__ import annotations
+
+from .. import crosscheck
+
+
+def register(sub) -> None:
+    p = sub.add_parser("crosscheck", help="run the Exudyn and reduced solvers side by side (issue 4 report)")
+    p.add_argument("--cases", nargs="+", metavar="CASE", choices=sorted(crosscheck.CASES),
+                   help=f"subset of cases [default: all: {', '.join(crosscheck.CASES)}]")
+    p.add_argument("--out", default="validation", help="directory for crosscheck.md and the plots [validation]")
+    p.add_argument("--quiet", action="store_true", help="no progress on stderr/stdout")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    rows = crosscheck.run(args.cases, out_dir=args.out, progress=not args.quiet)
+    print(f"wrote {args.out}/crosscheck.md: {sum(r['passed'] for r in rows)}/{len(rows)} cases pass")
+    return 0 if all(r["passed"] for r in rows) else 1
