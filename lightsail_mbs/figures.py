@@ -219,7 +219,7 @@ def stability_map_figure(out, name: str, number: int, base, thicknesses, modes, 
 
     swept, critical = SWEPT[base.model]
     label = {"youngs_modulus": "Young's modulus E (Pa)", "tension": "boundary tension T (N)"}[swept]
-    fig, ax = new_figure(size=(7, 5))
+    fig, ax = new_figure(size=(9.5, 5))
     h_line = np.logspace(np.log10(min(thicknesses)) - 0.2, np.log10(max(thicknesses)) + 0.2, 50)
     for k, nu in enumerate(modes):
         mine = [r for r in found if r.mode == float(nu)]
@@ -248,6 +248,6 @@ def stability_map_figure(out, name: str, number: int, base, thicknesses, modes, 
                        fontsize=9)
     handles, labels = ax[0, 0].get_legend_handles_labels()
     unique = dict(zip(labels, handles))
-    ax[0, 0].legend(unique.values(), unique.keys(), fontsize=7, loc="best")
+    ax[0, 0].legend(unique.values(), unique.keys(), fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     save_figure(fig, out / f"{name}.png")
     return rows

@@ -78,9 +78,9 @@ def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, stor
 
 
 def _signal(result, regime):
-    """θ of the slice at a quarter of the sail (stable) or amplitude / a(0) (unstable)."""
+    """θ of the slice at a third of the sail (stable) or amplitude / a(0) (unstable)."""
     if regime == "stable":
-        return result.theta[:, result.params.n // 4]
+        return result.theta[:, result.params.n // 3]
     return result.amplitude / result.amplitude[0]
 
 
@@ -112,13 +112,14 @@ def _plot(path, fig_number, field, values, results, measured, regime, trend) -> 
     if regime == "unstable":
         ax[0, 0].axhline(2.0, color="k", ls="--", lw=0.8)
     ax[0, 0].set_xlabel("t (s)")
-    ax[0, 0].set_ylabel("θ of slice n/4 (rad)" if regime == "stable" else "amplitude / a(0)")
+    ax[0, 0].set_ylabel("θ of slice n/3 (rad)" if regime == "stable" else "amplitude / a(0)")
     ax[0, 0].legend(fontsize=7)
     x = np.array(values, float) * scale
     y = np.array([np.nan if m is None else m for m in measured], float)
     ax[0, 1].plot(x, y, "o-")
-    ax[0, 1].set_xscale("linear" if field == "mode" else "log")
-    ax[0, 1].set_yscale("log")
+    axis_scale = "linear" if field == "mode" else "log"
+    ax[0, 1].set_xscale(axis_scale)
+    ax[0, 1].set_yscale(axis_scale)
     ax[0, 1].set_xlabel(f"{name} ({unit})" if unit else name)
     ax[0, 1].set_ylabel("frequency of θ (Hz)" if regime == "stable" else "failure time (s)")
     slope = trend["loglog_slope"]

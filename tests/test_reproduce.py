@@ -99,9 +99,10 @@ def test_reproduce_figure_5_quick_writes_files_and_fails_at_troughs(tmp_path, ca
 
 
 @pytest.mark.slow
-def test_figure_5_all_modes_fail_at_a_trough_but_one_half(tmp_path):
-    pytest.importorskip("lightsail_mbs.solvers.reduced")
-    assert main(["reproduce", "--figure", "5", "--solver", "reduced", "--quiet", "--out", str(tmp_path)]) == 0
+@pytest.mark.parametrize("solver, module", [("reduced", "reduced"), ("exudyn", "exudyn_chain")])
+def test_figure_5_all_modes_fail_at_a_trough_but_one_half(tmp_path, solver, module):
+    pytest.importorskip(f"lightsail_mbs.solvers.{module}")
+    assert main(["reproduce", "--figure", "5", "--solver", solver, "--quiet", "--out", str(tmp_path)]) == 0
     rows = fig5_rows(tmp_path)
     assert sorted(rows) == [0.5 * k for k in range(1, 11)]
     check_fig5(rows)
@@ -110,7 +111,8 @@ def test_figure_5_all_modes_fail_at_a_trough_but_one_half(tmp_path):
 @pytest.mark.slow
 def test_figures_18_to_23_trends(tmp_path):
     """Appendix C: frequency rises with tension and as thickness falls (stable regime); failure time
-    falls with thickness and hardly depends on tension (unstable regime)."""
+    falls with thickness and hardly depends on tension or mode (unstable regime). A sail that does
+    not fail within the run (h = 10 µm: the failure time scales as √h) counts as failing later."""
     pytest.importorskip("lightsail_mbs.solvers.reduced")
     assert main(["reproduce", "--figure", "18", "--solver", "reduced", "--quiet", "--out", str(tmp_path)]) == 0
     trends = {int(r["figure"]): r for r in read_csv(tmp_path / "fig18_23_trends.csv")}
@@ -118,8 +120,12 @@ def test_figures_18_to_23_trends(tmp_path):
     stable = [r for r in runs if r["regime"] == "stable"]
     unstable = [r for r in runs if r["regime"] == "unstable"]
     assert all(r["failed"] == "False" and float(r["frequency_Hz"]) > 0 for r in stable)
-    assert all(r["failed"] == "True" for r in unstable)
+    assert all(r["failed"] == "True" for r in unstable if float(r["thickness_m"]) <= 1e-6)
     assert trends[18]["direction"] == "increasing"      # frequency vs tension
     assert trends[19]["direction"] == "decreasing"      # frequency vs thickness
-    assert trends[23]["direction"] == "increasing"      # failure time vs thickness
-    assert float(trends[21]["spread_max_over_min"]) < 1.5   # failure time vs tension (T ≪ T_cr,max)
+    fig23 = [r for r in unstable if r["figure"] == "23"]
+    times = [float(r["failure_time_s"]) if r["failed"] == "True" else np.inf for r in fig23]
+    assert [float(r["thickness_m"]) for r in fig23] == sorted(float(r["thickness_m"]) for r in fig23)
+    assert np.all(np.diff(times) > 0)                   # failure time vs thickness
+    assert float(trends[21]["spread_max_over_min"]) < 1.2   # failure time vs tension (T ≪ T_cr,max)
+    assert float(trends[22]["spread_max_over_min"]) < 2.0   # failure time vs mode: same order
