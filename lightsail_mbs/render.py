@@ -17,7 +17,7 @@ from PIL import Image
 
 from .parameters import ParameterError
 from .result import Result
-from .render_scene import Layout, build_scene, make_style
+from .render_scene import Layout, build_scene, frame_exaggeration, make_style
 
 RENDERERS = ("auto", "matplotlib", "exudyn")
 # "auto": the faster of the two for 200 frames at 800×400 on the 2-core reference machine (README), then the other
@@ -120,7 +120,8 @@ def render_frames(result: Result, out_dir, frames: int | None = None, every_seco
                   label: str | None = None, progress=None) -> list[Path]:
     """Write out_dir/frame_0000.png, ... of `result` sampled by frame_indices; returns the paths.
 
-    exaggeration: the factor E on the deflection (None: render_scene.auto_exaggeration);
+    exaggeration: the factor E on the deflection (None: automatic, render_scene.auto_exaggeration, lowered
+    frame by frame after failure where the sail would leave its band: frame_exaggeration);
     color_by: 'curvature' (Δθ/l), 'moment' (k_T Δθ) or None; color_scale: 'frame' (each frame its own range,
     shows where it concentrates) or 'run' (one range, shows growth); arrows: radiation load and boundary tension;
     progress: True for a bar on stderr, or a callable called with the number of frames written so far.
@@ -150,7 +151,7 @@ def render_comparison(first: Result, second: Result, out_dir, labels=("run 1", "
                       color_by: str | None = "curvature", color_scale: str = "frame", arrows: bool = True,
                       progress=None) -> list[Path]:
     """Frames of two runs at the same simulated times, `first` above `second` (each half the height),
-    with one exaggeration and one colour scale. A run that ended earlier (e.g. stopped at failure)
+    with one exaggeration per frame for both and one colour scale. A run that ended earlier (e.g. stopped at failure)
     keeps showing its last state."""
     width, height = parse_size(size)
     panel = Layout(width, height // 2)
@@ -168,8 +169,10 @@ def render_comparison(first: Result, second: Result, out_dir, labels=("run 1", "
     try:
         paths = []
         for k, t in enumerate(times):
-            images = [canvas.draw(build_scene(r, int(_nearest(r.time, np.array([min(t, r.time[-1])]))[0]), style, name))
-                      for r, name in zip(runs, labels)]
+            states = [(r, int(_nearest(r.time, np.array([min(t, r.time[-1])]))[0])) for r in runs]
+            e = frame_exaggeration(style, states)          # one factor for both panels
+            images = [canvas.draw(build_scene(r, i, style, name, exaggeration=e))
+                      for (r, i), name in zip(states, labels)]
             stacked = np.concatenate([images[0], np.full((height - 2 * panel.height, width, 3), 255, np.uint8),
                                       images[1]])
             stacked[panel.height - 1:panel.height + 1] = 120     # a grey rule between the panels

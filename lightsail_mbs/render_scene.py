@@ -166,11 +166,13 @@ def _offsets(result: Result, index: int):
 @dataclass
 class Style:
     """What is shared by every frame of a sequence (or of both runs side by side): the exaggeration E,
+    whether it is automatic (adaptive: lowered frame by frame after failure when the sail would leave its band),
     the colour range ±vmax of the hinge values (color_scale 'run': the largest of all frames; 'frame':
     each frame its own, vmax unused), the time axis (t_start, t_end) and the layout."""
 
     layout: Layout
     exaggeration: float
+    adaptive: bool
     color_by: str | None
     color_scale: str
     vmax: float
@@ -178,25 +180,52 @@ class Style:
     time_span: tuple
 
 
+def _round_down(value: float) -> float:
+    """value rounded down to two significant digits."""
+    digits = 10.0 ** (math.floor(math.log10(value)) - 1)
+    return math.floor(value / digits) * digits
+
+
+def _peak_deflection(result: Result, index: int) -> float:
+    """Largest |offset| of a slice end point from the best-fit line, in units of L."""
+    return float(np.abs(_offsets(result, index)[1]).max()) / result.params.length
+
+
+def _deflection_limit(layout: Layout) -> float:
+    """The largest drawn deflection (units of L) that keeps the sail and its load arrows inside the band."""
+    return layout.sail_half_height - 1.2 * layout.arrow_length
+
+
 def auto_exaggeration(results, indices, layout: Layout) -> float:
-    """E drawing the initial amplitude a₀ at 5 % of L (at most 35 % of the sail band's half height),
-    lowered if the largest deflection of the chosen frames would leave the band; rounded down to two
-    significant digits; at least 1."""
+    """The sequence's E: the initial amplitude a₀ drawn at 5 % of L (at most 35 % of the sail band's half
+    height), lowered if a chosen frame up to the run's failure would leave the band; rounded down to two
+    significant digits; at least 1. Frames after failure may lower it further (frame_exaggeration)."""
     target = min(0.05, 0.35 * layout.sail_half_height)
-    limit = layout.sail_half_height - 1.2 * layout.arrow_length
     e = math.inf
     for r, idx in zip(results, indices):
-        L = r.params.length
-        a0 = float(r.amplitude[0]) / L
-        vmax = max(float(np.abs(_offsets(r, i)[1]).max()) for i in idx) / L
+        a0 = float(r.amplitude[0]) / r.params.length
+        fail = r.failure_time
+        until = [i for i in idx if fail is None or r.time[i] <= fail] or list(idx[:1])
+        peak = max(_peak_deflection(r, i) for i in until)
         if a0 > 0:
             e = min(e, target / a0)
-        if vmax > 0:
-            e = min(e, limit / vmax)
+        if peak > 0:
+            e = min(e, _deflection_limit(layout) / peak)
     if not math.isfinite(e) or e <= 1.0:
         return 1.0
-    digits = 10.0 ** (math.floor(math.log10(e)) - 1)
-    return math.floor(e / digits) * digits
+    return _round_down(e)
+
+
+def frame_exaggeration(style: "Style", states) -> float:
+    """E for one frame showing the (result, index) pairs `states`: the style's, or with automatic
+    exaggeration lowered (two significant digits, below 1 if need be) so that every sail stays in its band."""
+    if not style.adaptive:
+        return style.exaggeration
+    peak = max(_peak_deflection(r, i) for r, i in states)
+    limit = _deflection_limit(style.layout)
+    if peak * style.exaggeration <= limit or peak == 0.0:
+        return style.exaggeration
+    return _round_down(limit / peak)
 
 
 def make_style(results, indices, layout: Layout, exaggeration=None, color_by="curvature", arrows=True,
@@ -206,7 +235,8 @@ def make_style(results, indices, layout: Layout, exaggeration=None, color_by="cu
     if color_scale not in COLOR_SCALES:
         raise ParameterError(f"color_scale={color_scale!r} is invalid: allowed 'frame' (each frame its own range) "
                              "or 'run' (one range for the whole sequence)")
-    if exaggeration is None:
+    adaptive = exaggeration is None
+    if adaptive:
         exaggeration = auto_exaggeration(results, indices, layout)
     elif not (isinstance(exaggeration, (int, float)) and math.isfinite(exaggeration) and exaggeration > 0):
         raise ParameterError(f"exaggeration={exaggeration!r} is invalid: allowed a finite number > 0 (None: automatic)")
@@ -214,7 +244,7 @@ def make_style(results, indices, layout: Layout, exaggeration=None, color_by="cu
                 for i in idx), default=0.0)
     time_span = (min(float(r.time[0]) for r in results),
                  max(max(float(r.params.t_final), float(r.time[-1])) for r in results))
-    return Style(layout, float(exaggeration), color_by, color_scale, vmax, bool(arrows), time_span)
+    return Style(layout, float(exaggeration), adaptive, color_by, color_scale, vmax, bool(arrows), time_span)
 
 
 def _arrow(start, vector, width_px, pix, rgba, strokes, triangles):
@@ -232,16 +262,18 @@ def _arrow(start, vector, width_px, pix, rgba, strokes, triangles):
 
 
 def _fmt_exaggeration(e: float) -> str:
-    return f"{e:.0f}" if e < 1e5 else f"{e:.2g}"
+    return f"{e:.2g}" if e < 10 or e >= 1e5 else f"{e:.0f}"
 
 
-def build_scene(result: Result, index: int, style: Style, label: str | None = None) -> Scene:
-    """The primitives of stored state `index` of `result` under `style`."""
+def build_scene(result: Result, index: int, style: Style, label: str | None = None,
+                exaggeration: float | None = None) -> Scene:
+    """The primitives of stored state `index` of `result` under `style`, with the deflection exaggerated by
+    `exaggeration` (None: frame_exaggeration of this state alone)."""
     p = result.params
     lay = style.layout
     L = p.length
     pix = 1.1 / lay.width
-    E = style.exaggeration
+    E = frame_exaggeration(style, [(result, index)]) if exaggeration is None else exaggeration
     strokes, triangles, texts = [], [], []       # strokes: (points (2, 2), rgba, width in pixels)
 
     # initial shape (ghost) and the best-fit line
@@ -297,8 +329,9 @@ def build_scene(result: Result, index: int, style: Style, label: str | None = No
         texts.append(Text(x1 - text_width(note, lay.big_font) * pix, y1, note, lay.big_font, FAIL_RGBA))
         _mark_failure(ends, E * v / L, lay, strokes, triangles)
     what = f"{label}: " if label else ""
-    texts.append(Text(x0, y2, f"{what}{p.model}, n = {p.n}, {result.solver}   deflection x{_fmt_exaggeration(E)} "
-                      "from the best-fit line (grey: t = 0)", lay.small_font))
+    lowered = f" (lowered from x{_fmt_exaggeration(style.exaggeration)})" if E < style.exaggeration else ""
+    texts.append(Text(x0, y2, f"{what}{p.model}, n = {p.n}, {result.solver}   deflection x{_fmt_exaggeration(E)}"
+                      f"{lowered} vs best-fit line, grey: t = 0", lay.small_font))
     if style.arrows:
         texts.append(Text(x0, y3, "arrows: radiation load", lay.small_font, LOAD_RGBA))
         if p.model == "tnt" and p.tension > 0:

@@ -12,7 +12,7 @@ from PIL import Image
 from lightsail_mbs import ParameterError, Result, SailParameters
 from lightsail_mbs.cli import main
 from lightsail_mbs.render import frame_indices, make_movie, render_comparison, render_frames
-from lightsail_mbs.render_scene import Layout, auto_exaggeration, hinge_values
+from lightsail_mbs.render_scene import Layout, auto_exaggeration, frame_exaggeration, hinge_values, make_style
 from lightsail_mbs.shapes import hinge_points
 
 RENDERERS = ("matplotlib", "exudyn")
@@ -98,10 +98,16 @@ def test_auto_exaggeration_draws_initial_amplitude_at_5_percent_of_length(run):
     e = auto_exaggeration([run], [np.arange(run.time.size // 2)], lay)     # grows e^0.5: fits at 5 % of L
     drawn = e * run.amplitude[0] / run.params.length
     assert 0.045 < drawn <= 0.05                  # rounded down to two significant digits
-    long_run = growing_sine(rate=4.0)             # grows e^4 ≈ 55×: E is lowered so the sail stays in its band
-    e_long = auto_exaggeration([long_run], [np.arange(long_run.time.size)], lay)
-    peak = e_long * np.abs(long_run.y[-1]).max() / long_run.params.length
-    assert e_long < e and peak < lay.sail_half_height
+    long_run = growing_sine(rate=4.0)             # grows e^4 ≈ 55×: failure (×2) at t = ln 2 / 4
+    every = np.arange(long_run.time.size)
+    style = make_style([long_run], [every], lay)
+    assert style.exaggeration == e                # up to failure the sail fits at 5 % of L
+    peak = np.abs(long_run.y[-1]).max() / long_run.params.length
+    e_last = frame_exaggeration(style, [(long_run, every[-1])])
+    assert e_last < e and e_last * peak < lay.sail_half_height    # lowered after failure to stay in the band
+    assert frame_exaggeration(style, [(long_run, 0)]) == e
+    fixed = make_style([long_run], [every], lay, exaggeration=e)
+    assert frame_exaggeration(fixed, [(long_run, every[-1])]) == e    # a given factor is never changed
 
 
 @pytest.mark.parametrize("renderer", RENDERERS)
