@@ -1,7 +1,7 @@
 """README animations (issue 6 item 4): the soft torsion sail (paper Fig. 7) and the rigid ν = 3/2 sail
 failing at its trough (paper Fig. 5), as GIFs.
 
-Usage: python scenarios/animations.py [--out docs] [--runs results/animations] [--solver exudyn]
+Usage: python scenarios/animations.py [--out scenarios/figures] [--runs results/animations] [--solver exudyn]
                                       [--frames 60] [--size 600x300] [--fps 12] [--until-ratio 3]
 
 Each case is simulated past failure (or read back from RUNS/<name>.npz if that file exists), cut
@@ -47,7 +47,7 @@ def simulated(name: str, runs: Path, solver: str) -> Result:
 
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", default="docs", help="folder of the GIFs [default docs]")
+    ap.add_argument("--out", default="scenarios/figures", help="folder of the GIFs [default scenarios/figures]")
     ap.add_argument("--runs", default="results/animations",
                     help="folder of the runs and frames [default results/animations]")
     ap.add_argument("--solver", default="exudyn", choices=("exudyn", "reduced"))
