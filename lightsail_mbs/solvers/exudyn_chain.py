@@ -26,12 +26,27 @@ h = 1 ms, relTol 1e-10):
   tree's force vector (n + 2 ≥ 32 entries) cannot be recorded; per-slice symbolic loads
   (LoadForceVector) cannot read the state. A Python function per slice costs ≈ 5.6 s.
 
-Solver: Exudyn generalized-α (implicit, second order), modified Newton. Defaults (STEP_FACTOR,
-NEWTON_REL_TOL, NEWTON_ABS_FACTOR) come from a convergence study on the soft torsion case
-(E = 4.5e9 Pa): halving the step and the tolerances moves its failure time by < 1 %
-(validation/benchmark.py --convergence reproduces it). The run stops at t_final or at failure
-(amplitude ≥ failure_ratio × initial, checked at every output sample, chunk by chunk); a Newton
-failure or a non-finite state is recorded in Result.error with the trajectory up to there.
+Solver: Exudyn generalized-α (implicit, second order, ρ∞ = 0.9), modified Newton, one fixed step
+h that divides the output interval. Run in chunks of SAMPLES_PER_CHUNK output samples with
+``MainSolverImplicitSecondOrder.SolveSteps`` (the integrator state carries over): after each
+chunk the amplitude of every new sample is checked, so the run stops at t_final or at the first
+sample past failure (amplitude ≥ failure_ratio × initial); stop_at_failure=False runs on. A Newton
+failure, an Exudyn error or a non-finite state is recorded in Result.error with the trajectory
+up to there.
+
+Convergence study (validation/benchmark.py --convergence; soft torsion, E = 4.5e9 Pa, n = 30):
+
+    h (ms)  relTol  absTol (N)  failure time (s)
+    1       1e-10   2.2e-12     2.11415
+    0.5     5e-11   1.1e-12     2.11285   (−0.06 %)
+    0.25    2.5e-11 5.6e-13     2.11198   (−0.10 %)
+    1       1e-8 … 1e-3 (absTol 1e-8 … 1e-5 f₀)   2.11415 (unchanged)
+
+In minimal coordinates the Newton tolerance does not move the failure time (Exudyn's default
+relTol 1e-8 included); defaults: h = 1 ms for the paper's torsion case (STEP_FACTOR·sqrt(L/g₀)),
+relTol 1e-8, absTol 1e-8 f₀. Extensible TnT (E = 1e11 Pa, T = 3.34e-8 N) needs a smaller step:
+failure at 1.988 / 1.939 / 2.1053 / 2.1052 s for h = 1 / 0.5 / 0.25 / 0.125 ms, hence h/4 there
+(EXTENSIBLE_STEP_DIVISOR); its rigid axial limit (axial_springs=False): 2.1021 / 2.1037 s at 1 / 0.5 ms.
 """
 from __future__ import annotations
 
@@ -50,16 +65,23 @@ from .exudyn_model import ChainLayout, generalized_force, tree_arguments
 # load sets the time scale of the instability (paper torsion case: sqrt(1 m / 667 m/s²) = 38.7 ms,
 # h = 1 ms; paper rigid case: 1.22 ms, h capped to the 10 µs output interval).
 STEP_FACTOR = 0.026
-NEWTON_REL_TOL = 1e-10          # residual reduction per step
-NEWTON_ABS_FACTOR = 1e-10       # absolute residual tolerance as a fraction of the flat-slice force
+# Extensible TnT: the axial springs (ω ≈ 6e5 rad/s, never resolved) start out of balance with the
+# load's axial components and ring; the failure time converges to 1 % only at h/4 (study in
+# the module docstring), so extensible chains take a 4× smaller step.
+EXTENSIBLE_STEP_DIVISOR = 4
+NEWTON_REL_TOL = 1e-8           # residual reduction per step (Exudyn default)
+NEWTON_ABS_FACTOR = 1e-8        # absolute residual tolerance as a fraction of the flat-slice force f₀
 SPECTRAL_RADIUS = 0.9           # generalized-α numerical damping of the highest frequencies
 SAMPLES_PER_CHUNK = 100         # failure check (and progress) after this many output samples
 
 
 def default_step_size(p: SailParameters) -> float:
-    """h = STEP_FACTOR · sqrt(L/g₀), at most the output interval (which it then divides)."""
+    """h = STEP_FACTOR · sqrt(L/g₀) (/ EXTENSIBLE_STEP_DIVISOR for extensible TnT), at most the
+    output interval (which it then divides)."""
     g0 = p.nominal_acceleration
     h = STEP_FACTOR * math.sqrt(p.length / g0) if g0 > 0 else math.inf
+    if p.extensible:
+        h /= EXTENSIBLE_STEP_DIVISOR
     return min(h, p.sample_interval)
 
 
@@ -69,13 +91,14 @@ def default_abs_tol(p: SailParameters) -> float:
     return NEWTON_ABS_FACTOR * scale
 
 
-def build(p: SailParameters):
-    """The assembled Exudyn system: (SystemContainer, mbs, layout, sensors (q, q̇), force function)."""
+def build(p: SailParameters, initial: shapes.ChainState | None = None):
+    """The assembled Exudyn system starting at rest in `initial` (default shapes.initial_state(p)):
+    (SystemContainer, mbs, layout, sensors (q, q̇), force function)."""
     import exudyn as exu
     from exudyn.itemInterface import NodeGenericODE2, ObjectKinematicTree, SensorNode
 
     layout = ChainLayout.of(p)
-    q0 = layout.coordinates(shapes.initial_state(p))
+    q0 = layout.coordinates(initial or shapes.initial_state(p))
     load = generalized_force(p, layout)
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
@@ -91,7 +114,8 @@ def build(p: SailParameters):
     return SC, mbs, layout, sensors, load
 
 
-def settings(p: SailParameters, step_size: float, rel_tol: float, abs_tol: float):
+def settings(p: SailParameters, step_size: float, rel_tol: float, abs_tol: float,
+             spectral_radius: float = SPECTRAL_RADIUS):
     import exudyn as exu
 
     s = exu.SimulationSettings()
@@ -100,24 +124,25 @@ def settings(p: SailParameters, step_size: float, rel_tol: float, abs_tol: float
     ti.numberOfSteps = max(1, int(round(p.t_final / step_size)))
     ti.newton.relativeTolerance = rel_tol
     ti.newton.absoluteTolerance = abs_tol
-    ti.generalizedAlpha.spectralRadius = SPECTRAL_RADIUS
+    ti.generalizedAlpha.spectralRadius = spectral_radius
     ti.minimumStepSize = step_size * 1e-4
     ti.verboseMode = 0
     s.solution.file.write = False
-    s.solution.sensors.writePeriod = p.sample_interval
+    s.solution.sensors.writePeriod = 0.5 * step_size      # every step; _samples keeps the output grid
     s.linearSolver.solverType = exu.LinearSolverType.EXUdense
     return s
 
 
 def run(params: SailParameters, *, progress: bool = False, step_size: float | None = None,
         newton_rel_tol: float | None = None, newton_abs_tol: float | None = None,
-        samples_per_chunk: int = SAMPLES_PER_CHUNK, **options) -> Result:
+        spectral_radius: float = SPECTRAL_RADIUS, samples_per_chunk: int = SAMPLES_PER_CHUNK,
+        **options) -> Result:
     """Integrate one case to t_final or to failure; see the module docstring."""
     import exudyn as exu
 
     if options:
         raise ParameterError(f"options={sorted(options)} are invalid: the exudyn solver accepts step_size, "
-                             "newton_rel_tol, newton_abs_tol, samples_per_chunk")
+                             "newton_rel_tol, newton_abs_tol, spectral_radius, samples_per_chunk")
     p = params
     dt = p.sample_interval
     h = default_step_size(p) if step_size is None else float(step_size)
@@ -126,27 +151,29 @@ def run(params: SailParameters, *, progress: bool = False, step_size: float | No
     h = dt / math.ceil(dt / h * (1 - 1e-12))        # whole steps per output sample
     rel_tol = NEWTON_REL_TOL if newton_rel_tol is None else float(newton_rel_tol)
     abs_tol = default_abs_tol(p) if newton_abs_tol is None else float(newton_abs_tol)
+    if not 0 <= spectral_radius <= 1:
+        raise ParameterError(f"spectral_radius={spectral_radius!r} is invalid: allowed 0 ≤ ρ∞ ≤ 1")
     for name, v in (("newton_rel_tol", rel_tol), ("newton_abs_tol", abs_tol)):
         if not (v >= 0 and math.isfinite(v)):
             raise ParameterError(f"{name}={v!r} is invalid: allowed a finite value ≥ 0")
 
     start = _time.perf_counter()
-    SC, mbs, layout, sensors, _ = build(p)
-    s = settings(p, h, rel_tol, abs_tol)
+    initial = shapes.initial_state(p)
+    limit = p.failure_ratio * analysis.amplitude(initial.x, initial.y)
+    checking = p.stop_at_failure and limit > 0       # a flat sail (a₀ = 0) has no failure to stop at
+    SC, mbs, layout, sensors, _ = build(p, initial)
+    s = settings(p, h, rel_tol, abs_tol, spectral_radius)
     steps_per_sample = int(round(dt / h))
     total_samples = int(math.floor(p.t_final / dt + 1e-9))
     chunk = max(1, int(samples_per_chunk))
     bar = Progress(p.t_final, progress, label=f"exudyn {p.model} n={p.n}")
     solver = exu.MainSolverImplicitSecondOrder()
     error = None
-    limit = None
     done = 0
     printing = exu.config.printToConsole
     exu.config.printToConsole = False      # keep stdout clean (the CLI prints JSON there)
     try:
         solver.InitializeSolver(mbs, s)
-        initial = shapes.initial_state(p)
-        limit = p.failure_ratio * analysis.amplitude(initial.x, initial.y)
         while done < total_samples:
             k = min(chunk, total_samples - done)
             solver.it.endTime = (done + k) * dt if done + k < total_samples else p.t_final
@@ -160,8 +187,8 @@ def run(params: SailParameters, *, progress: bool = False, step_size: float | No
             if not np.all(np.isfinite(state)):
                 error = f"non-finite state at t = {solver.it.currentTime:.9g} s"
                 break
-            if p.stop_at_failure:
-                q = mbs.GetSensorStoredData(sensors[0])[-(k * 2 + 1):]
+            if checking:
+                q = mbs.GetSensorStoredData(sensors[0])[-(k * steps_per_sample + 2):]
                 amp = analysis.amplitude(*layout.positions(q[:, 1:])[:2])
                 if np.any(amp >= limit):
                     break
@@ -173,16 +200,20 @@ def run(params: SailParameters, *, progress: bool = False, step_size: float | No
         bar.close()
     wall = _time.perf_counter() - start
 
-    q, q_t = (_samples(mbs.GetSensorStoredData(sn), dt) for sn in sensors)
+    q, q_t = (_samples(mbs.GetSensorStoredData(sn), dt, h) for sn in sensors)
+    t_now = float(solver.it.currentTime)
+    if error is None and len(q) and t_now > q[-1, 0] + 0.5 * dt:   # a final sample the sensor
+        q = np.vstack((q, np.concatenate(([t_now], mbs.systemData.GetODE2Coordinates()))))  # skipped
+        q_t = np.vstack((q_t, np.concatenate(([t_now], mbs.systemData.GetODE2Coordinates_t()))))
     rows = min(len(q), len(q_t))
     if rows == 0:                                     # failed before the first sample
-        q = np.concatenate(([0.0], layout.coordinates(shapes.initial_state(p))))[None, :]
+        q = np.concatenate(([0.0], layout.coordinates(initial)))[None, :]
         q_t = np.zeros_like(q)
         rows = 1
     q, q_t = q[:rows], q_t[:rows]
     x, y, theta, z = layout.positions(q[:, 1:])
     vx, vy, omega, z_rate = layout.velocities(q[:, 1:], q_t[:, 1:])
-    if p.stop_at_failure and limit is not None:
+    if checking:
         amp = analysis.amplitude(x, y)
         over = np.nonzero(amp >= limit)[0]
         if over.size:                                 # end at the first sample past failure
@@ -193,7 +224,7 @@ def run(params: SailParameters, *, progress: bool = False, step_size: float | No
         "step_size": h,
         "newton_rel_tol": rel_tol,
         "newton_abs_tol": abs_tol,
-        "spectral_radius": SPECTRAL_RADIUS,
+        "spectral_radius": spectral_radius,
         "steps": int(round((q[-1, 0] if len(q) else 0.0) / h)),
         "newton_iterations": int(solver.it.newtonStepsCount),
         "jacobian_evaluations": int(solver.it.newtonJacobiCount),
@@ -205,11 +236,13 @@ def run(params: SailParameters, *, progress: bool = False, step_size: float | No
                                   wall_time=wall, error=error, info=info)
 
 
-def _samples(data: np.ndarray, dt: float) -> np.ndarray:
-    """Stored sensor rows, one per output sample (chunk restarts store their first row again)."""
+def _samples(data: np.ndarray, dt: float, h: float) -> np.ndarray:
+    """The stored rows (one per step of size h) that lie on the output grid k·dt, once each."""
     data = np.asarray(data, float)
     if data.ndim != 2 or not len(data):
         return np.zeros((0, 0))
-    index = np.round(data[:, 0] / dt).astype(np.int64)
+    index = np.round(data[:, 0] / dt)
+    on_grid = np.abs(data[:, 0] - index * dt) < 0.25 * h
+    data, index = data[on_grid], index[on_grid]
     keep = np.concatenate(([True], np.diff(index) > 0))
     return data[keep]

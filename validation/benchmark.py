@@ -1,0 +1,134 @@
+"""Benchmark: wall time (minimum of repeats), steps and failure time of the paper cases for every solver.
+
+    python validation/benchmark.py                      # all solvers, all cases, 3 repeats
+    python validation/benchmark.py --solvers exudyn --repeats 5 --markdown bench.md
+    python validation/benchmark.py --convergence        # Exudyn step/tolerance study (soft cases)
+
+A solver whose module is not there yet is skipped with a note. Timings on a shared machine are
+noisy: the minimum over repeats is reported.
+"""
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+import time
+from pathlib import Path
+
+from lightsail_mbs import paper_case, solve
+from lightsail_mbs.solvers import SOLVERS
+
+CASES = {
+    "torsion E=4.5e13, 6 s (stable)": lambda: paper_case("torsion-stable"),
+    "torsion E=4.5e9, to failure": lambda: paper_case("torsion-soft"),
+    "tnt T=3.34e-3 N, 6 s (stable)": lambda: paper_case("tnt-stable"),
+    "tnt T=3.34e-8 N, to failure": lambda: paper_case("tnt-soft"),
+    "rigid n=40 ν=1.5, 10 ms": lambda: paper_case("rigid", mode=1.5),
+}
+
+
+def available(name: str) -> str | None:
+    """None if the solver's module imports, else the reason it does not."""
+    try:
+        importlib.import_module(f"lightsail_mbs.solvers.{SOLVERS[name]}")
+    except ImportError as exc:
+        return f"not available ({exc})"
+    return None
+
+
+def measure(params, solver: str, repeats: int) -> dict:
+    best = None
+    for _ in range(repeats):
+        start = time.perf_counter()
+        result = solve(params, solver)
+        wall = time.perf_counter() - start
+        if best is None or wall < best[0]:
+            best = (wall, result)
+    wall, result = best
+    steps = result.info.get("steps", result.info.get("n_steps", "—"))
+    ft = result.failure_time
+    return {"wall": wall, "steps": steps, "failure": "—" if ft is None else f"{ft:.4f} s",
+            "t_end": float(result.time[-1]), "error": result.error}
+
+
+def benchmark(solvers, cases, repeats) -> list[dict]:
+    rows = []
+    for solver in solvers:
+        reason = available(solver)
+        if reason:
+            print(f"skipping solver {solver!r}: {reason}", file=sys.stderr)
+            continue
+        for case in cases:
+            row = {"case": case, "solver": solver, **measure(CASES[case](), solver, repeats)}
+            rows.append(row)
+            print(f"{case:34s} {solver:8s} wall {row['wall']:7.3f} s  steps {row['steps']!s:>7}  "
+                  f"failure {row['failure']}" + (f"  ERROR {row['error']}" if row["error"] else ""), flush=True)
+    return rows
+
+
+def convergence(cases=("torsion-soft", "tnt-soft"), factors=(1.0, 0.5, 0.25)) -> list[dict]:
+    """Failure time of the soft paper cases with the step and both Newton tolerances scaled
+    together (factor 1 = the defaults), plus tight tolerances (1e-10) at the default step."""
+    from lightsail_mbs.solvers import exudyn_chain as ec
+
+    rows = []
+    for case in cases:
+        p = paper_case(case)
+        h, rel, abs_ = ec.default_step_size(p), ec.NEWTON_REL_TOL, ec.default_abs_tol(p)
+        runs = [(h * f, rel * f, abs_ * f) for f in factors] + [(h, 1e-10, 1e-10 * p.flat_force)]
+        reference = None
+        for step, r_tol, a_tol in runs:
+            result = solve(p, "exudyn", step_size=step, newton_rel_tol=r_tol, newton_abs_tol=a_tol)
+            ft = result.failure_time
+            reference = reference if reference is not None else ft
+            change = None if ft is None or reference is None else (ft - reference) / reference
+            rows.append({"case": case, "step": step, "rel_tol": r_tol, "abs_tol": a_tol, "failure_time": ft,
+                         "change": change, "wall": result.wall_time})
+            print(f"{case}: h {step:.3g} s  relTol {r_tol:.3g}  absTol {a_tol:.3g} N  failure "
+                  f"{ft if ft is None else round(ft, 5)} s  change "
+                  f"{'—' if change is None else f'{change:+.3%}'}  wall {result.wall_time:.2f} s", flush=True)
+    return rows
+
+
+def markdown(rows) -> str:
+    lines = ["| case | solver | wall time (s, min) | steps | failure time |", "|---|---|---:|---:|---:|"]
+    for r in rows:
+        fail = r["failure"] + (f" (error: {r['error']})" if r["error"] else "")
+        lines.append(f"| {r['case']} | {r['solver']} | {r['wall']:.3f} | {r['steps']} | {fail} |")
+    return "\n".join(lines) + "\n"
+
+
+def convergence_markdown(rows) -> str:
+    lines = ["| case | step (s) | relTol | absTol (N) | failure time (s) | change |",
+             "|---|---:|---:|---:|---:|---:|"]
+    for r in rows:
+        ft = "—" if r["failure_time"] is None else f"{r['failure_time']:.5f}"
+        ch = "—" if r["change"] is None else f"{r['change']:+.3%}"
+        lines.append(f"| {r['case']} | {r['step']:.3g} | {r['rel_tol']:.3g} | {r['abs_tol']:.3g} | {ft} | {ch} |")
+    return "\n".join(lines) + "\n"
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--solvers", nargs="+", default=list(SOLVERS), choices=list(SOLVERS))
+    ap.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES), metavar="CASE")
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--markdown", type=Path, help="also write the table(s) as Markdown to this file")
+    ap.add_argument("--convergence", action="store_true",
+                    help="run the Exudyn step/tolerance convergence study instead of the benchmark")
+    args = ap.parse_args(argv)
+    if args.repeats < 1:
+        ap.error("--repeats must be ≥ 1")
+    if args.convergence:
+        text = convergence_markdown(convergence())
+    else:
+        text = markdown(benchmark(args.solvers, args.cases, args.repeats))
+    print()
+    print(text)
+    if args.markdown:
+        args.markdown.write_text(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
