@@ -147,6 +147,12 @@ def test_soft_torsion_fails_near_two_seconds():
     assert r.time[-1] < 2.5                    # the run stopped at failure
 
 
+def test_runs_on_past_failure_when_asked():
+    r = solve(paper_case("torsion-soft", t_final=2.2, stop_at_failure=False), "exudyn")
+    assert r.error is None and r.failed and r.time[-1] == pytest.approx(2.2)
+    assert r.max_amplitude_ratio > 2.0
+
+
 def test_rigid_mode_three_halves_fails_at_a_trough():
     r = solve(paper_case("rigid", mode=1.5), "exudyn")
     assert r.failed and r.failure_time < 0.01
