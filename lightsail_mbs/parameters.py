@@ -13,6 +13,13 @@ from dataclasses import dataclass, field
 
 SPEED_OF_LIGHT = 299_792_458.0  # m/s
 MODELS = ("rigid", "torsion", "tnt")
+# Supports of the chain's ends (validations, paper Appendices A–B): "free" (the sail, both ends free),
+# "cantilever" (slice 1 clamped at its initial pose, Appendix A), "pinned" (hinge 0 pinned, hinge n on a
+# roller along x that lets the end tension T through: a string or simply supported beam, Appendix B).
+BOUNDARIES = ("free", "cantilever", "pinned")
+# Fields added for the validations; to_dict omits them at their defaults so that the keys of
+# stored sweep cases and saved runs of free sails stay what they were.
+VALIDATION_DEFAULTS = {"boundary": "free", "tip_load": 0.0, "tip_load_time_constant": 0.0}
 
 
 class ParameterError(ValueError):
@@ -63,6 +70,9 @@ class SailParameters:
     output_interval: float | None = None  # s; None: min(1 ms, t_final/1000)
     stop_at_failure: bool = True       # end the run when the amplitude has doubled
     failure_ratio: float = 2.0         # failure: amplitude(t) ≥ failure_ratio · amplitude(0)
+    boundary: str = "free"             # end supports, one of BOUNDARIES
+    tip_load: float = 0.0              # P₀, N: transverse (+y) dead load at the centre of slice n (Eq. 43)
+    tip_load_time_constant: float = 0.0  # τ, s: P(t) = P₀(1 − e^(−t/τ)) (Eq. 43); 0: P₀ from t = 0
     extra: dict = field(default_factory=dict, compare=False, repr=False)
 
     def __post_init__(self):
@@ -108,6 +118,10 @@ class SailParameters:
         _check("failure_ratio", v, v > 1, "> 1")
         _check("tension", self.tension, self.tension == 0 or self.model == "tnt",
                "0 unless model='tnt' (boundary tension exists only in the TnT model)")
+        _check("boundary", self.boundary, self.boundary in BOUNDARIES, f"one of {', '.join(BOUNDARIES)}")
+        _finite("tip_load", self.tip_load)
+        v = _finite("tip_load_time_constant", self.tip_load_time_constant)
+        _check("tip_load_time_constant", v, v >= 0, "≥ 0 (0: the full load from t = 0)")
         if self.bending is None:
             object.__setattr__(self, "bending", self.model == "torsion")
         _check("bending", self.bending, isinstance(self.bending, bool), "True, False or None")
@@ -195,9 +209,18 @@ class SailParameters:
             changes["bending"] = None
         return dataclasses.replace(self, **changes)
 
+    def tip_force(self, t):
+        """P(t) = P₀(1 − e^(−t/τ)) (paper Eq. 43; P₀ for τ = 0), N."""
+        if self.tip_load_time_constant == 0:
+            return self.tip_load
+        return self.tip_load * -math.expm1(-t / self.tip_load_time_constant)
+
     def to_dict(self) -> dict:
         d = dataclasses.asdict(self)
         d.pop("extra")
+        for name, default in VALIDATION_DEFAULTS.items():
+            if d[name] == default:
+                del d[name]
         d.update(self.extra)
         return d
 
