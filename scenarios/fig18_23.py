@@ -42,7 +42,7 @@ UNIT = {"tension": ("T", "N", 1.0), "thickness": ("h", "µm", 1e6), "mode": ("ν
 def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
     out = Path(out)
     base = paper_case("tnt-stable", axial_springs=False)
-    base = base.replace(n=10, t_final=1.0) if quick else base
+    base = base.replace(n=10, t_final=3.0) if quick else base
     params = {(fig, v): base.replace(**fixed, **{field: v})
               for fig, (field, values, fixed, _) in STUDIES.items() for v in values}
     done = dict(zip(params, run_cases(list(params.values()), Path(store or out / "store") / "fig18_23",
@@ -117,7 +117,7 @@ def _plot(path, fig_number, field, values, results, measured, regime, trend) -> 
     x = np.array(values, float) * scale
     y = np.array([np.nan if m is None else m for m in measured], float)
     ax[0, 1].plot(x, y, "o-")
-    axis_scale = "linear" if field == "mode" else "log"
+    axis_scale = "linear" if field == "mode" or not np.any(np.isfinite(y)) else "log"
     ax[0, 1].set_xscale(axis_scale)
     ax[0, 1].set_yscale(axis_scale)
     ax[0, 1].set_xlabel(f"{name} ({unit})" if unit else name)

@@ -129,3 +129,14 @@ def test_figures_18_to_23_trends(tmp_path):
     assert np.all(np.diff(times) > 0)                   # failure time vs thickness
     assert float(trends[21]["spread_max_over_min"]) < 1.2   # failure time vs tension (T ≪ T_cr,max)
     assert float(trends[22]["spread_max_over_min"]) < 2.0   # failure time vs mode: same order
+
+
+@pytest.mark.slow
+def test_reproduce_all_quick_writes_every_figure(tmp_path, capsys):
+    pytest.importorskip("lightsail_mbs.solvers.reduced")
+    assert main(["reproduce", "--all", "--quick", "--solver", "reduced", "--quiet", "--out", str(tmp_path)]) == 0
+    for number in (5, 6, 7, 8, 9, 10, 11, 12, 18, 19, 20, 21, 22, 23):
+        assert (tmp_path / f"fig{number}.png").stat().st_size > 0
+    for name in ("fig9_boundaries", "fig12_boundaries", "fig18_23_trends"):
+        assert read_csv(tmp_path / f"{name}.csv")
+    assert "| all |" in capsys.readouterr().out
