@@ -34,7 +34,8 @@ def exudyn_state(p, q):
 
     SC, mbs, layout, _, _ = exudyn_chain.build(p)
     links = layout.angle_index
-    sensors = [[mbs.AddSensor(SensorKinematicTree(objectNumber=0, linkNumber=int(k), localPosition=[0.5 * p.slice_length, 0, 0],
+    centre = [0.5 * p.slice_length, 0.0, 0.0]
+    sensors = [[mbs.AddSensor(SensorKinematicTree(objectNumber=0, linkNumber=int(k), localPosition=centre,
                                                   storeInternal=True, outputVariableType=kind))
                 for k in links] for kind in (exu.OutputVariableType.Position, exu.OutputVariableType.Rotation)]
     mbs.Assemble()

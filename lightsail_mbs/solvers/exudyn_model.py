@@ -163,9 +163,10 @@ def generalized_force(p: SailParameters, layout: ChainLayout):
 
 
 def tree_arguments(p: SailParameters, layout: ChainLayout, exu) -> dict:
-    """Keyword arguments of ObjectKinematicTree (without node and user function)."""
-    import exudyn.itemInterface  # noqa: F401  (registers the list types)
-
+    """Keyword arguments of ObjectKinematicTree (without node and user function): massless
+    PrismaticX/PrismaticY base links, one RevoluteZ link per slice (mass m at l/2, inertia J;
+    joint offset l from the previous slice's hinge, or 0 after a slide), massless PrismaticX
+    slides at l along the previous slice; P/D control = springs/dampers with offset 0."""
     l, m, J = p.slice_length, p.slice_mass, p.slice_inertia
     size = layout.size
     types = [exu.JointType.PrismaticX, exu.JointType.PrismaticY] + [None] * (size - 2)
