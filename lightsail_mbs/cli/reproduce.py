@@ -8,7 +8,6 @@ recomputes nothing already finished.
 from __future__ import annotations
 
 import importlib.util
-import sys
 import time
 from pathlib import Path
 
@@ -82,4 +81,4 @@ def run(args) -> int:
 def main_for_scenario(figures, argv) -> int:
     """`python scenarios/figN.py [options]`: the reproduce command for that scenario's figures."""
     from . import main
-    return main(["reproduce", *[a for k in figures[:1] for a in ("--figure", str(k))], *argv])
+    return main(["reproduce", "--figure", str(figures[0]), *argv])
