@@ -49,14 +49,16 @@ def unlit(p: SailParameters) -> SailParameters:
 
 
 # ---- reduced solver ------------------------------------------------------------------------
-def reduced_jacobian(p: SailParameters, step: float = FD_STEP) -> np.ndarray:
-    """∂ẏ/∂y at the flat state of the reduced model, y = (q, q̇) (2·dof square), central differences."""
+def reduced_jacobian(p: SailParameters, step: float = FD_STEP, state: shapes.ChainState | None = None) -> np.ndarray:
+    """∂ẏ/∂y of the reduced model at rest in `state` (default: the flat state), y = (q, q̇)
+    (2·dof square), central differences."""
     from .solvers.reduced_dynamics import ChainDynamics
     from .solvers.reduced_kinematics import ChainModel
 
-    p = flat(p)
+    if state is None:
+        p = flat(p)
+        state = shapes.initial_state(p)
     model = ChainModel.from_params(p)
-    state = shapes.initial_state(p)
     q0 = model.pack(state.x[0], state.y[0], state.theta, state.z)
     y0 = np.concatenate([q0, np.zeros_like(q0)])
     size = y0.size

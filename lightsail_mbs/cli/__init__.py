@@ -8,7 +8,7 @@ import sys
 from ..parameters import ParameterError
 
 # subcommand modules of this package; each defines register(subparsers) and sets `func`
-COMMANDS = ["theory", "simulate", "render", "montecarlo", "reproduce", "crosscheck"]
+COMMANDS = ["theory", "simulate", "render", "montecarlo", "reproduce", "crosscheck", "stability"]
 
 
 def build_parser() -> argparse.ArgumentParser:
