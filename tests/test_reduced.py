@@ -16,6 +16,7 @@ TNT = SailParameters(model="tnt", n=5, tension=1e-3, youngs_modulus=1e11, bendin
                      torsional_damping=1e-9, axial_damping=1e-2)
 TNT_RIGID = SailParameters(model="tnt", n=6, tension=1e-3, axial_springs=False, intensity=1e9)
 RIGID = SailParameters(model="rigid", n=7, intensity=1e11)
+GAUSSIAN = SailParameters(n=9, intensity=1e9, beam_waist=0.3, reflectivity=0.8, absorptivity=0.1)
 MODELS = [TORSION, TNT, TNT_RIGID, RIGID]
 IDS = ["torsion", "tnt-extensible", "tnt-inextensible", "rigid"]
 
@@ -165,9 +166,10 @@ def test_mass_matrix_and_forces_match_finite_difference_lagrangian(p):
 
 
 # ---- O(n) accelerations ---------------------------------------------------------------------
-@pytest.mark.parametrize("p", MODELS, ids=IDS)
+@pytest.mark.parametrize("p", MODELS + [GAUSSIAN], ids=IDS + ["gaussian-beam"])
 def test_recursive_accelerations_equal_dense_solution(p):
-    """The banded joint-force solution equals M⁻¹(Q − c), one state and a batch of states."""
+    """The compiled O(n) joint-force solution equals M⁻¹(Q − c) (with the shared load model of
+    loads.py), one state and a batch of states."""
     model = ChainModel.from_params(p)
     dyn = ChainDynamics(model)
     states = [random_state(model) for _ in range(4)]
@@ -212,15 +214,42 @@ def test_options_are_validated():
         solve(p, "reduced", rtol=2.0)
 
 
-def test_divergence_is_recorded_not_raised(monkeypatch):
-    p = SailParameters(n=5, t_final=0.1)
-    original = ChainDynamics.rhs
+def test_compiled_dop853_takes_scipys_steps():
+    """The compiled DOP853 is scipy's method on the same right-hand side: the same number of
+    function evaluations (steps + dense-output stages) and the same states to round-off."""
+    from scipy.integrate import solve_ivp
 
-    def poisoned(self, t, y):
-        out = original(self, t, y)
-        return out * np.nan if t > 0.03 else out
-    monkeypatch.setattr(ChainDynamics, "rhs", poisoned)
+    p = paper_case("torsion-stable", n=10, t_final=0.5)
     r = solve(p, "reduced")
+    model = ChainModel.from_params(p)
+    q0 = model.pack(r.x[0, 0], r.y[0, 0], r.theta[0], np.zeros(0))
+    ref = solve_ivp(ChainDynamics(model).rhs, (0, p.t_final), np.concatenate([q0, np.zeros_like(q0)]),
+                    method="DOP853", rtol=r.info["rtol"], atol=r.info["rtol"] * reduced.state_scales(model),
+                    t_eval=r.time)
+    assert r.info["nfev"] == ref.nfev
+    theta = ref.y[2:p.n + 2].T
+    np.testing.assert_allclose(r.theta, theta, rtol=0, atol=1e-12 * np.abs(theta).max())
+
+
+@pytest.mark.parametrize("method", ["DOP853", "RK45"])
+def test_divergence_is_recorded_not_raised(monkeypatch, method):
+    """A non-finite state ends the run with Result.error set and the finite trajectory before it."""
+    from lightsail_mbs.solvers import reduced_integrator
+
+    p = SailParameters(n=5, t_final=0.1, output_interval=0.001)
+    original_advance, original_rhs = reduced_integrator.Dop853.advance, ChainDynamics.rhs
+
+    def poisoned_advance(self, samples):
+        if self.t > 0.03:
+            self.y[:] = np.nan
+        return original_advance(self, samples)
+
+    def poisoned_rhs(self, t, y):
+        out = original_rhs(self, t, y)
+        return out * np.nan if t > 0.03 else out
+    monkeypatch.setattr(reduced_integrator.Dop853, "advance", poisoned_advance)
+    monkeypatch.setattr(ChainDynamics, "rhs", poisoned_rhs)
+    r = solve(p, "reduced", method=method)
     assert r.error and "failed" in r.error
     assert 0.02 < r.time[-1] < 0.1 and np.all(np.isfinite(r.theta))
 

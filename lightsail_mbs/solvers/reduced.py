@@ -27,6 +27,7 @@ from ..parameters import ParameterError, SailParameters
 from ..progress import Progress
 from ..result import Result
 from .reduced_dynamics import ChainDynamics
+from .reduced_integrator import FINISHED, STATUS, Dop853
 from .reduced_kinematics import ChainModel, centre_velocities, centres
 
 METHODS = {"DOP853": DOP853, "RK45": RK45, "Radau": Radau, "BDF": BDF, "LSODA": LSODA}
@@ -90,45 +91,31 @@ def run(params: SailParameters, *, progress: bool = False, rtol: float | None = 
     start = shapes.initial_state(params)
     q0 = model.pack(start.x[0], start.y[0], start.theta, start.z)
     y0 = np.concatenate([q0, np.zeros_like(q0)])
-    kwargs = dict(rtol=rtol, atol=atol, **options)
-    if method in ("Radau", "BDF"):
-        kwargs["vectorized"] = True
-    wall0 = clock.perf_counter()
-    integrator = METHODS[method](dynamics.rhs, 0.0, y0, params.t_final, **kwargs)
-
     dt = params.sample_interval
     n_samples = int(math.floor(params.t_final / dt + 1e-9)) + 1
     sample_times = dt * np.arange(n_samples)
     if sample_times[-1] < params.t_final * (1 - 1e-12):
         sample_times = np.append(sample_times, params.t_final)
-    states = [y0[:, None]]
     amp0 = analysis.amplitude(start.x, start.y)
     limit = params.failure_ratio * amp0
-    next_sample, steps, error = 1, 0, None
+
+    def failed_at(batch):
+        """Index of the first sample of the batch at or above the failure amplitude, or None."""
+        if not params.stop_at_failure:
+            return None
+        x, y = centres(model, batch[:model.dof])
+        above = np.nonzero(analysis.amplitude(x.T, y.T) >= limit)[0]
+        return above[0] if above.size else None
+
+    wall0 = clock.perf_counter()
     bar = Progress(params.t_final, progress, label="reduced")
     try:
-        while next_sample < sample_times.size:
-            message = integrator.step()
-            steps += 1
-            if integrator.status == "failed" or not np.all(np.isfinite(integrator.y)):
-                error = f"{method} failed at t = {integrator.t:.6g} s: {message or 'non-finite state'}"
-                break
-            stop = np.searchsorted(sample_times, integrator.t, side="right")
-            if stop > next_sample:
-                batch = integrator.dense_output()(sample_times[next_sample:stop])
-                states.append(batch)
-                next_sample = stop
-                if params.stop_at_failure:
-                    x, y = centres(model, batch[:model.dof])
-                    above = np.nonzero(analysis.amplitude(x.T, y.T) >= limit)[0]
-                    if above.size:
-                        states[-1] = batch[:, :above[0] + 1]
-                        break
-            bar.update(integrator.t)
-            if integrator.status == "finished":
-                break
-    except (np.linalg.LinAlgError, ValueError, FloatingPointError) as exc:
-        error = f"{method} failed at t = {integrator.t:.6g} s: {exc}"
+        if method == "DOP853":
+            states, error, integrator = _run_compiled(dynamics, y0, params.t_final, rtol, atol, sample_times,
+                                                      failed_at, bar, options)
+        else:
+            states, error, integrator = _run_scipy(method, dynamics, y0, params.t_final, rtol, atol, sample_times,
+                                                   failed_at, bar, options)
     finally:
         bar.close()
     wall = clock.perf_counter() - wall0
@@ -140,10 +127,69 @@ def run(params: SailParameters, *, progress: bool = False, rtol: float | None = 
     vx, vy = centre_velocities(model, q, qd)
     _, _, theta, z = model.split(q)
     _, _, omega, z_rate = model.split(qd)
-    info = dict(method=method, rtol=rtol, atol=float(np.min(atol)), steps=steps, nfev=integrator.nfev,
-                njev=integrator.njev, nlu=integrator.nlu, coordinates=model.dof,
-                formulation="minimal coordinates, O(n) joint-force recursion (banded Cholesky)")
+    info = dict(method=method, rtol=rtol, atol=float(np.min(atol)), steps=integrator.steps, nfev=integrator.nfev,
+                njev=getattr(integrator, "njev", 0), nlu=getattr(integrator, "nlu", 0), coordinates=model.dof,
+                formulation="minimal coordinates, O(n) joint-force recursion (block LDLT), compiled")
     return Result.from_trajectory(
         params, "reduced", sample_times[:count], x.T, y.T, theta.T, vx.T, vy.T, omega.T,
         z=z.T if model.extensible else None, z_rate=z_rate.T if model.extensible else None,
         wall_time=wall, error=error, info=info)
+
+
+CHUNK = 50      # samples per call of the compiled integrator (failure check and progress in between)
+
+
+def _run_compiled(dynamics, y0, t_final, rtol, atol, sample_times, failed_at, bar, options):
+    """The compiled DOP853 (reduced_integrator.py), CHUNK samples per call."""
+    integrator = Dop853(dynamics.constants, y0, t_final, rtol, atol, max_step=options.get("max_step", np.inf),
+                        first_step=options.get("first_step"))
+    states, error, next_sample = [y0[:, None]], None, 1
+    while next_sample < sample_times.size:
+        batch = integrator.advance(sample_times[next_sample:next_sample + CHUNK])
+        states.append(batch)
+        next_sample += batch.shape[1]
+        stop = failed_at(batch)
+        if stop is not None:
+            states[-1] = batch[:, :stop + 1]
+            break
+        if integrator.status in STATUS:
+            error = f"DOP853 failed at t = {integrator.t:.6g} s: {STATUS[integrator.status]}"
+            break
+        bar.update(integrator.t)
+        if integrator.status == FINISHED:
+            break
+    return states, error, integrator
+
+
+def _run_scipy(method, dynamics, y0, t_final, rtol, atol, sample_times, failed_at, bar, options):
+    """scipy's solve_ivp steppers on the compiled right-hand side; implicit ones get the compiled
+    dense Jacobian (reduced_dynamics.ChainDynamics.jacobian)."""
+    kwargs = dict(rtol=rtol, atol=atol, **options)
+    if method in IMPLICIT:
+        scales = np.maximum(np.broadcast_to(atol, y0.shape) / rtol, 1e-300)
+        kwargs["jac"] = lambda t, y: dynamics.jacobian(t, y, scales)
+    integrator = METHODS[method](dynamics.rhs, 0.0, y0, t_final, **kwargs)
+    integrator.steps = 0
+    states, error, next_sample = [y0[:, None]], None, 1
+    try:
+        while next_sample < sample_times.size:
+            message = integrator.step()
+            integrator.steps += 1
+            if integrator.status == "failed" or not np.all(np.isfinite(integrator.y)):
+                error = f"{method} failed at t = {integrator.t:.6g} s: {message or 'non-finite state'}"
+                break
+            stop = np.searchsorted(sample_times, integrator.t, side="right")
+            if stop > next_sample:
+                batch = integrator.dense_output()(sample_times[next_sample:stop])
+                states.append(batch)
+                next_sample = stop
+                above = failed_at(batch)
+                if above is not None:
+                    states[-1] = batch[:, :above + 1]
+                    break
+            bar.update(integrator.t)
+            if integrator.status == "finished":
+                break
+    except (np.linalg.LinAlgError, ValueError, FloatingPointError) as exc:
+        error = f"{method} failed at t = {integrator.t:.6g} s: {exc}"
+    return states, error, integrator
