@@ -65,3 +65,68 @@ def test_exudyn_own_forward_difference_jacobian_is_noisy_with_load():
     noisy = st.spectrum_of_system(*st.exudyn_linearization(p, exudyn_load="solver"))
     assert elastic_shift(noisy, dark) > 1e-4
     assert elastic_shift(st.linear_spectrum(p, "exudyn"), dark) < 1e-6
+
+
+# ---- finite amplitude: scaling, critical values, failure time ---------------------------------
+import json  # noqa: E402
+
+from lightsail_mbs import critical as cr  # noqa: E402
+from lightsail_mbs.cli import main as cli_main  # noqa: E402
+
+SMALL_TORSION = SailParameters(model="torsion", n=10, mode=1.5)
+SMALL_TNT = SailParameters(model="tnt", n=10, mode=1.5, axial_springs=False, tension=1e-8)
+
+
+@pytest.mark.parametrize("base", [SMALL_TORSION, SMALL_TNT], ids=["torsion", "tnt"])
+def test_failure_time_scales_with_t_c_over_two_decades(base):
+    """t_f = F(r) t_c: g₀ over two decades (h) and a₀ over two decades give the same τ_f = t_f/t_c."""
+    taus = [cr.failure_tau(cr.with_ratio(base.replace(thickness=h, amplitude=a0), 1.0), 20.0)
+            for h, a0 in ((1e-7, 1e-6), (1e-5, 1e-4), (1e-6, 1e-5))]
+    assert None not in taus
+    assert max(taus) / min(taus) < 1.01
+
+
+def test_rigid_failure_time_scales_with_t_c():
+    p = paper_case("rigid", n=20)
+    a = cr.failure_tau(p, 20.0)
+    b = cr.failure_tau(p.replace(intensity=1e9, amplitude=1e-4), 20.0)
+    assert a is not None and abs(a / b - 1) < 0.01
+
+
+def test_scaled_failure_time_converged_in_tolerance():
+    p = cr.with_ratio(SMALL_TORSION, 1.0)
+    assert abs(cr.failure_tau(p, 20.0, rtol=1e-8) / cr.failure_tau(p, 20.0, rtol=1e-10) - 1) < 1e-3
+
+
+def test_critical_ratio_independent_of_amplitude():
+    """E_cr ∝ a₀ (exponent 1): the bisected ratio E/E_cr,max at a₀ = 1 µm and 100 µm brackets overlap."""
+    lo, hi = (cr.critical_ratio(SMALL_TORSION.replace(amplitude=a0), 6.0, factor=1.05) for a0 in (1e-6, 1e-4))
+    assert lo.failed_ratio <= hi.stable_ratio and hi.failed_ratio <= lo.stable_ratio
+    assert 1.0 < lo.value < 30.0       # above the quasi-static E_cr,max, not by orders of magnitude
+
+
+def test_divergence_grows_in_the_unstable_regime():
+    tau, sep = cr.divergence(cr.with_ratio(SMALL_TORSION, 0.5), 10.0)
+    assert sep[-1] > 100.0
+
+
+def test_one_mode_potentials_are_cubic_load_and_quadratic_stiffness():
+    """The sine family's load potential is odd and cubic in a (second-order load), the bending one
+    even and quadratic — the one-mode model's content."""
+    m = cr.one_mode_model(SMALL_TORSION, span=2.0, points=81)
+    v0 = lambda x: np.interp(x, m.a_over_a0, m.load_potential)  # noqa: E731
+    v1 = lambda x: np.interp(x, m.a_over_a0, m.unit_stiffness_potential)  # noqa: E731
+    np.testing.assert_allclose([v0(-1.0), v0(2.0)], [-v0(1.0), 8 * v0(1.0)], rtol=0.03)
+    np.testing.assert_allclose([v1(-1.0), v1(2.0)], [v1(1.0), 4 * v1(1.0)], rtol=0.03)
+
+
+@pytest.mark.parametrize("model, key", [("torsion", "critical_modulus"), ("tnt", "critical_tension")])
+def test_stability_command_json(model, key, capsys):
+    code = cli_main(["stability", "--model", model, "--n", "10", "--tau-final", "6", "--factor", "1.2",
+                     "--linear", "--json"] + (["--tension", "1e-8"] if model == "tnt" else []))
+    assert code == 0
+    out = json.loads(capsys.readouterr().out)
+    lo, hi = out[f"{key}_bracket"]
+    assert lo <= out[key] <= hi <= 1.2 * lo * (1 + 1e-12)
+    assert out["ratio_to_analytic"] == pytest.approx(out[key] / out["analytic"])
+    assert out["linear_relative_shift"] < 1e-9
