@@ -35,6 +35,7 @@ import scipy.linalg as sl
 from . import shapes
 from .parameters import ParameterError, SailParameters
 
+RIGID_MODES = 3     # a free sail translates in x, y and rotates without restoring force
 FD_STEP = 1e-6      # central-difference step: rad for angles, m for positions and stretches
 
 
@@ -136,8 +137,9 @@ class Spectrum:
     max_growth_rate: float
 
     def frequencies_hz(self) -> np.ndarray:
-        """ω/2π of the oscillatory modes (ω² > 0)."""
-        w2 = self.omega_squared
+        """ω/2π of the elastic modes: the free sail's RIGID_MODES smallest ω² (translations x, y and
+        the rotation, zero up to round-off) and any ω² ≤ 0 dropped."""
+        w2 = self.omega_squared[RIGID_MODES:]
         return np.sqrt(w2[w2 > 0]) / (2 * np.pi)
 
 

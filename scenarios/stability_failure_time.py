@@ -89,18 +89,19 @@ def figure(out, grid, curve) -> Path:
     fig, axes = new_figure(1, 2, size=(10.0, 4.2))
     ax, bx = axes[0]
     markers = {"torsion": "o", "tnt": "s"}
-    for row in grid:
-        if row["t_f"] is not None:
-            ax.loglog(row["t_c"], row["t_f"], markers[row["model"]], ms=5, mfc="none",
-                      color=f"C{int(np.log10(row['ratio']) * 3) % 10}")
+    groups = sorted({(r["model"], r["ratio"]) for r in grid})
+    for i, (model, ratio) in enumerate(groups):
+        pts = [(r["t_c"], r["t_f"]) for r in grid if (r["model"], r["ratio"]) == (model, ratio) and r["t_f"]]
+        if pts:
+            ax.loglog(*zip(*pts), markers[model], ms=6, mfc="none", color=f"C{i}", label=f"{model}, r = {ratio:g}")
     tc = np.array([r["t_c"] for r in grid])
     span = np.array([tc.min() / 1.5, tc.max() * 1.5])
     for F, style in ((1.6, ":"), (3.7, "--")):
         ax.loglog(span, F * span, "k" + style, lw=0.8, label=f"t_f = {F} t_c")
+    ax.legend(fontsize=7, ncol=2)
     ax.set_xlabel("t_c = 1/(k √(g₀ a₀))  (s)")
     ax.set_ylabel("failure time t_f (s)")
     ax.set_title("runs over h = 0.1–10 µm, a₀ = 1–100 µm (o torsion, □ TnT)", fontsize=9)
-    ax.legend(fontsize=8)
     for model in ("torsion", "tnt"):
         pts = [(r["ratio"], r["F"]) for r in curve if r["model"] == model and r["F"] is not None]
         if pts:
