@@ -9,6 +9,8 @@ to T/k_s) and the follower tension T acts at both ends along the end slices (Eq.
 params.axial_springs=False the slides are rigid (plain revolute joints + end tension).
 The frame accelerates at g₀: every slice carries −m g₀ ŷ (the tree's gravity), and x, y are
 slice centres in that frame.
+Supports and a tip load (params.boundary, params.tip_load: the classic validations of Appendices
+A–B) are added as Exudyn constraints and loads by exudyn_boundary; the sail itself is free.
 
 Why this formulation (measured on the 2-core machine, stable 6 s torsion case, n = 30,
 h = 1 ms, relTol 1e-10):
@@ -65,6 +67,7 @@ from .. import analysis, shapes
 from ..parameters import ParameterError, SailParameters
 from ..progress import Progress
 from ..result import Result
+from .exudyn_boundary import add_supports
 from .exudyn_model import ChainLayout, generalized_force, tree_arguments
 
 # Step size h = STEP_FACTOR · sqrt(L / g₀) (capped by the output interval): the radiation
@@ -117,8 +120,9 @@ def build(p: SailParameters, initial: shapes.ChainState | None = None):
     node = mbs.AddNode(NodeGenericODE2(referenceCoordinates=[0.0] * layout.size, initialCoordinates=q0,
                                        initialCoordinates_t=[0.0] * layout.size,
                                        numberOfODE2Coordinates=layout.size))
-    mbs.AddObject(ObjectKinematicTree(nodeNumber=node, forceUserFunction=lambda mbs, t, i, q, q_t: load(q),
-                                      **tree_arguments(p, layout, exu)))
+    tree = mbs.AddObject(ObjectKinematicTree(nodeNumber=node, forceUserFunction=lambda mbs, t, i, q, q_t: load(q),
+                                             **tree_arguments(p, layout, exu)))
+    add_supports(p, mbs, node, tree, layout, q0)        # supports and tip load (validations; none for a sail)
     sensors = [mbs.AddSensor(SensorNode(nodeNumber=node, storeInternal=True, writeToFile=False,
                                         outputVariableType=kind))
                for kind in (exu.OutputVariableType.Coordinates, exu.OutputVariableType.Coordinates_t)]
