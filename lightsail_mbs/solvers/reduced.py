@@ -26,6 +26,8 @@ from .. import analysis, shapes
 from ..parameters import ParameterError, SailParameters
 from ..progress import Progress
 from ..result import Result
+from . import reduced_boundary
+from .reduced_boundary import needs_boundary
 from .reduced_dynamics import ChainDynamics
 from .reduced_integrator import FINISHED, STATUS, Dop853
 from .reduced_kinematics import ChainModel, centre_velocities, centres
@@ -72,6 +74,8 @@ def run(params: SailParameters, *, progress: bool = False, rtol: float | None = 
     a scalar or one value per state entry (default rtol × state_scales); method: DOP853, RK45,
     Radau, BDF or LSODA (default: default_method(params)); options: max_step, first_step.
     """
+    if needs_boundary(params):      # supports or a tip load (validations): dense constrained chain
+        return reduced_boundary.run(params, progress=progress, rtol=rtol, atol=atol, method=method, **options)
     unknown = sorted(set(options) - set(OPTIONS))
     if unknown:
         raise ParameterError(f"option {unknown[0]!r} is invalid: allowed {', '.join(OPTIONS)}")
