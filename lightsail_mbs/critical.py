@@ -165,7 +165,8 @@ def critical_ratio(p: SailParameters, tau_final: float = 8.0, *, lo: float = 1.0
     while not fails(lo):
         lo /= 4.0
         if lo < 1e-6:
-            raise ParameterError("no failure even at 1e-6 × the analytic critical value: nothing to bisect")
+            raise ParameterError(f"tau_final={tau_final:.3g} is too short: no failure within {tau_final:.3g} t_c even at "
+                                 "1e-6 × the analytic critical value (the softest sails need ≈ 1.6 t_c)")
     while fails(hi):
         lo, hi = hi, hi * 4.0
         if hi > 1e6:
@@ -267,3 +268,24 @@ def one_mode_model(p: SailParameters, span: float = 2.5, points: int = 201) -> O
         v = np.concatenate([[0.0], np.cumsum(0.5 * (force[1:] + force[:-1]) * np.diff(a))])
         potentials.append(-(v - np.interp(0.0, a, v)))
     return OneModeModel(a / p.amplitude, potentials[0], potentials[1] - potentials[0])
+
+
+def boundary_for_run(ratios, failure_taus, tau_run: float) -> float | None:
+    """The stiffness ratio a stability map with runs of τ_run = t_final/t_c would find, from the failure
+    curve τ_f(r) (ascending r; None or inf: no failure within the sampled runs): above the last sample
+    that fails within τ_run (τ_f ≤ τ_run; τ_f(r) is not monotone near a threshold), log-interpolated
+    towards the next one. None when no sampled sail fails within the run (the map is 'stable'
+    everywhere); inf when every sampled sail fails."""
+    r = np.asarray(ratios, float)
+    tau = np.array([np.inf if t is None else float(t) for t in failure_taus])
+    failing = np.nonzero(tau <= tau_run)[0]
+    if not failing.size:
+        return None
+    i = int(failing[-1]) + 1
+    if i == r.size:
+        return float("inf")
+    lo, hi = tau[i - 1], tau[i]
+    if not np.isfinite(hi):
+        return float(np.sqrt(r[i - 1] * r[i]))
+    w = (tau_run - lo) / (hi - lo)
+    return float(r[i - 1] * (r[i] / r[i - 1]) ** w)

@@ -6,14 +6,17 @@ bisected 6 s map boundary; run-length dependence and divergence of neighbouring 
 * the same boundary bisected with 6 s runs of the reduced solver (lightsail_mbs.bisection, factor 1.1)
   at a₀ = 1, 10, 100 µm: 6 s is 1.5, 4.6 and 15 t_c there;
 * the ratio against ν, with the lowest free–free bending mode's buckling estimate 2(kL/β₁L)², β₁L = 4.730;
-* late failures: τ_f of sails above the first-passage boundary in runs of 120 t_c;
+* the failure curve τ_f(r) = t_f/t_c up to runs of 120 t_c (late failures above the first-passage
+  boundary), and from it the boundary a map with runs of t_final finds, r*(t_final/t_c), for the
+  thicknesses of Fig. 9 at 6 s and 12 s (next to a Fig. 9 boundaries CSV if --fig9 is given);
 * paired runs: growth of a 1e-9 angle perturbation at r = 2, 10, 30.
 Writes stability_critical.png and stability_critical_*.csv. Usage: python scenarios/stability_critical.py
-[--out DIR] [--quick].
+[--out DIR] [--quick] [--store DIR] [--fig9 fig9_boundaries.csv].
 """
 from __future__ import annotations
 
 import argparse
+import csv
 import sys
 from pathlib import Path
 
@@ -32,7 +35,9 @@ AMPLITUDES = (1e-6, 3e-6, 1e-5, 3e-5, 1e-4)
 MAP_AMPLITUDES = (1e-6, 1e-5, 1e-4)
 MODES = (1.0, 1.5, 2.0, 3.0)
 BETA1_L = 4.730040745          # lowest free–free beam mode: cos βL cosh βL = 1
-LATE_RATIOS = (7, 8, 9, 10, 12, 15, 20)
+CURVE_RATIOS = (0.1, 0.3, 0.5, 1, 1.5, 2, 3, 4, 5, 6, 7, 7.5, 8, 9, 10, 12, 15, 20)
+QUICK_CURVE_RATIOS = (0.1, 1, 4, 7)
+FIG9_THICKNESSES = np.logspace(-8, -5, 7)
 DIVERGENCE_RATIOS = (2, 10, 30)
 
 
@@ -71,8 +76,32 @@ def map_rows(model, amplitudes, store) -> list[dict]:
     return rows
 
 
-def run(out, quick=False) -> dict:
+def fig9_prediction(curve, fig9_csv=None) -> list[dict]:
+    """r*(t_final/t_c) at the Fig. 9 thicknesses (ν = 3/2, a₀ = 10 µm, I₀ = 0.1 GW/m²) for 6 s and 12 s runs;
+    with the map's bisected ratios (columns ratio, ratio_2t of fig9_boundaries.csv) when given."""
+    ratios, taus = [c["ratio"] for c in curve], [c["tau_f"] for c in curve]
+    mapped = {}
+    if fig9_csv:
+        with open(fig9_csv) as handle:
+            for row in csv.DictReader(handle):
+                mapped[round(float(row["thickness_m"]), 12)] = (row["ratio"], row["ratio_2t"])
+    rows = []
+    for h in FIG9_THICKNESSES:
+        tc = cr.time_scale(BASES["torsion"].replace(thickness=float(h)))
+        row = dict(thickness_um=h * 1e6, t_c=tc)
+        for label, t in (("6s", 6.0), ("12s", 12.0)):
+            row[f"tau_run_{label}"] = t / tc
+            row[f"predicted_{label}"] = cr.boundary_for_run(ratios, taus, t / tc)
+        if mapped:
+            got = mapped.get(round(float(h), 12), ("", ""))
+            row["map_6s"], row["map_12s"] = (float(v) if v else None for v in got)
+        rows.append(row)
+    return rows
+
+
+def run(out, quick=False, store=None, fig9_csv=None) -> dict:
     out = Path(out)
+    store = Path(store or Path(__file__).resolve().parents[1] / "results" / "stability_critical")
     amps = AMPLITUDES[::2] if quick else AMPLITUDES
     table, fits, maps = [], [], []
     for model in BASES:
@@ -82,7 +111,7 @@ def run(out, quick=False) -> dict:
                          ratio_mean=np.mean([r["ratio"] for r in rows]),
                          ratio_spread=np.ptp([r["ratio"] for r in rows]) / np.mean([r["ratio"] for r in rows])))
         if not quick:
-            maps += map_rows(model, MAP_AMPLITUDES, out / "store" / "stability_critical")
+            maps += map_rows(model, MAP_AMPLITUDES, store)
     for m in maps:
         match = [r for r in table if r["model"] == m["model"] and np.isclose(r["amplitude_m"], m["amplitude_m"])]
         m["critical"] = match[0]["critical"] if match else None
@@ -95,8 +124,9 @@ def run(out, quick=False) -> dict:
         modes.append(dict(mode=nu, ratio=found.value, buckling_estimate=2 * (k / BETA1_L) ** 2,
                           tnt_ratio=cr.critical_ratio(BASES["tnt"].replace(mode=nu), 8.0, factor=1.05).value))
     one_mode = cr.one_mode_model(BASES["torsion"]).critical_ratio()
-    late = [] if quick else [dict(ratio=r, tau_f=cr.failure_tau(cr.with_ratio(BASES["torsion"], r), 120.0))
-                             for r in LATE_RATIOS]
+    curve = [dict(ratio=r, tau_f=cr.failure_tau(cr.with_ratio(BASES["torsion"], r), 8.0 if quick else 120.0))
+            for r in (QUICK_CURVE_RATIOS if quick else CURVE_RATIOS)]
+    fig9 = fig9_prediction(curve, fig9_csv)
     divergence = {r: cr.divergence(cr.with_ratio(BASES["torsion"], r), 8.0 if quick else 60.0, samples_per_tau=5)
                   for r in (DIVERGENCE_RATIOS[:1] if quick else DIVERGENCE_RATIOS)}
     rates = [dict(ratio=r, tau_end=float(t[-1]), growth=float(s[-1]),
@@ -107,23 +137,23 @@ def run(out, quick=False) -> dict:
     if maps:
         write_csv(out / "stability_critical_map.csv", maps)
     write_csv(out / "stability_critical_modes.csv", modes)
-    if late:
-        write_csv(out / "stability_critical_late.csv", late)
+    write_csv(out / "stability_critical_curve.csv", curve)
+    write_csv(out / "stability_critical_fig9.csv", fig9)
     write_csv(out / "stability_critical_divergence.csv", rates)
     print_table("Critical value from 8 t_c runs against a0 (h = 1 um, I0 = 0.1 GW/m2, nu = 3/2, n = 30)", table)
     print_table("Fitted exponent in a0 (analytic 1) and ratio to E_cr,max / T_cr,max", fits)
     if maps:
         print_table("Against the bisected 6 s boundary (reduced solver, factor 1.1)", maps)
     print_table(f"Ratio against the mode (one-mode Galerkin model of the sine: {one_mode:.3g})", modes)
-    if late:
-        print_table("Late failures above the first-passage boundary (runs of 120 t_c)", late)
+    print_table("Failure curve tau_f(r) = t_f/t_c (torsion, runs up to 120 t_c)", curve)
+    print_table("Fig. 9 boundaries (E/E_cr,max) predicted from tau_f(r) alone, runs of 6 s and 12 s", fig9)
     print_table("Paired runs: growth of a 1e-9 angle perturbation", rates)
-    figure(out, table, maps, late, divergence)
-    return {"table": table, "fits": fits, "maps": maps, "modes": modes, "late": late, "rates": rates,
+    figure(out, table, maps, curve, divergence)
+    return {"table": table, "fits": fits, "maps": maps, "modes": modes, "curve": curve, "fig9": fig9, "rates": rates,
             "one_mode_ratio": one_mode}
 
 
-def figure(out, table, maps, late, divergence) -> Path:
+def figure(out, table, maps, curve, divergence) -> Path:
     fig, axes = new_figure(2, 2, size=(10.0, 7.5))
     for ax, model, unit in ((axes[0, 0], "torsion", "E (Pa)"), (axes[0, 1], "tnt", "T (N)")):
         rows = [r for r in table if r["model"] == model]
@@ -139,15 +169,15 @@ def figure(out, table, maps, late, divergence) -> Path:
         ax.set_title(f"{model}: h = 1 µm, I₀ = 0.1 GW/m², ν = 3/2", fontsize=9)
         ax.legend(fontsize=8)
     ax = axes[1, 0]
-    if late:
-        pts = [(r["ratio"], r["tau_f"]) for r in late if r["tau_f"] is not None]
-        ax.semilogy(*zip(*pts), "o-", label="τ_f (runs of 120 t_c)")
+    if curve:
+        pts = [(r["ratio"], r["tau_f"]) for r in curve if r["tau_f"] is not None]
+        ax.loglog(*zip(*pts), "o-", label="τ_f (runs up to 120 t_c)")
         for h, ls in ((1e-8, ":"), (1e-6, "--"), (1e-5, "-.")):
             tau = 6.0 / cr.time_scale(BASES["torsion"].replace(thickness=h))
             ax.axhline(tau, color="grey", ls=ls, lw=0.8, label=f"6 s at h = {h * 1e6:g} µm")
         ax.set_xlabel("E / E_cr,max")
         ax.set_ylabel("failure time τ_f = t_f / t_c")
-        ax.set_title("run length sets the map boundary above ≈ 7.7", fontsize=9)
+        ax.set_title("a map with runs of t_final finds r* where τ_f(r*) = t_final/t_c", fontsize=9)
         ax.legend(fontsize=7)
     ax = axes[1, 1]
     for r, (t, s) in divergence.items():
@@ -163,8 +193,10 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", default=str(Path(__file__).parent / "figures"))
     ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--store", default=None, help="sweep store of the bisections [default results/stability_critical]")
+    ap.add_argument("--fig9", default=None, help="fig9_boundaries.csv of scenarios/fig9.py to compare with")
     args = ap.parse_args(argv)
-    run(args.out, quick=args.quick)
+    run(args.out, quick=args.quick, store=args.store, fig9_csv=args.fig9)
     return 0
 
 

@@ -130,3 +130,18 @@ def test_stability_command_json(model, key, capsys):
     assert lo <= out[key] <= hi <= 1.2 * lo * (1 + 1e-12)
     assert out["ratio_to_analytic"] == pytest.approx(out[key] / out["analytic"])
     assert out["linear_relative_shift"] < 1e-9
+
+
+def test_boundary_for_run_inverts_the_failure_curve():
+    ratios, taus = [0.1, 1.0, 4.0, 8.0, 16.0], [1.6, 2.0, 3.5, 50.0, None]
+    assert cr.boundary_for_run(ratios, taus, 1.0) is None            # nothing fails within the run
+    assert cr.boundary_for_run(ratios, taus, 2.0) == pytest.approx(1.0)
+    assert 1.0 < cr.boundary_for_run(ratios, taus, 3.0) < 4.0
+    assert cr.boundary_for_run(ratios, taus, 10.0) == pytest.approx(4.0 * 2.0 ** ((10 - 3.5) / 46.5))
+    assert cr.boundary_for_run(ratios, taus, 60.0) == pytest.approx(np.sqrt(8.0 * 16.0))
+
+
+def test_boundary_for_run_takes_the_last_crossing_of_a_non_monotone_curve():
+    ratios, taus = [1.0, 1.5, 2.0, 3.0], [2.0, 3.0, 2.5, 4.0]
+    assert cr.boundary_for_run(ratios, taus, 2.75) == pytest.approx(2.0 * 1.5 ** (1 / 6))
+    assert cr.boundary_for_run(ratios, taus, 5.0) == float("inf")

@@ -4,7 +4,8 @@ The finite-amplitude scaling (lightsail_mbs.critical) makes the doubling of the 
 E/E_cr,max (or T/T_cr,max), ν, n and the run length in units of t_c = 1/(k√(g₀a₀)) only; below the
 first-passage threshold the amplitude doubles within ≈ 4 t_c. So the boundary is bisected in the
 stiffness ratio with runs of --tau-final·t_c (default 8) of the reduced solver instead of 6 s runs
-(the TnT chain in its inextensible limit). Optionally the flat state's linear spectrum is checked
+(the TnT chain in its inextensible limit); --run-time gives instead the boundary that a map with runs of
+that length finds (below ≈ 1.6 t_c nothing fails: an error says so). Optionally the flat state's linear spectrum is checked
 with and without the load (--linear).
 """
 from __future__ import annotations
@@ -22,6 +23,9 @@ def register(sub) -> None:
     add_case_options(p)
     p.add_argument("--tau-final", type=float, default=8.0,
                    help="run length of each bisection run in units of t_c = 1/(k sqrt(g0 a0)) [default 8]")
+    p.add_argument("--run-time", type=float, default=None,
+                   help="instead: runs of this many seconds (τ = run-time/t_c), the boundary a stability map "
+                        "with runs of that length finds (e.g. the paper's 6)")
     p.add_argument("--factor", type=float, default=1.05, help="bisect until hi/lo ≤ factor [default 1.05]")
     p.add_argument("--linear", action="store_true", help="also compare the flat state's linear spectra "
                                                          "with and without the load (reduced solver)")
@@ -34,7 +38,8 @@ def run(args) -> int:
     if p.model == "tnt":
         p = p.replace(axial_springs=False)
     start = time.perf_counter()
-    found = critical.critical_ratio(p, args.tau_final, factor=args.factor)
+    tau_final = args.tau_final if args.run_time is None else args.run_time / critical.time_scale(p)
+    found = critical.critical_ratio(p, tau_final, factor=args.factor)
     name, analytic = ("critical_modulus", theory.critical_modulus_max(p)) if p.model == "torsion" else \
         ("critical_tension", theory.critical_tension_max(p))
     out = {
