@@ -5,7 +5,7 @@ bisected 6 s map boundary; run-length dependence and divergence of neighbouring 
   a₀ = 1–100 µm (h = 1 µm, I₀ = 0.1 GW/m², ν = 3/2, n = 30), fitted exponent in a₀ next to the analytic 1;
 * the same boundary bisected with 6 s runs of the reduced solver (lightsail_mbs.bisection, factor 1.1)
   at a₀ = 1, 10, 100 µm: 6 s is 1.5, 4.6 and 15 t_c there;
-* the ratio against ν, with the lowest free–free bending mode's buckling estimate 2(kL/β₁L)², β₁L = 4.730;
+* the ratio against ν, with the lowest free–free bending mode's buckling estimate critical.lowest_mode_buckling_ratio;
 * the failure curve τ_f(r) = t_f/t_c up to runs of 120 t_c (late failures above the first-passage
   boundary), and from it the boundary a map with runs of t_final finds, r*(t_final/t_c), for the
   thicknesses of Fig. 9 at 6 s and 12 s (next to a Fig. 9 boundaries CSV if --fig9 is given);
@@ -34,7 +34,6 @@ NAME = {"torsion": "critical_modulus", "tnt": "critical_tension"}
 AMPLITUDES = (1e-6, 3e-6, 1e-5, 3e-5, 1e-4)
 MAP_AMPLITUDES = (1e-6, 1e-5, 1e-4)
 MODES = (1.0, 1.5, 2.0, 3.0)
-BETA1_L = 4.730040745          # lowest free–free beam mode: cos βL cosh βL = 1
 CURVE_RATIOS = (0.1, 0.3, 0.5, 1, 1.5, 2, 3, 4, 5, 6, 7, 7.5, 8, 9, 10, 12, 15, 20)
 QUICK_CURVE_RATIOS = (0.1, 1, 4, 7)
 FIG9_THICKNESSES = np.logspace(-8, -5, 7)
@@ -120,8 +119,7 @@ def run(out, quick=False, store=None, fig9_csv=None) -> dict:
     for nu in (MODES[:2] if quick else MODES):
         p = BASES["torsion"].replace(mode=nu)
         found = cr.critical_ratio(p, 8.0, factor=1.05)
-        k = cr.wavenumber(p) * p.length
-        modes.append(dict(mode=nu, ratio=found.value, buckling_estimate=2 * (k / BETA1_L) ** 2,
+        modes.append(dict(mode=nu, ratio=found.value, buckling_estimate=cr.lowest_mode_buckling_ratio(p),
                           tnt_ratio=cr.critical_ratio(BASES["tnt"].replace(mode=nu), 8.0, factor=1.05).value))
     one_mode = cr.one_mode_model(BASES["torsion"]).critical_ratio()
     curve = [dict(ratio=r, tau_f=cr.failure_tau(cr.with_ratio(BASES["torsion"], r), 8.0 if quick else 120.0))

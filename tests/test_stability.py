@@ -145,3 +145,11 @@ def test_boundary_for_run_takes_the_last_crossing_of_a_non_monotone_curve():
     ratios, taus = [1.0, 1.5, 2.0, 3.0], [2.0, 3.0, 2.5, 4.0]
     assert cr.boundary_for_run(ratios, taus, 2.75) == pytest.approx(2.0 * 1.5 ** (1 / 6))
     assert cr.boundary_for_run(ratios, taus, 5.0) == float("inf")
+
+
+def test_lowest_mode_buckling_ratio_balances_euler_load_and_defect_compression():
+    from lightsail_mbs import theory
+    p = SailParameters(model="torsion", mode=1.5, thickness=2e-6, amplitude=3e-5)
+    q = cr.with_ratio(p, cr.lowest_mode_buckling_ratio(p))
+    euler = q.youngs_modulus * q.thickness ** 3 * cr.FREE_FREE_BETA1_L ** 2 / (12 * q.length ** 2)
+    assert euler == pytest.approx(theory.radiation_pressure(q) * q.amplitude, rel=1e-12)

@@ -56,6 +56,8 @@ def run(args) -> int:
         "case_fails_within_run": critical.stiffness_ratio(p) < found.value,
         "wall_time": None,
     }
+    if p.model == "torsion":
+        out["lowest_mode_buckling_modulus"] = critical.lowest_mode_buckling_ratio(p) * analytic
     if args.linear:
         shift = stability.load_shift(p, "reduced")
         out["linear_relative_shift"] = shift["relative_shift"]
