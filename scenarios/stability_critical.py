@@ -6,12 +6,12 @@ bisected 6 s map boundary; run-length dependence and divergence of neighbouring 
 * the same boundary bisected with 6 s runs of the reduced solver (lightsail_mbs.bisection, factor 1.1)
   at a₀ = 1, 10, 100 µm: 6 s is 1.5, 4.6 and 15 t_c there;
 * the ratio against ν, with the lowest free–free bending mode's buckling estimate critical.lowest_mode_buckling_ratio;
-* the failure curve τ_f(r) = t_f/t_c up to runs of 120 t_c (late failures above the first-passage
-  boundary), and from it the boundary a map with runs of t_final finds, r*(t_final/t_c), for the
-  thicknesses of Fig. 9 at 6 s and 12 s (next to a Fig. 9 boundaries CSV if --fig9 is given);
+* the failure curves τ_f(r) = t_f/t_c up to runs of 120 t_c (late failures above the first-passage
+  boundary), and from them the boundary a map with runs of t_final finds, r*(t_final/t_c), at the
+  thicknesses of Figs 9 and 12 for 6 s and 12 s (next to their boundaries CSVs if --fig9/--fig12 are given);
 * paired runs: growth of a 1e-9 angle perturbation at r = 2, 10, 30.
 Writes stability_critical.png and stability_critical_*.csv. Usage: python scenarios/stability_critical.py
-[--out DIR] [--quick] [--store DIR] [--fig9 fig9_boundaries.csv].
+[--out DIR] [--quick] [--store DIR] [--fig9 fig9_boundaries.csv] [--fig12 fig12_boundaries.csv].
 """
 from __future__ import annotations
 
@@ -34,9 +34,10 @@ NAME = {"torsion": "critical_modulus", "tnt": "critical_tension"}
 AMPLITUDES = (1e-6, 3e-6, 1e-5, 3e-5, 1e-4)
 MAP_AMPLITUDES = (1e-6, 1e-5, 1e-4)
 MODES = (1.0, 1.5, 2.0, 3.0)
-CURVE_RATIOS = (0.1, 0.3, 0.5, 1, 1.5, 2, 3, 4, 5, 6, 7, 7.5, 8, 9, 10, 12, 15, 20)
+CURVE_RATIOS = {"torsion": (0.1, 0.3, 0.5, 1, 1.5, 2, 3, 4, 5, 6, 7, 7.5, 8, 9, 10, 12, 15, 20),
+                "tnt": (0.1, 0.5, 1, 2, 3, 4, 4.5, 5, 6, 8, 10, 15)}
 QUICK_CURVE_RATIOS = (0.1, 1, 4, 7)
-FIG9_THICKNESSES = np.logspace(-8, -5, 7)
+MAP_THICKNESSES = np.logspace(-8, -5, 7)      # Figs 9 and 12
 DIVERGENCE_RATIOS = (2, 10, 30)
 
 
@@ -75,19 +76,20 @@ def map_rows(model, amplitudes, store) -> list[dict]:
     return rows
 
 
-def fig9_prediction(curve, fig9_csv=None) -> list[dict]:
-    """r*(t_final/t_c) at the Fig. 9 thicknesses (ν = 3/2, a₀ = 10 µm, I₀ = 0.1 GW/m²) for 6 s and 12 s runs;
-    with the map's bisected ratios (columns ratio, ratio_2t of fig9_boundaries.csv) when given."""
+def map_prediction(model, curve, map_csv=None) -> list[dict]:
+    """r*(t_final/t_c) at the thicknesses of Figs 9/12 (ν = 3/2, a₀ = 10 µm, I₀ = 0.1 GW/m²) for 6 s and 12 s
+    runs; with a map's bisected ratios (columns ratio, ratio_2t of fig9/fig12_boundaries.csv, ν = 3/2 rows)."""
     ratios, taus = [c["ratio"] for c in curve], [c["tau_f"] for c in curve]
     mapped = {}
-    if fig9_csv:
-        with open(fig9_csv) as handle:
+    if map_csv:
+        with open(map_csv) as handle:
             for row in csv.DictReader(handle):
-                mapped[round(float(row["thickness_m"]), 12)] = (row["ratio"], row["ratio_2t"])
+                if float(row["mode"]) == 1.5:
+                    mapped[round(float(row["thickness_m"]), 12)] = (row["ratio"], row["ratio_2t"])
     rows = []
-    for h in FIG9_THICKNESSES:
-        tc = cr.time_scale(BASES["torsion"].replace(thickness=float(h)))
-        row = dict(thickness_um=h * 1e6, t_c=tc)
+    for h in MAP_THICKNESSES:
+        tc = cr.time_scale(BASES[model].replace(thickness=float(h)))
+        row = dict(model=model, thickness_um=h * 1e6, t_c=tc)
         for label, t in (("6s", 6.0), ("12s", 12.0)):
             row[f"tau_run_{label}"] = t / tc
             row[f"predicted_{label}"] = cr.boundary_for_run(ratios, taus, t / tc)
@@ -98,7 +100,7 @@ def fig9_prediction(curve, fig9_csv=None) -> list[dict]:
     return rows
 
 
-def run(out, quick=False, store=None, fig9_csv=None) -> dict:
+def run(out, quick=False, store=None, map_csvs=None) -> dict:
     out = Path(out)
     store = Path(store or Path(__file__).resolve().parents[1] / "results" / "stability_critical")
     amps = AMPLITUDES[::2] if quick else AMPLITUDES
@@ -122,9 +124,13 @@ def run(out, quick=False, store=None, fig9_csv=None) -> dict:
         modes.append(dict(mode=nu, ratio=found.value, buckling_estimate=cr.lowest_mode_buckling_ratio(p),
                           tnt_ratio=cr.critical_ratio(BASES["tnt"].replace(mode=nu), 8.0, factor=1.05).value))
     one_mode = cr.one_mode_model(BASES["torsion"]).critical_ratio()
-    curve = [dict(ratio=r, tau_f=cr.failure_tau(cr.with_ratio(BASES["torsion"], r), 8.0 if quick else 120.0))
-            for r in (QUICK_CURVE_RATIOS if quick else CURVE_RATIOS)]
-    fig9 = fig9_prediction(curve, fig9_csv)
+    curves, predicted = {}, []
+    for model in BASES:
+        curves[model] = [dict(model=model, ratio=r,
+                              tau_f=cr.failure_tau(cr.with_ratio(BASES[model], r), 8.0 if quick else 120.0))
+                         for r in (QUICK_CURVE_RATIOS if quick else CURVE_RATIOS[model])]
+        predicted += map_prediction(model, curves[model], (map_csvs or {}).get(model))
+    curve = curves["torsion"] + curves["tnt"]
     divergence = {r: cr.divergence(cr.with_ratio(BASES["torsion"], r), 8.0 if quick else 60.0, samples_per_tau=5)
                   for r in (DIVERGENCE_RATIOS[:1] if quick else DIVERGENCE_RATIOS)}
     rates = [dict(ratio=r, tau_end=float(t[-1]), growth=float(s[-1]),
@@ -136,18 +142,19 @@ def run(out, quick=False, store=None, fig9_csv=None) -> dict:
         write_csv(out / "stability_critical_map.csv", maps)
     write_csv(out / "stability_critical_modes.csv", modes)
     write_csv(out / "stability_critical_curve.csv", curve)
-    write_csv(out / "stability_critical_fig9.csv", fig9)
+    write_csv(out / "stability_critical_maps_predicted.csv", predicted)
     write_csv(out / "stability_critical_divergence.csv", rates)
     print_table("Critical value from 8 t_c runs against a0 (h = 1 um, I0 = 0.1 GW/m2, nu = 3/2, n = 30)", table)
     print_table("Fitted exponent in a0 (analytic 1) and ratio to E_cr,max / T_cr,max", fits)
     if maps:
         print_table("Against the bisected 6 s boundary (reduced solver, factor 1.1)", maps)
     print_table(f"Ratio against the mode (one-mode Galerkin model of the sine: {one_mode:.3g})", modes)
-    print_table("Failure curve tau_f(r) = t_f/t_c (torsion, runs up to 120 t_c)", curve)
-    print_table("Fig. 9 boundaries (E/E_cr,max) predicted from tau_f(r) alone, runs of 6 s and 12 s", fig9)
+    print_table("Failure curves tau_f(r) = t_f/t_c (runs up to 120 t_c)", curve)
+    print_table("Fig. 9 (E/E_cr,max) and Fig. 12 (T/T_cr,max, nu = 3/2) boundaries predicted from tau_f(r), "
+                "runs of 6 s and 12 s", predicted)
     print_table("Paired runs: growth of a 1e-9 angle perturbation", rates)
     figure(out, table, maps, curve, divergence)
-    return {"table": table, "fits": fits, "maps": maps, "modes": modes, "curve": curve, "fig9": fig9, "rates": rates,
+    return {"table": table, "fits": fits, "maps": maps, "modes": modes, "curve": curve, "predicted_maps": predicted, "rates": rates,
             "one_mode_ratio": one_mode}
 
 
@@ -168,12 +175,13 @@ def figure(out, table, maps, curve, divergence) -> Path:
         ax.legend(fontsize=8)
     ax = axes[1, 0]
     if curve:
-        pts = [(r["ratio"], r["tau_f"]) for r in curve if r["tau_f"] is not None]
-        ax.loglog(*zip(*pts), "o-", label="τ_f (runs up to 120 t_c)")
+        for model, marker in (("torsion", "o-"), ("tnt", "s-")):
+            pts = [(r["ratio"], r["tau_f"]) for r in curve if r["model"] == model and r["tau_f"] is not None]
+            ax.loglog(*zip(*pts), marker, label=f"{model}: τ_f (runs up to 120 t_c)")
         for h, ls in ((1e-8, ":"), (1e-6, "--"), (1e-5, "-.")):
             tau = 6.0 / cr.time_scale(BASES["torsion"].replace(thickness=h))
             ax.axhline(tau, color="grey", ls=ls, lw=0.8, label=f"6 s at h = {h * 1e6:g} µm")
-        ax.set_xlabel("E / E_cr,max")
+        ax.set_xlabel("r = E / E_cr,max  or  T / T_cr,max")
         ax.set_ylabel("failure time τ_f = t_f / t_c")
         ax.set_title("a map with runs of t_final finds r* where τ_f(r*) = t_final/t_c", fontsize=9)
         ax.legend(fontsize=7)
@@ -193,8 +201,9 @@ def main(argv=None) -> int:
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--store", default=None, help="sweep store of the bisections [default results/stability_critical]")
     ap.add_argument("--fig9", default=None, help="fig9_boundaries.csv of scenarios/fig9.py to compare with")
+    ap.add_argument("--fig12", default=None, help="fig12_boundaries.csv of scenarios/fig12.py to compare with")
     args = ap.parse_args(argv)
-    run(args.out, quick=args.quick, store=args.store, fig9_csv=args.fig9)
+    run(args.out, quick=args.quick, store=args.store, map_csvs={"torsion": args.fig9, "tnt": args.fig12})
     return 0
 
 

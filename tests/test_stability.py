@@ -153,3 +153,27 @@ def test_lowest_mode_buckling_ratio_balances_euler_load_and_defect_compression()
     q = cr.with_ratio(p, cr.lowest_mode_buckling_ratio(p))
     euler = q.youngs_modulus * q.thickness ** 3 * cr.FREE_FREE_BETA1_L ** 2 / (12 * q.length ** 2)
     assert euler == pytest.approx(theory.radiation_pressure(q) * q.amplitude, rel=1e-12)
+
+
+@pytest.mark.slow
+def test_stability_scenarios_quick(tmp_path):
+    """The three scenario scripts run (quick) and the failure-time fit finds t_f ∝ (g₀ a₀)^(−1/2)."""
+    import importlib.util
+    from pathlib import Path
+
+    folder = Path(__file__).resolve().parents[1] / "scenarios"
+    modules = {}
+    for name in ("stability_linear", "stability_critical", "stability_failure_time"):
+        spec = importlib.util.spec_from_file_location(name, folder / f"{name}.py")
+        modules[name] = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(modules[name])
+    fits = modules["stability_failure_time"].run(tmp_path, quick=True)["fits"]
+    for fit in fits:
+        assert fit["g0_exponent"] == pytest.approx(-0.5, abs=0.01)
+        assert fit["a0_exponent"] == pytest.approx(-0.5, abs=0.01)
+    critical = modules["stability_critical"].run(tmp_path, quick=True)
+    assert all(f["a0_exponent"] == pytest.approx(1.0, abs=0.03) for f in critical["fits"])
+    rows = modules["stability_linear"].run(tmp_path)["rows"]
+    assert max(r["elastic_relative_shift"] for r in rows) < 1e-6
+    for png in ("stability_linear.png", "stability_critical.png", "stability_failure_time.png"):
+        assert (tmp_path / png).stat().st_size > 10_000
