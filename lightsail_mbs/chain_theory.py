@@ -95,6 +95,20 @@ def ramp_residual_amplitude(static: float, omega: float, time_constant: float) -
     return static / (time_constant * math.sqrt(omega ** 2 + time_constant ** -2))
 
 
+def tip_ramp_vibration(p: SailParameters) -> tuple[np.ndarray, np.ndarray]:
+    """(ω_k, a_k): the free vibration the ramped tip load of Eq. (43) leaves at the centre of slice n of
+    the linearised chain, mode by mode: a_k = c_k / (τ √(ω_k² + τ⁻²)) (ramp_residual_amplitude), c_k the
+    static tip deflection carried by mode k (mass-normalised modes φ_k: c_k = P φ_k(tip)² / ω_k²)."""
+    M, K = chain_matrices(p)
+    w2, modes = eigh(K, M)
+    alpha = 0.5                                   # the last slice has no spring after it: centre = mid-segment
+    tip = np.zeros(K.shape[0])
+    tip[-2:] = [1.0 - alpha, alpha]
+    static = p.tip_load * (tip @ modes) ** 2 / w2
+    tau = p.tip_load_time_constant
+    return np.sqrt(w2), static / (tau * np.sqrt(w2 + tau ** -2))
+
+
 # ---- linearised chain ---------------------------------------------------------------------
 
 BOUNDARY_FIXED = {"free": lambda n: [], "cantilever": lambda n: [0, 1], "pinned": lambda n: [0, n]}

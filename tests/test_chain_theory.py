@@ -105,3 +105,13 @@ def test_fit_sinusoid_recovers_frequency_beyond_the_fft_bin():
     fit = fit_sinusoid(t, y)
     assert fit.frequency == pytest.approx(195.2813, rel=1e-10)
     assert fit.amplitude == pytest.approx(1e-4, rel=1e-9) and fit.offset == pytest.approx(2e-4, rel=1e-9)
+
+
+def test_tip_ramp_vibration_sums_to_the_static_tip_and_matches_one_mode():
+    p = SailParameters(n=20, boundary="cantilever", tip_load=100.0, tip_load_time_constant=0.3, **BEAM)
+    omega, amplitude = ct.tip_ramp_vibration(p)
+    static = amplitude * 0.3 * np.sqrt(omega ** 2 + 0.3 ** -2)
+    EI = p.youngs_modulus * p.second_moment_of_area
+    assert static.sum() == pytest.approx(ct.cantilever_tip_deflection(100.0, 1.0, EI, 20), rel=1e-10)
+    assert amplitude[0] < ct.ramp_residual_amplitude(static.sum(), omega[0], 0.3)
+    assert amplitude[0] == pytest.approx(ct.ramp_residual_amplitude(static[0], omega[0], 0.3), rel=1e-12)

@@ -57,7 +57,7 @@ def test_cantilever_short_dynamic_run_oscillates_at_the_chain_frequency():
     fit = classic.plateau(p, run.time, run.y[:, -1], start=0.2)
     f1 = ct.chain_angular_frequencies(p)[0] / (2 * math.pi)
     assert fit.frequency == pytest.approx(f1, rel=2e-3)
-    assert fit.amplitude == pytest.approx(classic.error_budget(p)["vibration"], rel=0.05)
+    assert fit.amplitude == pytest.approx(classic.error_budget(p)["vibration"], rel=2e-3)
 
 
 @pytest.mark.slow
@@ -66,14 +66,16 @@ def test_cantilever_plateau_error_matches_the_paper_and_its_budget():
     load deficit, ± the ramp's free vibration; it lands next to the paper's 1.84e-7 m."""
     p = classic.cantilever_case(30, output_interval=1e-4)
     budget = classic.error_budget(p)
-    for solver, options in (("exudyn", dict(step_size=5e-5)), ("reduced", dict(method="Radau", rtol=1e-6))):
+    for solver, options in (("exudyn", dict(step_size=5e-5)), ("reduced", dict(method="Radau", rtol=1e-8))):
         run = solve(p, solver, **options)
         assert run.error is None
         error = classic.paper_error(p, run.x[-1], run.y[-1])
-        assert abs(error - budget["discretisation"] - budget["load_deficit"]) <= 1.05 * budget["vibration"]
+        assert abs(error - budget["discretisation"] - budget["load_deficit"]) <= budget["vibration_bound"]
         assert error == pytest.approx(1.84e-7, rel=0.05)
         f1 = ct.chain_angular_frequencies(p)[0] / (2 * math.pi)
-        assert classic.plateau(p, run.time, run.y[:, -1]).frequency == pytest.approx(f1, rel=5e-4)
+        fit = classic.plateau(p, run.time, run.y[:, -1])
+        assert fit.frequency == pytest.approx(f1, rel=5e-4)
+        assert fit.amplitude == pytest.approx(budget["vibration"], rel=2e-3)
 
 
 # ---- string ---------------------------------------------------------------------------------
