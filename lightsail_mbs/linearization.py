@@ -24,7 +24,9 @@ from .parameters import SailParameters
 from .stability import flat
 
 RIGID_MODES = {"free": 3, "cantilever": 0, "pinned": 0}
-FD_STEP = 1e-8          # relative coordinate perturbation of the central differences (error ∝ (ω_max/ω₁)² step² + round-off ∝ 1/step: ≈ 1e-11 on the validation chains)
+# Central-difference step (rad for angles, × l for positions): the error ∝ (ω_max/ω₁)² step² from the
+# geometric nonlinearity plus round-off ∝ 1/step is ≈ 1e-11 on the validation chains at 1e-8.
+FD_STEP = 1e-8
 
 
 def exudyn_angular_frequencies(p: SailParameters) -> np.ndarray:
@@ -46,6 +48,7 @@ def exudyn_angular_frequencies(p: SailParameters) -> np.ndarray:
 def reduced_jacobian(p: SailParameters):
     """(A = ∂q̈/∂q at the flat state at rest, N: orthonormal basis of the supports' tangent space)."""
     from .solvers.reduced_boundary import dynamics_of
+    from .solvers.reduced_kinematics import centre_jacobian
 
     p = flat(p)
     dynamics, model = dynamics_of(p)
@@ -59,12 +62,12 @@ def reduced_jacobian(p: SailParameters):
     states = np.concatenate([q0[:, None] + shifts, np.zeros((dof, 2 * dof))])
     qdd = np.stack([dynamics.rhs(0.0, state)[dof:] for state in states.T], axis=1)
     A = (qdd[:, :dof] - qdd[:, dof:]) / (2 * step)
-    boundary = getattr(dynamics, "pinned", False)
-    if boundary:
-        from .solvers.reduced_kinematics import centre_jacobian
+    if p.boundary == "pinned":
         basis = null_space(dynamics.constraint_jacobian(q0, centre_jacobian(model, q0)))
+    elif p.boundary == "cantilever":
+        basis = np.eye(dof)[:, dynamics.free]
     else:
-        basis = np.eye(dof)[:, getattr(dynamics, "free", np.arange(dof))]
+        basis = np.eye(dof)
     return A, basis
 
 

@@ -3,7 +3,6 @@ import math
 
 import numpy as np
 import pytest
-from scipy.linalg import eigh
 
 from lightsail_mbs import chain_theory as ct
 from lightsail_mbs.parameters import SailParameters

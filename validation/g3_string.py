@@ -146,7 +146,8 @@ def report(measured):
               "centre fixed, right end free) are not a string's. Bending cannot explain it either: with the "
               f"correct I = πd⁴/64 = {I_true:.3e} m⁴ the stiff-string fundamental is "
               f"{stiff_string_frequency(p20, I_true):.3f} Hz "
-              f"({(stiff_string_frequency(p20, I_true) / ref['continuous'] - 1) * 100:+.4f} %); with the printed I = (π/4)(d/2)² = "
+              f"({(stiff_string_frequency(p20, I_true) / ref['continuous'] - 1) * 100:+.4f} %); "
+              "with the printed I = (π/4)(d/2)² = "
               f"{I_typo:.3e} m⁴ (the typo: power 2 instead of 4) it would be {stiff_string_frequency(p20, I_typo):.0f} Hz, "
               "so the paper cannot have used that value with bending springs on.", "",
               "![frequency](g3_string_frequency.png)", ""]

@@ -149,7 +149,8 @@ def main(argv=None):
     pe = classic.g3_string_case(N, amplitude=0.0)
     ext, wall = spectra(pe)
     lines += [f"Extensible TnT chain (the paper's; segments l + T/k_s, exact chain from its assembled M, K), n = {N}:", ""]
-    lines += table("extensible: exact chain = eigenvalues of its M, K", ext, wall, f1 * np.arange(1, MODES + 1), "continuous string kω₁")
+    lines += table("extensible: exact chain = eigenvalues of its M, K", ext, wall, f1 * np.arange(1, MODES + 1),
+                   "continuous string kω₁")
     lines += ["![modes](modes.png)", ""]
     plots(free, sweep, pt, tensioned_all)
     (OUT / "modes.md").write_text("\n".join(lines), encoding="utf-8")
