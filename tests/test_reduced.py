@@ -3,7 +3,7 @@ Lagrangian, O(n) accelerations against the dense form, energy conservation, the 
 import numpy as np
 import pytest
 
-from lightsail_mbs import ParameterError, SailParameters, analysis, crosscheck, loads, paper_case, solve
+from lightsail_mbs import ParameterError, SailParameters, analysis, crosscheck, loads, paper_case, shapes, solve
 from lightsail_mbs.solvers import reduced
 from lightsail_mbs.solvers.reduced_dynamics import ChainDynamics
 from lightsail_mbs.solvers.reduced_kinematics import (ChainModel, centres, dense_accelerations,
@@ -231,6 +231,33 @@ def test_compiled_dop853_takes_scipys_steps():
     np.testing.assert_allclose(r.theta, theta, rtol=0, atol=1e-12 * np.abs(theta).max())
 
 
+def test_compiled_radau_takes_scipys_steps():
+    """The compiled Radau IIA is scipy's method (same Jacobian): same steps, Jacobians and LU
+    factorisations, same state to round-off (extensible TnT, stiff axial springs)."""
+    from scipy.integrate import Radau
+
+    from lightsail_mbs.solvers.reduced_radau import Radau as CompiledRadau
+
+    p = paper_case("tnt-stable", t_final=0.05)
+    model = ChainModel.from_params(p)
+    dyn = ChainDynamics(model)
+    state = shapes.initial_state(p)
+    q0 = model.pack(state.x[0], state.y[0], state.theta, state.z)
+    y0 = np.concatenate([q0, np.zeros_like(q0)])
+    rtol = reduced.DEFAULT_RTOL["Radau"]
+    atol = rtol * reduced.state_scales(model)
+    scales = atol / rtol
+    compiled = CompiledRadau(dyn.constants, y0, p.t_final, rtol, atol, scales)
+    compiled.advance(np.array([p.t_final]))
+    ref = Radau(dyn.rhs, 0.0, y0, p.t_final, rtol=rtol, atol=atol, jac=lambda t, y: dyn.jacobian(t, y, scales))
+    steps = 0
+    while ref.status == "running":
+        ref.step()
+        steps += 1
+    assert (compiled.steps, compiled.njev, compiled.nlu) == (steps, ref.njev, ref.nlu) and steps > 5
+    np.testing.assert_allclose(compiled.y, ref.y, rtol=0, atol=1e-12 * np.abs(ref.y).max())
+
+
 @pytest.mark.parametrize("method", ["DOP853", "RK45"])
 def test_divergence_is_recorded_not_raised(monkeypatch, method):
     """A non-finite state ends the run with Result.error set and the finite trajectory before it."""
@@ -308,13 +335,11 @@ def test_rigid_half_mode_does_not_fail():
     assert r.error is None and not r.failed and r.time[-1] == pytest.approx(0.01)
 
 
-@pytest.mark.slow
 def test_tnt_stable_survives_six_seconds():
     r = solve(paper_case("tnt-stable"), "reduced")
     assert r.error is None and r.time[-1] == pytest.approx(6.0) and not r.failed
 
 
-@pytest.mark.slow
 def test_tnt_soft_fails_like_the_paper_and_converges():
     p = paper_case("tnt-soft")
     t1 = solve(p, "reduced").failure_time

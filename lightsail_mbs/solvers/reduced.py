@@ -6,11 +6,14 @@ integrated as the first-order system ẏ = (q̇, q̈) (Eq. 40):
 
 * rigid, torsion and inextensible TnT chains: explicit 8th-order Dormand–Prince (DOP853);
 * extensible TnT chain (axial springs, ω ~ √(k_s/m) ~ 10⁵–10⁶ rad/s): implicit Radau IIA (order 5)
-  with its Jacobian by finite differences from ONE vectorised right-hand-side call (all columns
-  of the difference quotient are solved together as one stacked banded system).
+  with the dense forward-difference Jacobian of the compiled right-hand side.
 
-Output is sampled from the integrator's dense output every params.sample_interval; the run
-stops at the first sample whose amplitude (analysis.amplitude) reaches failure_ratio × initial
+Both run as numba-compiled step loops (reduced_integrator.py, reduced_radau.py: the same steps as
+scipy's DOP853 and Radau, tested) on the compiled O(n) right-hand side (reduced_dynamics.py);
+RK45, BDF and LSODA use scipy's steppers on the same right-hand side.
+
+Output is sampled from the integrator's dense output every params.sample_interval (compiled
+integrators: CHUNK samples per call); the run stops at the first sample whose amplitude (analysis.amplitude) reaches failure_ratio × initial
 when params.stop_at_failure. A failed step or a non-finite state ends the run and is recorded
 in Result.error with the trajectory up to that point.
 """
@@ -20,7 +23,7 @@ import math
 import time as clock
 
 import numpy as np
-from scipy.integrate import BDF, DOP853, LSODA, RK45, Radau
+from scipy.integrate import BDF, LSODA, RK45
 
 from .. import analysis, shapes
 from ..parameters import ParameterError, SailParameters
@@ -30,9 +33,11 @@ from . import reduced_boundary
 from .reduced_boundary import needs_boundary
 from .reduced_dynamics import ChainDynamics
 from .reduced_integrator import FINISHED, STATUS, Dop853
+from .reduced_radau import Radau as CompiledRadau
 from .reduced_kinematics import ChainModel, centre_velocities, centres
 
-METHODS = {"DOP853": DOP853, "RK45": RK45, "Radau": Radau, "BDF": BDF, "LSODA": LSODA}
+COMPILED = {"DOP853": Dop853, "Radau": CompiledRadau}          # numba step loops
+METHODS = {**COMPILED, "RK45": RK45, "BDF": BDF, "LSODA": LSODA}   # the others: scipy's steppers
 IMPLICIT = ("Radau", "BDF", "LSODA")
 DEFAULT_RTOL = {"DOP853": 1e-6, "Radau": 1e-6}
 RIGID_RTOL = 1e-9          # the rigid chain fails within ms at 10⁵× the torsion load: resolve it tightly
@@ -114,9 +119,13 @@ def run(params: SailParameters, *, progress: bool = False, rtol: float | None = 
     wall0 = clock.perf_counter()
     bar = Progress(params.t_final, progress, label="reduced")
     try:
-        if method == "DOP853":
-            states, error, integrator = _run_compiled(dynamics, y0, params.t_final, rtol, atol, sample_times,
-                                                      failed_at, bar, options)
+        if method in COMPILED:
+            atol = np.broadcast_to(np.asarray(atol, float), y0.shape)
+            extra = dict(jac_scales=np.maximum(atol / rtol, 1e-300)) if method == "Radau" else {}
+            integrator = COMPILED[method](dynamics.constants, y0, params.t_final, rtol, atol,
+                                          max_step=options.get("max_step", np.inf),
+                                          first_step=options.get("first_step"), **extra)
+            states, error = _run_compiled(method, integrator, y0, sample_times, failed_at, bar)
         else:
             states, error, integrator = _run_scipy(method, dynamics, y0, params.t_final, rtol, atol, sample_times,
                                                    failed_at, bar, options)
@@ -143,10 +152,8 @@ def run(params: SailParameters, *, progress: bool = False, rtol: float | None = 
 CHUNK = 50      # samples per call of the compiled integrator (failure check and progress in between)
 
 
-def _run_compiled(dynamics, y0, t_final, rtol, atol, sample_times, failed_at, bar, options):
-    """The compiled DOP853 (reduced_integrator.py), CHUNK samples per call."""
-    integrator = Dop853(dynamics.constants, y0, t_final, rtol, atol, max_step=options.get("max_step", np.inf),
-                        first_step=options.get("first_step"))
+def _run_compiled(method, integrator, y0, sample_times, failed_at, bar):
+    """A compiled integrator (DOP853: reduced_integrator.py, Radau: reduced_radau.py), CHUNK samples per call."""
     states, error, next_sample = [y0[:, None]], None, 1
     while next_sample < sample_times.size:
         batch = integrator.advance(sample_times[next_sample:next_sample + CHUNK])
@@ -157,12 +164,12 @@ def _run_compiled(dynamics, y0, t_final, rtol, atol, sample_times, failed_at, ba
             states[-1] = batch[:, :stop + 1]
             break
         if integrator.status in STATUS:
-            error = f"DOP853 failed at t = {integrator.t:.6g} s: {STATUS[integrator.status]}"
+            error = f"{method} failed at t = {integrator.t:.6g} s: {STATUS[integrator.status]}"
             break
         bar.update(integrator.t)
         if integrator.status == FINISHED:
             break
-    return states, error, integrator
+    return states, error
 
 
 def _run_scipy(method, dynamics, y0, t_final, rtol, atol, sample_times, failed_at, bar, options):

@@ -262,11 +262,11 @@ def _batch_accelerations(q, qd, k):
 
 
 @njit(cache=True)
-def _jacobian(y, k, scales):
-    """∂ẏ/∂y by forward differences (step √ε·max(|y_j|, scale_j)); the q̇ rows are exact (0 | I)."""
+def jacobian_into(y, k, scales, jac):
+    """∂ẏ/∂y into jac by forward differences (step √ε·max(|y_j|, scale_j)); the q̇ rows are exact (0 | I)."""
     size = y.size
     dof = size // 2
-    jac = np.zeros((size, size))
+    jac[:dof] = 0.0
     for i in range(dof):
         jac[i, dof + i] = 1.0
     base = np.empty(size)
@@ -274,14 +274,12 @@ def _jacobian(y, k, scales):
     moved = y.copy()
     out = np.empty(size)
     for j in range(size):
-        step = 1.4901161193847656e-08 * max(abs(y[j]), scales[j])
-        moved[j] = y[j] + step
+        moved[j] = y[j] + 1.4901161193847656e-08 * max(abs(y[j]), scales[j])
         step = moved[j] - y[j]
         rhs_into(moved, k, out)
         for i in range(dof, size):
             jac[i, j] = (out[i] - base[i]) / step
         moved[j] = y[j]
-    return jac
 
 
 class ChainDynamics:
@@ -309,4 +307,7 @@ class ChainDynamics:
 
     def jacobian(self, t: float, y: np.ndarray, scales: np.ndarray) -> np.ndarray:
         """∂ẏ/∂y (dense, 2 dof + 1 right-hand-side calls, compiled); scales: typical |y_j| (difference steps)."""
-        return _jacobian(np.ascontiguousarray(y, dtype=float), self.constants, scales)
+        y = np.ascontiguousarray(y, dtype=float)
+        jac = np.empty((y.size, y.size))
+        jacobian_into(y, self.constants, np.ascontiguousarray(scales, float), jac)
+        return jac

@@ -40,8 +40,9 @@ def _rms(v):
 
 
 @njit(cache=True)
-def initial_step(y0, f0, k, t_span, rtol, atol, max_step):
-    """Hairer's starting step (Solving ODEs I, Sec. II.4), as scipy's select_initial_step for order 7."""
+def initial_step(y0, f0, k, t_span, rtol, atol, max_step, order):
+    """Hairer's starting step (Solving ODEs I, Sec. II.4) for an error estimator of this order,
+    as scipy's select_initial_step."""
     scale = atol + np.abs(y0) * rtol
     d0, d1 = _rms(y0 / scale), _rms(f0 / scale)
     h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
@@ -52,7 +53,7 @@ def initial_step(y0, f0, k, t_span, rtol, atol, max_step):
     if d1 <= 1e-15 and d2 <= 1e-15:
         h1 = max(1e-6, h0 * 1e-3)
     else:
-        h1 = (0.01 / max(d1, d2)) ** (1.0 / 8.0)
+        h1 = (0.01 / max(d1, d2)) ** (1.0 / (order + 1))
     return min(100 * h0, h1, t_span, max_step)
 
 
@@ -179,7 +180,7 @@ class Dop853:
         self.atol = np.broadcast_to(np.asarray(atol, float), self.y.shape).copy()
         self.max_step = float(max_step)
         h0 = first_step if first_step is not None else initial_step(self.y, self.f, k, self.t_bound,
-                                                                    self.rtol, self.atol, self.max_step)
+                                                                    self.rtol, self.atol, self.max_step, 7)
         self.state = np.array([0.0, float(h0), 0.0, 2.0, 0.0, 1.0])     # t, |h|, steps, nfev, t_old, h_old
         self.interp = np.zeros((7, self.y.size))
         self.y_old = self.y.copy()
