@@ -216,11 +216,12 @@ def test_options_are_validated():
 
 def test_compiled_dop853_takes_scipys_steps():
     """The compiled DOP853 is scipy's method on the same right-hand side: the same number of
-    function evaluations (steps + dense-output stages) and the same states to round-off."""
+    function evaluations (steps + dense-output stages) and the same states to round-off (at a loose
+    tolerance: at tight ones round-off in the error estimate already moves the step sizes)."""
     from scipy.integrate import solve_ivp
 
     p = paper_case("torsion-stable", n=10, t_final=0.5)
-    r = solve(p, "reduced")
+    r = solve(p, "reduced", rtol=1e-6)
     model = ChainModel.from_params(p)
     q0 = model.pack(r.x[0, 0], r.y[0, 0], r.theta[0], np.zeros(0))
     ref = solve_ivp(ChainDynamics(model).rhs, (0, p.t_final), np.concatenate([q0, np.zeros_like(q0)]),
