@@ -1,14 +1,19 @@
 """Wall time of the reduced solver vs n at fixed simulated time (issue 4 scaling table).
 
-`python validation/reduced_scaling.py` prints a Markdown table for n = 10, 30, 100, 300, 1000 and
-the fitted exponent p of wall ∝ n^p, for
+`python validation/reduced_scaling.py` prints Markdown tables for n = 10, 30, 100, 300, 1000 and
+the fitted exponents p of CPU time ∝ n^p, per run and per right-hand-side call, for
 * the rigid chain (paper Fig. 5 load, ν = 3/2, 4 ms: before failure for every n), whose step count
-  does not depend on n, so the exponent is the formulation's;
-* the soft torsion chain (E = 4.5e9 Pa, 0.5 s), whose highest bending frequency grows as n², so an
-  explicit method's step count grows with n too (the exponent per right-hand-side call is also given).
-Each time is the minimum of `--repeats` runs (CPU time of this process, robust to other load).
+  hardly depends on n, so the exponent is the formulation's;
+* the soft torsion chain (E = 4.5e9 Pa, 0.5 s), whose highest bending frequency
+  ω_max ≈ 2√(k_T/J_G) ∝ n² bounds the explicit step once it exceeds the dynamics' own scale, so
+  the step count grows with n (the table lists ω_max·t_final for comparison);
+* with `--tnt`: the extensible TnT chain (T = 3.34e-3 N, 0.5 s, Radau; n ≤ 100: dense Jacobian).
+`--tolerances` prints instead the convergence study behind the default tolerances (failure time
+of the soft paper cases and the rigid case vs rtol). Each time is the minimum of `--repeats` runs
+(CPU time of this process, robust to other load); the compiled code is warmed up first.
 """
 import argparse
+import math
 import time
 
 import numpy as np
@@ -18,32 +23,68 @@ from lightsail_mbs import paper_case, solve
 SIZES = (10, 30, 100, 300, 1000)
 
 
-def timed(params, repeats):
+def timed(params, repeats, **options):
     best, result = np.inf, None
     for _ in range(repeats):
         start = time.process_time()
-        result = solve(params, "reduced")
+        result = solve(params, "reduced", **options)
         best = min(best, time.process_time() - start)
     return best, result
+
+
+def highest_bending_frequency(p):
+    """2√(k_T/J_G): the free-free chain's top torsion-spring mode (rad/s), 0 without springs."""
+    return 2 * math.sqrt(p.torsional_stiffness / p.slice_inertia) if p.torsional_stiffness else 0.0
+
+
+def scaling(cases, repeats):
+    for label, (make, sizes) in cases.items():
+        print(f"\n### {label}\n\n| n | CPU time (s) | steps | RHS calls | µs per step | µs per RHS call "
+              f"| ω_max·t |\n|---|---|---|---|---|---|---|")
+        walls, per_call, per_step = [], [], []
+        for n in sizes:
+            p = make(n)
+            wall, r = timed(p, repeats)
+            walls.append(wall)
+            per_call.append(wall / r.info["nfev"])
+            per_step.append(wall / max(r.info["steps"], 1))
+            print(f"| {n} | {wall:.3g} | {r.info['steps']} | {r.info['nfev']} | {1e6 * per_step[-1]:.1f} "
+                  f"| {1e6 * per_call[-1]:.2f} | {highest_bending_frequency(p) * p.t_final:.3g} |", flush=True)
+        fit = [np.polyfit(np.log(sizes), np.log(v), 1)[0] for v in (walls, per_step, per_call)]
+        print(f"\nfitted exponents: CPU time ∝ n^{fit[0]:.2f}; per step ∝ n^{fit[1]:.2f}; "
+              f"per RHS call ∝ n^{fit[2]:.2f}")
+
+
+def tolerances():
+    print("| case | rtol | failure time (s) | change vs loosest | steps |\n|---|---|---|---|---|")
+    for case, rtols in [("torsion-soft", (1e-6, 1e-7, 1e-8, 1e-9, 1e-10)),
+                        ("tnt-soft", (1e-6, 1e-7, 1e-8, 1e-9)),
+                        ("rigid", (1e-8, 1e-9, 1e-10, 1e-11))]:
+        reference = None
+        for rtol in rtols:
+            r = solve(paper_case(case), "reduced", rtol=rtol)
+            reference = reference or r.failure_time
+            print(f"| {case} | {rtol:g} | {r.failure_time:.6f} | {(r.failure_time - reference) / reference:+.1e} "
+                  f"| {r.info['steps']} |", flush=True)
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--tnt", action="store_true", help="also the extensible TnT chain (Radau), n ≤ 100")
+    parser.add_argument("--tolerances", action="store_true", help="print the tolerance convergence study instead")
     args = parser.parse_args()
-    cases = {"rigid, 4 ms": lambda n: paper_case("rigid", n=n, t_final=0.004),
-             "soft torsion, 0.5 s": lambda n: paper_case("torsion-soft", n=n, t_final=0.5)}
-    for label, make in cases.items():
-        print(f"\n### {label}\n\n| n | CPU time (s) | steps | RHS calls | µs per RHS call |\n|---|---|---|---|---|")
-        walls, per_call = [], []
-        for n in SIZES:
-            wall, r = timed(make(n), args.repeats)
-            walls.append(wall)
-            per_call.append(wall / r.info["nfev"])
-            print(f"| {n} | {wall:.3g} | {r.info['steps']} | {r.info['nfev']} | {1e6 * per_call[-1]:.0f} |", flush=True)
-        p_wall = np.polyfit(np.log(SIZES), np.log(walls), 1)[0]
-        p_call = np.polyfit(np.log(SIZES), np.log(per_call), 1)[0]
-        print(f"\nfitted exponent: wall ∝ n^{p_wall:.2f}; per RHS call ∝ n^{p_call:.2f}")
+    if args.tolerances:
+        tolerances()
+        return
+    solve(paper_case("torsion-soft", n=5, t_final=0.01), "reduced")            # load the compiled code
+    cases = {"rigid, 4 ms": (lambda n: paper_case("rigid", n=n, t_final=0.004), SIZES),
+             "soft torsion, 0.5 s": (lambda n: paper_case("torsion-soft", n=n, t_final=0.5), SIZES)}
+    if args.tnt:
+        solve(paper_case("tnt-stable", n=5, t_final=0.01), "reduced")
+        cases["extensible TnT T = 3.34e-3 N, 0.5 s (Radau)"] = (
+            lambda n: paper_case("tnt-stable", n=n, t_final=0.5), SIZES[:3])
+    scaling(cases, args.repeats)
 
 
 if __name__ == "__main__":
