@@ -177,6 +177,8 @@ def test_recursive_accelerations_equal_dense_solution(p):
     scale = np.abs(dense).max()
     batch = dyn.accelerations(np.stack([s[0] for s in states], 1), np.stack([s[1] for s in states], 1))
     np.testing.assert_allclose(batch, dense, rtol=0, atol=1e-11 * scale)
+    stacked = dyn.rhs(0.0, np.concatenate([np.stack([s[0] for s in states], 1), np.stack([s[1] for s in states], 1)]))
+    np.testing.assert_allclose(stacked[model.dof:], dense, rtol=0, atol=1e-11 * scale)
     for k, (q, qd) in enumerate(states):
         single = dyn.rhs(0.0, np.concatenate([q, qd]))[model.dof:]
         np.testing.assert_allclose(single, dense[:, k], rtol=0, atol=1e-11 * scale)

@@ -300,9 +300,14 @@ class ChainDynamics:
         return _batch_accelerations(q, qd, self.constants)
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
-        """ẏ = (q̇, q̈) of one state y = (q, q̇) (scipy's fun(t, y))."""
+        """ẏ = (q̇, q̈) of y = (q, q̇), one state (size,) or a batch (size, k) (scipy's fun(t, y),
+        vectorized or not)."""
+        y = np.asarray(y, dtype=float)
+        if y.ndim == 2:
+            dof = y.shape[0] // 2
+            return np.concatenate([y[dof:], _batch_accelerations(y[:dof], y[dof:], self.constants)])
         out = np.empty(y.size)
-        rhs_into(np.ascontiguousarray(y, dtype=float), self.constants, out)
+        rhs_into(np.ascontiguousarray(y), self.constants, out)
         return out
 
     def jacobian(self, t: float, y: np.ndarray, scales: np.ndarray) -> np.ndarray:
