@@ -42,13 +42,16 @@ def free_tnt() -> SailParameters:
 
 CASES = {
     "rigid-0.5": Case("rigid-0.5", paper_case("rigid", mode=0.5), "Fig. 5c–d: mode ½ does not fail"),
-    "rigid-1.5": Case("rigid-1.5", paper_case("rigid", mode=1.5), "Fig. 5a–b: trough failure"),
+    # the stiffness-free chain amplifies round-off ~e^25 by the 1.5× window: the reduced solution itself
+    # moves by 2e-7 … 5e-6 rad between rtol 1e-9 … 1e-12, so both solvers run near their limits here
+    "rigid-1.5": Case("rigid-1.5", paper_case("rigid", mode=1.5), "Fig. 5a–b: trough failure",
+                      dict(rtol=1e-12, atol=1e-17), exudyn_step_scale=0.0625),
     "torsion-stable": Case("torsion-stable", paper_case("torsion-stable"), "Fig. 6: E = 4.5e13 Pa",
                            exudyn_step_scale=0.25),
     "torsion-soft": Case("torsion-soft", paper_case("torsion-soft"), "Fig. 7: E = 4.5e9 Pa",
                          exudyn_step_scale=0.125),
     "tnt-stable": Case("tnt-stable", paper_case("tnt-stable"), "Fig. 10: T = 3.34e-3 N"),
-    "tnt-soft": Case("tnt-soft", paper_case("tnt-soft"), "Fig. 11: T = 3.34e-8 N", exudyn_step_scale=0.25),
+    "tnt-soft": Case("tnt-soft", paper_case("tnt-soft"), "Fig. 11: T = 3.34e-8 N", exudyn_step_scale=0.125),
     "free-torsion": Case("free-torsion", paper_case("torsion-stable", intensity=0.0, t_final=1.0),
                          "free vibration, I₀ = 0", exudyn_step_scale=0.25),
     "free-tnt": Case("free-tnt", free_tnt(), "free vibration, I₀ = 0, T = 0, bending on",
