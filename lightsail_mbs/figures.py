@@ -162,8 +162,8 @@ def angle_history_figures(out, name: str, cases: dict, figures: list[tuple[int, 
                                      workers=workers, scheduler=scheduler, label=name, progress=progress)))
     rows = []
     for label, (record, result) in runs.items():
-        stable = result is not None and not record["failed"] and not record["error"]
-        rows.append({"case": label, "failed": record["failed"], "failure_time_s": record["failure_time"],
+        stable = result is not None and not record.get("failed") and not record["error"]
+        rows.append({"case": label, "failed": record.get("failed"), "failure_time_s": record.get("failure_time"),
                      "max_amplitude_ratio": record.get("max_amplitude_ratio"), "t_end_s": record.get("t_end"),
                      "frequency_Hz": angle_frequency(result) if stable else None, "error": record["error"] or ""})
         if result is not None:

@@ -54,11 +54,11 @@ def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, stor
         for v in values:
             record, result = done[(fig, v)]
             ok = result is not None and not record["error"]
-            freq = angle_frequency(result) if ok and regime == "stable" and not record["failed"] else None
-            measured.append(freq if regime == "stable" else record["failure_time"])
+            freq = angle_frequency(result) if ok and regime == "stable" and not record.get("failed") else None
+            measured.append(freq if regime == "stable" else record.get("failure_time"))
             rows.append({"figure": fig, "regime": regime, "tension_N": params[(fig, v)].tension,
                          "thickness_m": params[(fig, v)].thickness, "mode": params[(fig, v)].mode,
-                         "failed": record["failed"], "failure_time_s": record["failure_time"], "frequency_Hz": freq,
+                         "failed": record.get("failed"), "failure_time_s": record.get("failure_time"), "frequency_Hz": freq,
                          "max_amplitude_ratio": record.get("max_amplitude_ratio"), "t_end_s": record.get("t_end"),
                          "error": record["error"] or ""})
             if result is not None:

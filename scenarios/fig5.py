@@ -29,8 +29,8 @@ def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, stor
     for nu, (record, result) in zip(modes, runs):
         last = -1
         end = analysis.line_offsets(result.x[last], result.y[last]) if result else np.array([np.nan])
-        rows.append({"mode": nu, "failed": record["failed"], "failure_time_ms": _ms(record["failure_time"]),
-                     "at_trough": analysis.fails_at_trough(result.x[last], result.y[last]) if result and record["failed"] else None,
+        rows.append({"mode": nu, "failed": record.get("failed"), "failure_time_ms": _ms(record.get("failure_time")),
+                     "at_trough": analysis.fails_at_trough(result.x[last], result.y[last]) if result and record.get("failed") else None,
                      "end_trough_mm": -1e3 * end.min(), "end_crest_mm": 1e3 * end.max(),
                      "max_amplitude_ratio": record.get("max_amplitude_ratio"),
                      "t_end_ms": _ms(record.get("t_end")), "error": record["error"] or ""})
