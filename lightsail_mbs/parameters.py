@@ -172,6 +172,11 @@ class SailParameters:
         return self.model == "tnt" and self.axial_springs
 
     @property
+    def displacement_scale(self) -> float:
+        """Typical transverse displacement for solver tolerances: a₀, or 1e-6 L for a flat sail."""
+        return self.amplitude if self.amplitude > 0 else 1e-6 * self.length
+
+    @property
     def flat_force(self) -> float:
         """f₀ = (2 I₀ / c) l W: radiation force on a flat slice (Eq. 11)."""
         return 2.0 * self.intensity / SPEED_OF_LIGHT * self.slice_length * self.width

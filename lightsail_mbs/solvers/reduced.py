@@ -55,20 +55,21 @@ def default_method(p: SailParameters) -> str:
 def state_scales(model: ChainModel) -> np.ndarray:
     """Typical magnitudes of y = (q, q̇) for the absolute tolerances.
 
-    Positions: the defect amplitude a₀ (x₁, y₁ and the extensions z, which therefore carry the same
+    Positions: the defect amplitude a₀ (p.displacement_scale: 1e-6 L for a flat sail) (x₁, y₁ and the extensions z, which therefore carry the same
     absolute accuracy as the transverse displacements: the stiff axial vibration at √(k_s/m) is then
     not resolved but damped by the L-stable implicit method, as in Exudyn's generalized-α) and the
     defect slope 2πνa₀/L (θ); rates: those over the fastest bending/axial time scale of the chain
     (floored by a 1 ms time scale).
     """
     p = model.params
-    slope = 2 * math.pi * p.mode * p.amplitude / p.length
+    position = p.displacement_scale
+    slope = 2 * math.pi * p.mode * position / p.length
     rate = 1e3
     if model.torsional_stiffness:
         rate = max(rate, math.sqrt(model.torsional_stiffness / model.inertia))
-    scales = [p.amplitude, p.amplitude] + [slope] * p.n
+    scales = [position, position] + [slope] * p.n
     if model.extensible:
-        scales += [p.amplitude] * (p.n - 1)
+        scales += [position] * (p.n - 1)
         rate = max(rate, math.sqrt(model.axial_stiffness / model.mass))
     scales = np.array(scales)
     return np.concatenate([scales, scales * rate])
@@ -113,7 +114,7 @@ def run(params: SailParameters, *, progress: bool = False, rtol: float | None = 
 
     def failed_at(batch):
         """Index of the first sample of the batch at or above the failure amplitude, or None."""
-        if not params.stop_at_failure:
+        if not params.stop_at_failure or limit <= 0:     # a flat sail (a₀ = 0) has no failure to stop at
             return None
         x, y = centres(model, batch[:model.dof])
         above = np.nonzero(analysis.amplitude(x.T, y.T) >= limit)[0]

@@ -184,7 +184,7 @@ def state_scales(model: ChainModel) -> np.ndarray:
     defect or the static tip deflection), angles 2π × that / L, rates those over the fastest
     spring or tension time scale (at least 1 ms)."""
     p = model.params
-    position = p.amplitude
+    position = p.displacement_scale
     bending = p.youngs_modulus * p.second_moment_of_area if model.torsional_stiffness else 0.0
     if p.tip_load and bending:
         position = max(position, abs(p.tip_load) * p.length ** 3 / (3 * bending))
