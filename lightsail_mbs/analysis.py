@@ -8,6 +8,7 @@ and rotation. The sail has failed when amplitude(t) ≥ ratio · amplitude(0) (t
 from __future__ import annotations
 
 import numpy as np
+from scipy.integrate import cumulative_simpson
 
 
 def line_offsets(x: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -52,6 +53,15 @@ def fails_at_trough(x: np.ndarray, y: np.ndarray) -> bool:
     return bool(-off.min() > off.max())
 
 
+def hinge_heights(result) -> np.ndarray:
+    """Transverse positions of the hinges 0…n over time (T, n+1) (m): left end y − (l/2) sin θ of each
+    slice, and the right end of slice n (the displacements w of chain_theory for an inextensible chain)."""
+    half = 0.5 * result.params.slice_length
+    left = result.y - half * np.sin(result.theta)
+    right = result.y[:, -1:] + half * np.sin(result.theta[:, -1:])
+    return np.concatenate([left, right], axis=1)
+
+
 def mechanical_energy(result) -> np.ndarray:
     """Kinetic plus elastic energy of a Result over time (J), Eqs (12), (23), (29):
 
@@ -65,3 +75,19 @@ def mechanical_energy(result) -> np.ndarray:
     if result.z.shape[1]:
         elastic = elastic + 0.5 * p.axial_stiffness * (result.z ** 2).sum(axis=1)
     return kinetic + elastic
+
+
+def dissipated_power(result) -> np.ndarray:
+    """Heat generated in the dampers over time (W): c_T Σ(θ̇_j − θ̇_{j−1})² + c_s Σ ż_j²,
+    with c_T, c_s the SailParameters dampers (explicit c plus material β k)."""
+    p = result.params
+    power = p.torsional_damper * (np.diff(result.omega, axis=1) ** 2).sum(axis=1)
+    if result.z_rate.shape[1]:
+        power = power + p.axial_damper * (result.z_rate ** 2).sum(axis=1)
+    return power
+
+
+def dissipated_energy(result) -> np.ndarray:
+    """D(t) = ∫₀ᵗ P dt (J) by the cumulative Simpson rule on the output samples (error ∝ (ω Δt)⁴ for a
+    mode at ω). In free vibration, mechanical_energy + D is constant."""
+    return cumulative_simpson(dissipated_power(result), x=result.time, initial=0.0)

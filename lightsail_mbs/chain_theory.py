@@ -151,9 +151,22 @@ def chain_matrices(p: SailParameters, *, tension: float | None = None, segments=
 def chain_angular_frequencies(p: SailParameters, **kwargs) -> np.ndarray:
     """ω (rad/s), ascending, of the linearised transverse chain (chain_matrices); rigid-body modes
     of a free chain appear as zeros (its axial rigid translation is not included)."""
+    return chain_modes(p, **kwargs)[0]
+
+
+def chain_modes(p: SailParameters, **kwargs) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(ω, Φ, M): the linearised chain's angular frequencies (ascending), its mode shapes in the free
+    hinge displacements as columns, mass-normalised (Φᵀ M Φ = 1), and M (chain_matrices)."""
     M, K = chain_matrices(p, **kwargs)
-    w2 = eigh(K, M, eigvals_only=True)
-    return np.sqrt(np.clip(w2, 0.0, None))
+    w2, shapes = eigh(K, M)
+    return np.sqrt(np.clip(w2, 0.0, None)), shapes, M
+
+
+def rayleigh_decay_rate(p: SailParameters, omega) -> np.ndarray:
+    """σ = β ω²/2 (1/s): the amplitude decay rate e^(−σt) of the mode at ω under material damping
+    c = β k on every spring (damping matrix β K, so the modes stay uncoupled); the damped
+    frequency is ω √(1 − (βω/2)²)."""
+    return 0.5 * p.stiffness_damping * np.asarray(omega, float) ** 2
 
 
 def pinned_chain_angular_frequencies(p: SailParameters, tension: float | None = None) -> np.ndarray:

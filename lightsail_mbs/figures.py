@@ -184,21 +184,21 @@ def angle_history_figures(out, name: str, cases: dict, figures: list[tuple[int, 
 # ---- stability maps (Figs 9, 12) -------------------------------------------------------------
 def stability_map_figure(out, name: str, number: int, base, thicknesses, modes, *, factor=1.5, solver="exudyn",
                          workers=None, scheduler=None, store=None, progress=True, ratio_limit=10.0,
-                         recheck_all=False) -> list[dict]:
+                         recheck_all=False, **sweep_options) -> list[dict]:
     """Bisect and draw a stability map: OUT/<name>.png, <name>_boundaries.csv, <name>_points.csv.
 
     Every (thickness, mode) boundary is bisected (stability_map.boundary_map) at base.t_final; those
     whose boundary/analytic ratio is outside [1/ratio_limit, ratio_limit] (or not bracketed) — all of
     them if recheck_all — are bisected again at 2 × t_final, to show how the boundary moves with the
     run time. Returns the rows (one per thickness and mode, with boundary_2t and ratio_2t where
-    rechecked).
+    rechecked). sweep_options (options, case_function) go to boundary_map.
     """
     from .stability_map import SWEPT, boundary_map
     out = Path(out)
     store = Path(store or out / "store") / name
     pairs = [(float(h), float(nu)) for h in thicknesses for nu in modes]
     kwargs = dict(store_dir=store, solver=solver, factor=factor, workers=workers, scheduler=scheduler,
-                  progress=progress)
+                  progress=progress, **sweep_options)
     found = boundary_map(base, pairs, **kwargs)
     odd = [(r.thickness, r.mode) for r in found
            if recheck_all or r.ratio is None or not 1.0 / ratio_limit <= r.ratio <= ratio_limit]
@@ -240,9 +240,9 @@ def stability_map_figure(out, name: str, number: int, base, thicknesses, modes, 
     for r in found:
         if r.boundary is None:
             known = [v for v, s in r.points if s is not None]
-            ax[0, 0].annotate(f"{r.status} in {r.t_final:g} s:\n{'stable' if r.points[-1][1] else 'failed'} "
-                              f"from {min(known):.2g} to {max(known):.2g}", (r.thickness * MICRO, min(values) / 1e2),
-                              fontsize=7, ha="center")
+            note = (f"{r.status} in {r.t_final:g} s:\n{'stable' if r.points[-1][1] else 'failed'} "
+                    f"from {min(known):.2g} to {max(known):.2g}") if known else f"{r.status}:\nno run finished"
+            ax[0, 0].annotate(note, (r.thickness * MICRO, min(values) / 1e2), fontsize=7, ha="center")
     ax[0, 0].set_title(f"Fig. {number}: {base.model} stability map, {base.t_final:g} s runs, n = {base.n}, "
                        f"analytic: {'E_cr,max (Eq. 8)' if swept == 'youngs_modulus' else 'T_cr,max (Eq. 10)'}",
                        fontsize=9)

@@ -66,6 +66,7 @@ class SailParameters:
     axial_springs: bool = True         # TnT: extensible slices (k_s); False: rigid (inextensible) limit
     torsional_damping: float = 0.0     # c_T, N·m·s/rad
     axial_damping: float = 0.0         # c_s, N·s/m
+    stiffness_damping: float = 0.0     # β, s: material (Rayleigh) damping c = β k added to every spring
     t_final: float = 6.0               # s
     output_interval: float | None = None  # s; None: min(1 ms, t_final/1000)
     stop_at_failure: bool = True       # end the run when the amplitude has doubled
@@ -83,7 +84,7 @@ class SailParameters:
             v = _finite(name, getattr(self, name))
             _check(name, v, v > 0, "> 0")
         for name in ("youngs_modulus", "tension", "intensity", "amplitude",
-                     "torsional_damping", "axial_damping"):
+                     "torsional_damping", "axial_damping", "stiffness_damping"):
             v = _finite(name, getattr(self, name))
             _check(name, v, v >= 0, "≥ 0")
         _check("youngs_modulus", self.youngs_modulus,
@@ -165,6 +166,20 @@ class SailParameters:
         if not self.axial_springs:
             return math.inf
         return (self.n - 1) * self.youngs_modulus * self.thickness * self.width / self.length
+
+    @property
+    def torsional_damper(self) -> float:
+        """c_T + β k_T (N·m·s/rad) on the relative rate θ̇_j − θ̇_{j−1} of each interior hinge (0: rigid)."""
+        if self.model == "rigid":
+            return 0.0
+        return self.torsional_damping + self.stiffness_damping * self.torsional_stiffness
+
+    @property
+    def axial_damper(self) -> float:
+        """c_s + β k_s (N·s/m) on each axial spring rate ż_j (0 without axial springs)."""
+        if not self.extensible:
+            return 0.0
+        return self.axial_damping + self.stiffness_damping * self.axial_stiffness
 
     @property
     def extensible(self) -> bool:

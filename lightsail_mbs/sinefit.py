@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import minimize_scalar
+from scipy.optimize import least_squares, minimize_scalar
 
 from .spectral import dominant_frequency
 
@@ -65,3 +65,34 @@ def fit_sinusoid(time, signal, guess: float | None = None) -> SineFit:
     (c, a, b), residual = _linear_part(t, y, omega)
     phase = float(np.angle(np.exp(1j * (np.arctan2(-b, a) - omega * t0))))
     return SineFit(f, float(np.hypot(a, b)), phase, float(c), float(np.sqrt(np.mean(residual ** 2))))
+
+
+@dataclass(frozen=True)
+class DampedSineFit:
+    """y ≈ e^(−decay_rate t) amplitude cos(2π frequency t + phase), t from the first sample."""
+
+    frequency: float       # Hz
+    decay_rate: float      # σ, 1/s
+    amplitude: float
+    phase: float           # rad
+    residual_rms: float
+
+
+def fit_damped_sinusoid(time, signal) -> DampedSineFit:
+    """Least-squares damped sinusoid through signal(time): started from fit_sinusoid's frequency and
+    no decay, all four parameters polished by trust-region least squares."""
+    t = np.asarray(time, float)
+    t = t - t[0]
+    y = np.asarray(signal, float)
+    start = fit_sinusoid(t, y)
+    scale = np.max(np.abs(y))
+
+    def residual(v):
+        omega, sigma, a, b = v
+        return (np.exp(-sigma * t) * (a * np.cos(omega * t) + b * np.sin(omega * t)) - y) / scale
+
+    a0, b0 = start.amplitude * np.cos(start.phase), -start.amplitude * np.sin(start.phase)
+    fit = least_squares(residual, [2 * np.pi * start.frequency, 0.0, a0, b0], xtol=1e-15, ftol=1e-15, gtol=1e-15)
+    omega, sigma, a, b = fit.x
+    return DampedSineFit(float(omega / (2 * np.pi)), float(sigma), float(np.hypot(a, b)),
+                         float(np.arctan2(-b, a)), float(scale * np.sqrt(np.mean(fit.fun ** 2))))

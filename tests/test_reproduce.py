@@ -61,6 +61,16 @@ def test_boundary_map_brackets_the_known_threshold(tmp_path):
         assert all(s == (v >= exact) for v, s in row.points)
 
 
+def test_map_figure_survives_a_thickness_where_every_run_errs(tmp_path):
+    """A solver error is a result: the map is drawn, and the row says 'error'."""
+    from lightsail_mbs.figures import stability_map_figure
+    base = SailParameters(model="torsion", n=8, t_final=0.1)
+    rows = stability_map_figure(tmp_path, "map", 0, base, [1e-7, 1e-6], [1.5, 2.0], solver="fake", workers=1,
+                                progress=False, case_function=fake_case, options={"error_modes": [2.0]})
+    assert [r["status"] for r in rows] == ["converged", "error", "converged", "error"]
+    assert (tmp_path / "map.png").exists()
+
+
 def test_reproduce_rejects_an_unknown_figure(capsys):
     with pytest.raises(SystemExit):
         main(["reproduce", "--figure", "4"])

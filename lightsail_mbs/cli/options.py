@@ -24,6 +24,8 @@ CASE_OPTIONS = {
     "--absorptivity": ("absorptivity", float, "absorptivity α"),
     "--torsional-damping": ("torsional_damping", float, "torsional damping c_T (N·m·s/rad)"),
     "--axial-damping": ("axial_damping", float, "axial damping c_s (N·s/m)"),
+    "--stiffness-damping": ("stiffness_damping", float,
+                            "material damping β (s): c = β k on every spring; loss factor η at ω: β = η/ω"),
     "--t-final": ("t_final", float, "final time (s)"),
     "--output-interval": ("output_interval", float, "output interval (s); default min(1 ms, t_final/1000)"),
     "--failure-ratio": ("failure_ratio", float, "failure when amplitude ≥ ratio × initial (default 2)"),

@@ -35,9 +35,9 @@ class ChainModel:
     mass: float                 # m
     inertia: float              # J_G = m l²/12
     torsional_stiffness: float  # k_T
-    torsional_damping: float    # c_T
+    torsional_damping: float    # c_T + β k_T
     axial_stiffness: float      # k_s (0 when inextensible: not used)
-    axial_damping: float        # c_s
+    axial_damping: float        # c_s + β k_s
     tension: float              # T, follower end tension (Eq. 32)
     extensible: bool
 
@@ -45,9 +45,9 @@ class ChainModel:
     def from_params(cls, p: SailParameters) -> "ChainModel":
         return cls(params=p, n=p.n, half_length=0.5 * p.slice_length, mass=p.slice_mass,
                    inertia=p.slice_inertia, torsional_stiffness=p.torsional_stiffness,
-                   torsional_damping=p.torsional_damping if p.model != "rigid" else 0.0,
+                   torsional_damping=p.torsional_damper,
                    axial_stiffness=p.axial_stiffness if p.extensible else 0.0,
-                   axial_damping=p.axial_damping if p.extensible else 0.0,
+                   axial_damping=p.axial_damper,
                    tension=p.tension if p.model == "tnt" else 0.0, extensible=p.extensible)
 
     @property
