@@ -51,3 +51,15 @@ def test_dissipated_energy_equals_loss_of_mechanical_energy(solver, options):
 def test_undamped_run_dissipates_nothing():
     result = solve(SailParameters(**{**FREE, "stiffness_damping": 0.0}, t_final=0.1), "reduced")
     assert np.all(result.dissipated_energy == 0.0)
+
+
+def test_dissipation_scenario_heat_rises_with_tension(tmp_path):
+    """scenarios/dissipation.py (quick): only damped runs make heat, and in the stable regime the mean
+    power rises with the tension (through the frequency, P ∝ β ω² × energy)."""
+    from lightsail_mbs.cli.reproduce import load_scenario
+    rows = load_scenario("dissipation").run(tmp_path, quick=True, workers=1, progress=False)
+    assert (tmp_path / "dissipation.png").exists() and (tmp_path / "dissipation.csv").exists()
+    assert all(r["heat_J"] == 0.0 for r in rows if r["beta_s"] == 0.0)
+    stable = [r for r in rows if r["beta_s"] > 0 and not r["failed"] and r["T_over_T_cr"] >= 10]
+    powers = [r["mean_power_W"] for r in sorted(stable, key=lambda r: r["T_N"])]
+    assert len(powers) >= 3 and all(b > a > 0 for a, b in zip(powers, powers[1:]))
