@@ -33,3 +33,11 @@ def test_bad_input_one_line_error(args, name):
         assert out.returncode != 0
         lines = out.stderr.strip().splitlines()
         assert len(lines) == 1 and name in lines[0] and "Traceback" not in out.stderr
+
+
+def test_simulate_reports_heat_of_material_damping():
+    out = cli("simulate", "--model", "torsion", "--n", "6", "--modulus", "4.5e15", "--intensity", "0",
+              "--stiffness-damping", "3e-3", "--t-final", "0.2", "--solver", "reduced", "--quiet")
+    assert out.returncode == 0, out.stderr
+    heat = float(out.stdout.split("dissipated as heat:")[1].split()[0])
+    assert heat > 0

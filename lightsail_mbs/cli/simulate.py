@@ -32,6 +32,8 @@ def run(args) -> int:
               f"{'FAILED at t = %.6g s' % ft if summary['failed'] else 'not failed'} "
               f"(max amplitude ratio {summary['max_amplitude_ratio']:.4g}, t_end {summary['t_end']:.6g} s, "
               f"wall {summary['wall_time']:.3g} s)")
+        if summary["dissipated_energy"]:
+            print(f"dissipated as heat: {summary['dissipated_energy']:.6g} J")
     if summary["error"]:
         print(f"solver error: {summary['error']}", file=sys.stderr)
         return 1
