@@ -65,7 +65,7 @@ def plot(path, rows, beta) -> None:
     power = np.array([r["mean_power_W"] for r in damped])
     ax[0, 0].loglog(f, power, "o-", label=f"β = {beta:g} s")
     if f.size:
-        ax[0, 0].loglog(f, power[0] * (f / f[0]) ** 2, "k:", lw=0.8, label="∝ f² (reference)")
+        ax[0, 0].loglog(f, power[-1] * (f / f[-1]) ** 2, "k:", lw=0.8, label="∝ f² (reference)")
     for r in damped:
         ax[0, 0].annotate(f"{r['T_over_T_cr']:.0e} T_cr", (r["frequency_Hz"], r["mean_power_W"]), fontsize=7)
     ax[0, 0].set_xlabel("oscillation frequency (Hz)")
