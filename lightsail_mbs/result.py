@@ -64,6 +64,9 @@ class Result:
 
     @property
     def max_amplitude_ratio(self) -> float:
+        """max amplitude / initial amplitude (nan for a sail that starts flat)."""
+        if self.amplitude[0] == 0:
+            return float("nan")
         return float(np.max(self.amplitude) / self.amplitude[0])
 
     @property

@@ -126,3 +126,23 @@ def test_off_centre_beam_turns_the_sail_counter_clockwise(solver):
     r = solve(p, solver)
     assert r.omega[-1].mean() > 0 and r.theta[-1].mean() > 0
     assert solve(p.replace(beam_center=0.3), solver).theta[-1].mean() < 0
+
+
+def test_beam_optics_scenario(tmp_path):
+    """scenarios/beam_optics.py (quick): a narrower centred Gaussian cups the sail sooner; a darker sail
+    has a smaller g₀; an off-centre beam turns the flat sail 1° faster the farther off it is, within 20 %
+    of the rigid-plate estimate."""
+    from lightsail_mbs.cli.reproduce import load_scenario
+    rows = load_scenario("beam_optics").run(tmp_path, quick=True, workers=1, progress=False)["rows"]
+    assert {p.name for p in tmp_path.iterdir()} >= {"beam_optics.png", "beam_optics_profile.csv",
+                                                      "beam_optics_tilt.csv"}
+    stiff = [r for r in rows if r["kind"] == "profile" and r["E_Pa"] == 4.5e13]
+    gauss = sorted((r for r in stiff if r["reflectivity"] == 1 and np.isfinite(r["beam_waist_m"])),
+                   key=lambda r: r["beam_waist_m"])
+    assert all(r["failed"] for r in gauss)
+    assert all(a["failure_time_s"] < b["failure_time_s"] for a, b in zip(gauss, gauss[1:]))
+    g0 = [r["g0"] for r in stiff if np.isinf(r["beam_waist_m"])]
+    assert g0[0] > g0[1] > g0[2]            # R = 1; R = 0.9, α = 0.1; R = 0, α = 1
+    tilt = [r for r in rows if r["kind"] == "tilt"]
+    assert all(a["turn_1deg_s"] > b["turn_1deg_s"] for a, b in zip(tilt, tilt[1:]))
+    assert all(abs(r["turn_1deg_s"] / r["turn_1deg_estimate_s"] - 1) < 0.2 for r in tilt)
