@@ -5,6 +5,7 @@ Plots use matplotlib's object API on an Agg canvas (no display, no pyplot global
 """
 from __future__ import annotations
 
+import argparse
 import csv
 import math
 from pathlib import Path
@@ -37,6 +38,16 @@ def run_cases(params_list, store_dir, *, solver: str = "exudyn", workers=None, s
 def angle_slices(n: int, count: int = 5) -> list[int]:
     """Indices of `count` slices spread from the first to the last (the paper's 'select elements')."""
     return sorted({int(round(i)) for i in np.linspace(0, n - 1, count)})
+
+
+def scenario_parser(doc: str, quick_help: str) -> argparse.ArgumentParser:
+    """Options shared by the scenario scripts beyond the paper: --out (default scenarios/figures of the
+    source checkout), --solver (default reduced), --quick (a smoke test, described by quick_help)."""
+    parser = argparse.ArgumentParser(description=doc.splitlines()[0])
+    parser.add_argument("--out", default=str(Path(__file__).resolve().parents[1] / "scenarios" / "figures"))
+    parser.add_argument("--solver", choices=("reduced", "exudyn"), default="reduced")
+    parser.add_argument("--quick", action="store_true", help=quick_help)
+    return parser
 
 
 # ---- files and tables -----------------------------------------------------------------------

@@ -11,6 +11,8 @@ import dataclasses
 import math
 from dataclasses import dataclass, field
 
+import numpy as np
+
 SPEED_OF_LIGHT = 299_792_458.0  # m/s
 MODELS = ("rigid", "torsion", "tnt")
 # Supports of the chain's ends (validations, paper Appendices A–B): "free" (the sail, both ends free),
@@ -222,6 +224,14 @@ class SailParameters:
         if self.output_interval is not None:
             return float(self.output_interval)
         return min(1e-3, self.t_final / 1000.0)
+
+    def sample_times(self) -> np.ndarray:
+        """Output times 0, Δt, 2Δt, … up to t_final, with t_final appended when Δt does not divide it (s)."""
+        dt = self.sample_interval
+        times = dt * np.arange(int(math.floor(self.t_final / dt + 1e-9)) + 1)
+        if times[-1] < self.t_final * (1 - 1e-12):
+            times = np.append(times, self.t_final)
+        return times
 
     def replace(self, **changes) -> "SailParameters":
         """A copy with some fields changed (validated again)."""

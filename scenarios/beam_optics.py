@@ -14,7 +14,6 @@ Writes beam_optics.png, beam_optics_profile.csv and beam_optics_tilt.csv. Usage:
 """
 from __future__ import annotations
 
-import argparse
 import math
 import sys
 from pathlib import Path
@@ -22,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import loads, paper_case, shapes
-from lightsail_mbs.figures import new_figure, print_table, run_cases, save_figure, write_csv
+from lightsail_mbs.figures import new_figure, print_table, run_cases, save_figure, scenario_parser, write_csv
 
 WAISTS = (math.inf, 2.0, 1.0, 0.5)                                  # m
 OPTICS = ((1.0, 0.0), (0.9, 0.1), (0.0, 1.0))                      # (R, α)
@@ -107,10 +106,7 @@ def plot(path, rows) -> None:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", default=str(Path(__file__).resolve().parent / "figures"))
-    parser.add_argument("--solver", choices=("reduced", "exudyn"), default="reduced")
-    parser.add_argument("--quick", action="store_true", help="n = 10, 1 s runs (smoke test)")
+    parser = scenario_parser(__doc__, "n = 10, 1 s runs (smoke test)")
     args = parser.parse_args(argv)
     run(args.out, solver=args.solver, quick=args.quick)
     return 0

@@ -13,14 +13,13 @@ Writes dissipation.png and dissipation.csv. Usage: python scenarios/dissipation.
 """
 from __future__ import annotations
 
-import argparse
 import sys
 from pathlib import Path
 
 import numpy as np
 
 from lightsail_mbs import paper_case, theory
-from lightsail_mbs.figures import new_figure, print_table, run_cases, save_figure, write_csv
+from lightsail_mbs.figures import new_figure, print_table, run_cases, save_figure, scenario_parser, write_csv
 from lightsail_mbs.spectral import angle_frequency
 
 TENSION_RATIOS = (1e-2, 1e1, 1e2, 1e3, 1e4)     # T / T_cr,max
@@ -84,11 +83,8 @@ def plot(path, rows, beta) -> None:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", default=str(Path(__file__).resolve().parent / "figures"))
+    parser = scenario_parser(__doc__, "n = 10, 1 s runs (smoke test)")
     parser.add_argument("--beta", type=float, default=1e-4, help="material damping β (s)")
-    parser.add_argument("--solver", choices=("reduced", "exudyn"), default="reduced")
-    parser.add_argument("--quick", action="store_true", help="n = 10, 1 s runs (smoke test)")
     args = parser.parse_args(argv)
     run(args.out, beta=args.beta, solver=args.solver, quick=args.quick)
     return 0

@@ -10,7 +10,6 @@ Writes montecarlo.png and montecarlo.csv. Usage: python scenarios/montecarlo.py 
 """
 from __future__ import annotations
 
-import argparse
 import sys
 from dataclasses import asdict
 from pathlib import Path
@@ -18,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import SailParameters, montecarlo, theory
-from lightsail_mbs.figures import new_figure, print_table, save_figure, write_csv
+from lightsail_mbs.figures import new_figure, print_table, save_figure, scenario_parser, write_csv
 
 MODULUS_RATIOS = (0.1, 1.0, 10.0, 100.0)     # E / E_cr,max (ν = 3/2 sine)
 
@@ -62,11 +61,8 @@ def plot(path, rows, seeds) -> None:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", default=str(Path(__file__).resolve().parent / "figures"))
+    parser = scenario_parser(__doc__, "n = 10, 2 s runs (smoke test)")
     parser.add_argument("--seeds", type=int, default=50)
-    parser.add_argument("--solver", choices=("reduced", "exudyn"), default="reduced")
-    parser.add_argument("--quick", action="store_true", help="n = 10, 2 s runs (smoke test)")
     args = parser.parse_args(argv)
     run(args.out, seeds=args.seeds, solver=args.solver, quick=args.quick)
     return 0

@@ -104,11 +104,7 @@ def run(params: SailParameters, *, progress: bool = False, rtol: float | None = 
     start = shapes.initial_state(params)
     q0 = model.pack(start.x[0], start.y[0], start.theta, start.z)
     y0 = np.concatenate([q0, np.zeros_like(q0)])
-    dt = params.sample_interval
-    n_samples = int(math.floor(params.t_final / dt + 1e-9)) + 1
-    sample_times = dt * np.arange(n_samples)
-    if sample_times[-1] < params.t_final * (1 - 1e-12):
-        sample_times = np.append(sample_times, params.t_final)
+    sample_times = params.sample_times()
     amp0 = analysis.amplitude(start.x, start.y)
     limit = params.failure_ratio * amp0
 

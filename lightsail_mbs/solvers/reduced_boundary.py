@@ -180,7 +180,7 @@ def dynamics_of(p: SailParameters):
 
 
 def state_scales(model: ChainModel) -> np.ndarray:
-    """Magnitudes of y = (q, q̇) for the absolute tolerances: positions max(a₀, P₀L³/(3EI)) (the
+    """Magnitudes of y = (q, q̇) for the absolute tolerances: positions max(displacement_scale, P₀L³/(3EI)) (the
     defect or the static tip deflection), angles 2π × that / L, rates those over the fastest
     spring or tension time scale (at least 1 ms)."""
     p = model.params
@@ -188,7 +188,6 @@ def state_scales(model: ChainModel) -> np.ndarray:
     bending = p.youngs_modulus * p.second_moment_of_area if model.torsional_stiffness else 0.0
     if p.tip_load and bending:
         position = max(position, abs(p.tip_load) * p.length ** 3 / (3 * bending))
-    position = position or 1e-6 * p.length
     rate = 1e3
     if model.torsional_stiffness:
         rate = max(rate, math.sqrt(model.torsional_stiffness / model.inertia))
@@ -225,10 +224,7 @@ def run(params: SailParameters, *, progress: bool = False, rtol: float | None = 
     start = shapes.initial_state(params)
     q0 = model.pack(start.x[0], start.y[0], start.theta, start.z)
     y0 = np.concatenate([q0, np.zeros_like(q0)])
-    dt = params.sample_interval
-    sample_times = dt * np.arange(int(math.floor(params.t_final / dt + 1e-9)) + 1)
-    if sample_times[-1] < params.t_final * (1 - 1e-12):
-        sample_times = np.append(sample_times, params.t_final)
+    sample_times = params.sample_times()
     limit = params.failure_ratio * analysis.amplitude(start.x, start.y)
     checking = params.stop_at_failure and limit > 0
 
