@@ -3,9 +3,9 @@
 Data flows one way: SailParameters → initial shape → solver (exudyn | reduced) → Result
 → analysis → reports, maps, frames.
 """
-from .parameters import ParameterError, SailParameters, paper_case
-from .result import Result
-from .solvers import solve
+from lightsail_mbs.model.parameters import ParameterError, SailParameters, paper_case
+from lightsail_mbs.result import Result
+from lightsail_mbs.solvers import solve
 
 __all__ = ["ParameterError", "SailParameters", "paper_case", "Result", "solve"]
 __version__ = "0.1.0"

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
-from . import analysis
-from .parameters import SailParameters
+from lightsail_mbs import analysis
+from lightsail_mbs.model.parameters import SailParameters
 
 ARRAYS = ("time", "x", "y", "theta", "z", "vx", "vy", "omega", "z_rate", "amplitude")
 

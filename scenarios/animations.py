@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import Result, paper_case, solve
-from lightsail_mbs.render import make_movie, render_frames
+from lightsail_mbs.viz.frames import make_movie, render_frames
 from lightsail_mbs.result import ARRAYS
 
 # past failure (soft torsion fails at ~2.1 s, the rigid sail at ~6.8 ms), then cut at --until-ratio

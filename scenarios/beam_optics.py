@@ -20,8 +20,9 @@ from pathlib import Path
 
 import numpy as np
 
-from lightsail_mbs import loads, paper_case, shapes
-from lightsail_mbs.figures import new_figure, print_table, run_cases, save_figure, scenario_parser, write_csv
+from lightsail_mbs.model import loads, shapes
+from lightsail_mbs import paper_case
+from lightsail_mbs.paper.common import (new_figure, print_table, run_cases, save_figure, scenario_parser, write_csv)
 
 WAISTS = (math.inf, 2.0, 1.0, 0.5)                                  # m
 OPTICS = ((1.0, 0.0), (0.9, 0.1), (0.0, 1.0))                      # (R, α)

@@ -18,9 +18,10 @@ from pathlib import Path
 
 import numpy as np
 
-from lightsail_mbs import paper_case, theory
-from lightsail_mbs.figures import new_figure, print_table, run_cases, save_figure, scenario_parser, write_csv
-from lightsail_mbs.spectral import angle_frequency
+from lightsail_mbs import paper_case
+from lightsail_mbs.model import theory
+from lightsail_mbs.paper.common import (new_figure, print_table, run_cases, save_figure, scenario_parser, write_csv)
+from lightsail_mbs.analysis.spectral import angle_frequency
 
 TENSION_RATIOS = (1e-2, 1e1, 1e2, 1e3, 1e4)     # T / T_cr,max
 REFERENCE_ABSORPTIVITY = 1e-6

@@ -13,8 +13,9 @@ from __future__ import annotations
 
 import sys
 
-from lightsail_mbs import paper_case, theory
-from lightsail_mbs.figures import angle_history_figures, print_table
+from lightsail_mbs import paper_case
+from lightsail_mbs.model import theory
+from lightsail_mbs.paper.common import angle_history_figures, print_table
 
 FIGURES = (10, 11)
 

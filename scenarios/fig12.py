@@ -12,7 +12,7 @@ import sys
 import numpy as np
 
 from lightsail_mbs import paper_case
-from lightsail_mbs.figures import print_table, stability_map_figure
+from lightsail_mbs.paper.common import print_table, stability_map_figure
 
 FIGURES = (12,)
 THICKNESSES = np.logspace(-8, -5, 7)      # m: 0.01 … 10 µm, half decades

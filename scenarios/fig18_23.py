@@ -20,8 +20,8 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import paper_case
-from lightsail_mbs.figures import new_figure, print_table, run_cases, save_figure, write_csv
-from lightsail_mbs.spectral import angle_frequency
+from lightsail_mbs.paper.common import new_figure, print_table, run_cases, save_figure, write_csv
+from lightsail_mbs.analysis.spectral import angle_frequency
 
 FIGURES = (18, 19, 20, 21, 22, 23)
 T_STABLE, T_SOFT = 3.34e-3, 3.34e-8          # N

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import analysis, paper_case
-from lightsail_mbs.figures import new_figure, plot_shape, print_table, run_cases, save_figure, write_csv
+from lightsail_mbs.paper.common import new_figure, plot_shape, print_table, run_cases, save_figure, write_csv
 
 FIGURES = (5,)
 MODES = tuple(0.5 * k for k in range(1, 11))     # ν = 1/2, 1, …, 5

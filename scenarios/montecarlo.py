@@ -16,8 +16,10 @@ from pathlib import Path
 
 import numpy as np
 
-from lightsail_mbs import SailParameters, montecarlo, theory
-from lightsail_mbs.figures import new_figure, print_table, save_figure, scenario_parser, write_csv
+from lightsail_mbs import SailParameters
+from lightsail_mbs.studies import montecarlo
+from lightsail_mbs.model import theory
+from lightsail_mbs.paper.common import new_figure, print_table, save_figure, scenario_parser, write_csv
 
 MODULUS_RATIOS = (0.1, 1.0, 10.0, 100.0)     # E / E_cr,max (ν = 3/2 sine)
 

@@ -13,8 +13,8 @@ import time
 import numpy as np
 
 from lightsail_mbs import Result, SailParameters
-from lightsail_mbs.render import render_frames
-from lightsail_mbs.shapes import hinge_points
+from lightsail_mbs.viz.frames import render_frames
+from lightsail_mbs.model.shapes import hinge_points
 
 
 def growing_sine(n: int = 30, steps: int = 1001, rate: float = 1.2, t_final: float = 1.0) -> Result:

@@ -17,8 +17,8 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import SailParameters
-from lightsail_mbs import critical as cr
-from lightsail_mbs.figures import new_figure, print_table, save_figure, write_csv
+from lightsail_mbs.analysis import finite_amplitude as cr
+from lightsail_mbs.paper.common import new_figure, print_table, save_figure, write_csv
 
 TORSION = SailParameters(model="torsion", n=30, mode=1.5)
 TNT = SailParameters(model="tnt", n=30, mode=1.5, axial_springs=False, tension=1e-8)

@@ -16,8 +16,8 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import paper_case
-from lightsail_mbs import stability as st
-from lightsail_mbs.figures import new_figure, print_table, save_figure, write_csv
+from lightsail_mbs.analysis import linear_stability as st
+from lightsail_mbs.paper.common import new_figure, print_table, save_figure, write_csv
 
 CASES = {"torsion-stable": paper_case("torsion-stable"), "torsion-soft": paper_case("torsion-soft"),
          "tnt-stable (inextensible)": paper_case("tnt-stable", axial_springs=False),

@@ -14,7 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
-from lightsail_mbs import Result, SailParameters, theory
+from lightsail_mbs import Result, SailParameters
+from lightsail_mbs.model import theory
 
 
 def fake_case(case):
@@ -48,13 +49,13 @@ def fake_result(p, growth_rate):
 
 def small_sweep(marker_dir, sleep=0.0, **options):
     """12 torsion cases: 4 moduli × 3 thicknesses."""
-    from lightsail_mbs.sweep import Case
+    from lightsail_mbs.studies.sweep import Case
     return [Case(SailParameters(thickness=h, youngs_modulus=e), "fake",
                  dict(marker_dir=str(marker_dir), sleep=sleep, **options))
             for h in (1e-7, 1e-6, 1e-5) for e in (1e9, 1e11, 1e13, 1e15)]
 
 
 if __name__ == "__main__":
-    from lightsail_mbs.sweep import run_sweep
+    from lightsail_mbs.studies.sweep import run_sweep
     store, markers, sleep = sys.argv[1], sys.argv[2], float(sys.argv[3])
     run_sweep(small_sweep(markers, sleep), store, workers=2, progress=False, case_function=fake_case)

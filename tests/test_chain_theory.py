@@ -4,9 +4,9 @@ import math
 import numpy as np
 import pytest
 
-from lightsail_mbs import chain_theory as ct
-from lightsail_mbs.parameters import SailParameters
-from lightsail_mbs.sinefit import fit_sinusoid
+from lightsail_mbs.model import chain_theory as ct
+from lightsail_mbs.model.parameters import SailParameters
+from lightsail_mbs.analysis.sinefit import fit_sinusoid
 
 BEAM = dict(model="torsion", length=1.0, width=0.1, thickness=0.2, density=7800.0, youngs_modulus=200e9,
             intensity=0.0, amplitude=0.0, stop_at_failure=False)

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from lightsail_mbs import ParameterError, SailParameters, analysis, solve
-from lightsail_mbs import chain_theory as ct
-from lightsail_mbs.sinefit import fit_damped_sinusoid
+from lightsail_mbs.model import chain_theory as ct
+from lightsail_mbs.analysis.sinefit import fit_damped_sinusoid
 
 # free vibration of a stiff 10-slice torsion chain: first elastic mode 13.7 rad/s, ζ₁ = 2.1 %
 FREE = dict(model="torsion", n=10, youngs_modulus=4.5e15, intensity=0.0, stiffness_damping=3e-3)

@@ -5,9 +5,10 @@ import pytest
 
 exu = pytest.importorskip("exudyn")
 
-from lightsail_mbs import ParameterError, SailParameters, analysis, loads, paper_case, solve  # noqa: E402
-from lightsail_mbs.solvers import exudyn_chain  # noqa: E402
-from lightsail_mbs.solvers.exudyn_model import ChainLayout  # noqa: E402
+from lightsail_mbs import ParameterError, SailParameters, analysis, paper_case, solve  # noqa: E402
+from lightsail_mbs.model import loads
+from lightsail_mbs.solvers.exudyn import chain as exudyn_chain  # noqa: E402
+from lightsail_mbs.solvers.exudyn.tree import ChainLayout  # noqa: E402
 
 rng = np.random.default_rng(11)
 
@@ -103,7 +104,7 @@ def test_exudyn_load_equals_applied_forces(name):
 def test_initial_state_is_the_shape_at_rest():
     p = SailParameters(model="tnt", n=12, tension=1e-4, youngs_modulus=1e11)
     r = solve(p.replace(t_final=0.01), "exudyn")
-    from lightsail_mbs import shapes
+    from lightsail_mbs.model import shapes
     s0 = shapes.initial_state(p)
     np.testing.assert_allclose(r.x[0], s0.x, atol=1e-15)
     np.testing.assert_allclose(r.y[0], s0.y, atol=1e-15)

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from lightsail_mbs import ParameterError, SailParameters
-from lightsail_mbs.loads import applied_forces, intensity, radiation_forces
+from lightsail_mbs.model.loads import applied_forces, intensity, radiation_forces
 
 C = 299_792_458.0
 rng = np.random.default_rng(7)

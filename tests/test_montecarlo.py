@@ -3,8 +3,9 @@ import numpy as np
 import pytest
 from scipy import stats
 
-from lightsail_mbs import ParameterError, SailParameters, montecarlo
-from lightsail_mbs.shapes import initial_state
+from lightsail_mbs import ParameterError, SailParameters
+from lightsail_mbs.studies import montecarlo
+from lightsail_mbs.model.shapes import initial_state
 
 
 def seed_dependent_case(case):

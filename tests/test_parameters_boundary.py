@@ -3,7 +3,7 @@ import math
 
 import pytest
 
-from lightsail_mbs.parameters import ParameterError, SailParameters
+from lightsail_mbs.model.parameters import ParameterError, SailParameters
 
 
 def test_defaults_keep_the_free_sail_and_its_dict():

@@ -3,11 +3,12 @@ Lagrangian, O(n) accelerations against the dense form, energy conservation, the 
 import numpy as np
 import pytest
 
-from lightsail_mbs import ParameterError, SailParameters, analysis, crosscheck, loads, paper_case, shapes, solve
-from lightsail_mbs.solvers import reduced
-from lightsail_mbs.solvers.reduced_dynamics import ChainDynamics
-from lightsail_mbs.solvers.reduced_kinematics import (ChainModel, centres, dense_accelerations,
-                                                      generalized_forces, mass_matrix, velocity_terms)
+from lightsail_mbs import ParameterError, SailParameters, analysis, paper_case, solve
+from lightsail_mbs.studies import crosscheck
+from lightsail_mbs.model import loads, shapes
+from lightsail_mbs.solvers.reduced import solver as reduced
+from lightsail_mbs.solvers.reduced.dynamics import ChainDynamics
+from lightsail_mbs.solvers.reduced.kinematics import (ChainModel, centres, dense_accelerations, generalized_forces, mass_matrix, velocity_terms)
 
 rng = np.random.default_rng(2024)
 
@@ -239,7 +240,7 @@ def test_compiled_radau_takes_scipys_steps():
     factorisations, same state to round-off (extensible TnT, stiff axial springs)."""
     from scipy.integrate import Radau
 
-    from lightsail_mbs.solvers.reduced_radau import Radau as CompiledRadau
+    from lightsail_mbs.solvers.reduced.radau import Radau as CompiledRadau
 
     p = paper_case("tnt-stable", t_final=0.05)
     model = ChainModel.from_params(p)
@@ -264,7 +265,7 @@ def test_compiled_radau_takes_scipys_steps():
 @pytest.mark.parametrize("method", ["DOP853", "RK45"])
 def test_divergence_is_recorded_not_raised(monkeypatch, method):
     """A non-finite state ends the run with Result.error set and the finite trajectory before it."""
-    from lightsail_mbs.solvers import reduced_integrator
+    from lightsail_mbs.solvers.reduced import dop853 as reduced_integrator
 
     p = SailParameters(n=5, t_final=0.1, output_interval=0.001)
     original_advance, original_rhs = reduced_integrator.Dop853.advance, ChainDynamics.rhs

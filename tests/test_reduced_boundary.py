@@ -2,10 +2,9 @@
 import numpy as np
 import pytest
 
-from lightsail_mbs import classic
-from lightsail_mbs.solvers.reduced_boundary import BoundedChainDynamics, dynamics_of, needs_boundary
-from lightsail_mbs.solvers.reduced_kinematics import (centre_jacobian, generalized_forces, mass_matrix,
-                                                      velocity_terms)
+from lightsail_mbs.studies import classic
+from lightsail_mbs.solvers.reduced.supports import BoundedChainDynamics, dynamics_of, needs_boundary
+from lightsail_mbs.solvers.reduced.kinematics import (centre_jacobian, generalized_forces, mass_matrix, velocity_terms)
 
 
 def random_state(model, rng, scale=0.05):

@@ -11,9 +11,9 @@ from PIL import Image
 
 from lightsail_mbs import ParameterError, Result, SailParameters
 from lightsail_mbs.cli import main
-from lightsail_mbs.render import frame_indices, make_movie, render_comparison, render_frames
-from lightsail_mbs.render_scene import Layout, auto_exaggeration, frame_exaggeration, hinge_values, make_style
-from lightsail_mbs.shapes import hinge_points
+from lightsail_mbs.viz.frames import frame_indices, make_movie, render_comparison, render_frames
+from lightsail_mbs.viz.scene import Layout, auto_exaggeration, frame_exaggeration, hinge_values, make_style
+from lightsail_mbs.model.shapes import hinge_points
 
 RENDERERS = ("matplotlib", "exudyn")
 SAIL_STROKE_PX = 4.0          # render_scene: sail strokes are 4·scale pixels wide

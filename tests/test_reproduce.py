@@ -11,10 +11,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from lightsail_mbs import SailParameters, theory
+from lightsail_mbs import SailParameters
+from lightsail_mbs.model import theory
 from lightsail_mbs.cli import main
-from lightsail_mbs.spectral import angle_frequency, dominant_frequency
-from lightsail_mbs.stability_map import boundary_map
+from lightsail_mbs.analysis.spectral import angle_frequency, dominant_frequency
+from lightsail_mbs.studies.maps import boundary_map
 
 sys.path.insert(0, str(Path(__file__).parent))
 from sweep_fake import fake_case, fake_result  # noqa: E402
@@ -63,7 +64,7 @@ def test_boundary_map_brackets_the_known_threshold(tmp_path):
 
 def test_map_figure_survives_a_thickness_where_every_run_errs(tmp_path):
     """A solver error is a result: the map is drawn, and the row says 'error'."""
-    from lightsail_mbs.figures import stability_map_figure
+    from lightsail_mbs.paper.common import stability_map_figure
     base = SailParameters(model="torsion", n=8, t_final=0.1)
     rows = stability_map_figure(tmp_path, "map", 0, base, [1e-7, 1e-6], [1.5, 2.0], solver="fake", workers=1,
                                 progress=False, case_function=fake_case, options={"error_modes": [2.0]})
@@ -109,7 +110,7 @@ def test_reproduce_figure_5_quick_writes_files_and_fails_at_troughs(tmp_path, ca
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("solver, module", [("reduced", "reduced"), ("exudyn", "exudyn_chain")])
+@pytest.mark.parametrize("solver, module", [("reduced", "reduced.solver"), ("exudyn", "exudyn.chain")])
 def test_figure_5_all_modes_fail_at_a_trough_but_one_half(tmp_path, solver, module):
     pytest.importorskip(f"lightsail_mbs.solvers.{module}")
     assert main(["reproduce", "--figure", "5", "--solver", solver, "--quiet", "--out", str(tmp_path)]) == 0

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from lightsail_mbs import SailParameters
-from lightsail_mbs.shapes import hinge_points, initial_state
+from lightsail_mbs.model.shapes import hinge_points, initial_state
 
 
 @pytest.mark.parametrize("model, extra", [("torsion", {}), ("rigid", {}), ("tnt", {"tension": 1e3})])
@@ -40,7 +40,7 @@ def test_flat_sail_for_zero_amplitude():
 
 
 def test_multimode_defect_seeded_rms_and_chords():
-    from lightsail_mbs.shapes import multimode_coefficients, multimode_profile
+    from lightsail_mbs.model.shapes import multimode_coefficients, multimode_profile
     p = SailParameters(n=60, amplitude=1e-4, defect_seed=3, defect_modes=12, defect_spectrum=1.5)
     nu, a, phase = multimode_coefficients(p)
     nu2, a2, phase2 = multimode_coefficients(p)

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from lightsail_mbs import SailParameters, paper_case
-from lightsail_mbs import stability as st
+from lightsail_mbs.analysis import linear_stability as st
 
 LINEAR_CASES = {
     "torsion-stable": paper_case("torsion-stable", n=12),
@@ -70,7 +70,7 @@ def test_exudyn_own_forward_difference_jacobian_is_noisy_with_load():
 # ---- finite amplitude: scaling, critical values, failure time ---------------------------------
 import json  # noqa: E402
 
-from lightsail_mbs import critical as cr  # noqa: E402
+from lightsail_mbs.analysis import finite_amplitude as cr  # noqa: E402
 from lightsail_mbs.cli import main as cli_main  # noqa: E402
 
 SMALL_TORSION = SailParameters(model="torsion", n=10, mode=1.5)
@@ -148,7 +148,7 @@ def test_boundary_for_run_takes_the_last_crossing_of_a_non_monotone_curve():
 
 
 def test_lowest_mode_buckling_ratio_balances_euler_load_and_defect_compression():
-    from lightsail_mbs import theory
+    from lightsail_mbs.model import theory
     p = SailParameters(model="torsion", mode=1.5, thickness=2e-6, amplitude=3e-5)
     q = cr.with_ratio(p, cr.lowest_mode_buckling_ratio(p))
     euler = q.youngs_modulus * q.thickness ** 3 * cr.FREE_FREE_BETA1_L ** 2 / (12 * q.length ** 2)

@@ -13,10 +13,11 @@ from pathlib import Path
 
 import pytest
 
-from lightsail_mbs import ParameterError, Result, SailParameters, theory
-from lightsail_mbs.bisection import BoundaryProblem, bisect_boundaries, bisect_boundary, default_stable
-from lightsail_mbs.store import CaseStore
-from lightsail_mbs.sweep import Case, run_sweep
+from lightsail_mbs import ParameterError, Result, SailParameters
+from lightsail_mbs.model import theory
+from lightsail_mbs.studies.bisection import (BoundaryProblem, bisect_boundaries, bisect_boundary, default_stable)
+from lightsail_mbs.studies.store import CaseStore
+from lightsail_mbs.studies.sweep import Case, run_sweep
 
 sys.path.insert(0, str(Path(__file__).parent))
 from sweep_fake import fake_case, small_sweep  # noqa: E402
@@ -199,7 +200,7 @@ def test_bisection_reports_what_it_cannot_decide(tmp_path):
         run_sweep([], tmp_path, workers=0)
 
 
-@pytest.mark.parametrize("solver, module", [("reduced", "reduced"), ("exudyn", "exudyn_chain")])
+@pytest.mark.parametrize("solver, module", [("reduced", "reduced.solver"), ("exudyn", "exudyn.chain")])
 def test_real_solver_sweep_matches_a_direct_solve(tmp_path, solver, module):
     pytest.importorskip(f"lightsail_mbs.solvers.{module}")
     from lightsail_mbs import solve

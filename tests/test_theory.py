@@ -2,7 +2,8 @@
 import numpy as np
 import pytest
 
-from lightsail_mbs import SailParameters, theory
+from lightsail_mbs import SailParameters
+from lightsail_mbs.model import theory
 
 C = 299_792_458.0
 

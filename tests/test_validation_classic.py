@@ -7,11 +7,11 @@ import math
 import numpy as np
 import pytest
 
-from lightsail_mbs import chain_theory as ct
-from lightsail_mbs import classic
-from lightsail_mbs import linearization as lin
+from lightsail_mbs.model import chain_theory as ct
+from lightsail_mbs.studies import classic
+from lightsail_mbs.analysis import linearization as lin
 from lightsail_mbs.solvers import solve
-from lightsail_mbs.statics import static_state
+from lightsail_mbs.analysis.statics import static_state
 
 SOLVERS = ("exudyn", "reduced")
 

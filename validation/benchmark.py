@@ -71,7 +71,7 @@ def benchmark(solvers, cases, repeats) -> list[dict]:
 def convergence(cases=("torsion-soft", "tnt-soft", "rigid"), factors=(1.0, 0.5, 0.25)) -> list[dict]:
     """Failure time of the soft paper cases with the step and both Newton tolerances scaled
     together (factor 1 = the defaults), plus tight tolerances (1e-10) at the default step."""
-    from lightsail_mbs.solvers import exudyn_chain as ec
+    from lightsail_mbs.solvers.exudyn import chain as ec
 
     rows = []
     for case in cases:

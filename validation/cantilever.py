@@ -18,11 +18,11 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-from lightsail_mbs import chain_theory as ct  # noqa: E402
-from lightsail_mbs import classic  # noqa: E402
-from lightsail_mbs.figures import new_figure, save_figure  # noqa: E402
+from lightsail_mbs.model import chain_theory as ct  # noqa: E402
+from lightsail_mbs.studies import classic  # noqa: E402
+from lightsail_mbs.paper.common import new_figure, save_figure  # noqa: E402
 from lightsail_mbs.solvers import solve  # noqa: E402
-from lightsail_mbs.statics import static_state  # noqa: E402
+from lightsail_mbs.analysis.statics import static_state  # noqa: E402
 
 OUT = Path(__file__).resolve().parent
 STATIC_N = [10, 20, 30, 50, 100, 200, 500, 1000]

@@ -18,8 +18,8 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-from lightsail_mbs import classic  # noqa: E402
-from lightsail_mbs.figures import new_figure, save_figure  # noqa: E402
+from lightsail_mbs.studies import classic  # noqa: E402
+from lightsail_mbs.paper.common import new_figure, save_figure  # noqa: E402
 from lightsail_mbs.solvers import solve  # noqa: E402
 
 OUT = Path(__file__).resolve().parent

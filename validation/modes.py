@@ -16,10 +16,10 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-from lightsail_mbs import chain_theory as ct  # noqa: E402
-from lightsail_mbs import classic  # noqa: E402
-from lightsail_mbs import linearization as lin  # noqa: E402
-from lightsail_mbs.figures import new_figure, save_figure  # noqa: E402
+from lightsail_mbs.model import chain_theory as ct  # noqa: E402
+from lightsail_mbs.studies import classic  # noqa: E402
+from lightsail_mbs.analysis import linearization as lin  # noqa: E402
+from lightsail_mbs.paper.common import new_figure, save_figure  # noqa: E402
 
 OUT = Path(__file__).resolve().parent
 N = 30

@@ -5,7 +5,7 @@ import argparse
 import importlib
 import sys
 
-from ..parameters import ParameterError
+from lightsail_mbs.model.parameters import ParameterError
 
 # subcommand modules of this package; each defines register(subparsers) and sets `func`
 COMMANDS = ["theory", "simulate", "render", "montecarlo", "reproduce", "crosscheck", "stability"]

@@ -1,7 +1,7 @@
 """`lightsail-mbs crosscheck`: both solvers on the cross-validation cases; Markdown report and plots."""
 from __future__ import annotations
 
-from .. import crosscheck
+from lightsail_mbs.studies import crosscheck
 
 
 def register(sub) -> None:

@@ -4,9 +4,9 @@ from __future__ import annotations
 import dataclasses
 import json
 
-from .. import montecarlo
-from ..solvers import SOLVERS
-from .options import add_case_options, params_from_args
+from lightsail_mbs.studies import montecarlo
+from lightsail_mbs.solvers import SOLVERS
+from lightsail_mbs.cli.options import add_case_options, params_from_args
 
 
 def register(sub) -> None:

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import argparse
 
-from ..parameters import SailParameters
+from lightsail_mbs.model.parameters import SailParameters
 
 # option name -> (SailParameters field, type, help)
 CASE_OPTIONS = {

@@ -3,8 +3,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..render import RENDERERS, make_movie, parse_size, render_comparison, render_frames
-from ..result import Result
+from lightsail_mbs.viz.frames import RENDERERS, make_movie, parse_size, render_comparison, render_frames
+from lightsail_mbs.result import Result
 
 COLOR_CHOICES = {"curvature": "curvature", "moment": "moment", "none": None}
 

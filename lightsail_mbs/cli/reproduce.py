@@ -11,8 +11,8 @@ import importlib.util
 import time
 from pathlib import Path
 
-from ..parameters import ParameterError
-from ..solvers import SOLVERS
+from lightsail_mbs.model.parameters import ParameterError
+from lightsail_mbs.solvers import SOLVERS
 
 # paper figure number -> scenario module (scenarios/<name>.py)
 SCENARIOS = {5: "fig5", 6: "fig6_8", 7: "fig6_8", 8: "fig6_8", 9: "fig9", 10: "fig10_11", 11: "fig10_11",
@@ -80,5 +80,5 @@ def run(args) -> int:
 
 def main_for_scenario(figures, argv) -> int:
     """`python scenarios/figN.py [options]`: the reproduce command for that scenario's figures."""
-    from . import main
+    from lightsail_mbs.cli import main
     return main(["reproduce", "--figure", str(figures[0]), *argv])

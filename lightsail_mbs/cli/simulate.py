@@ -4,8 +4,8 @@ from __future__ import annotations
 import json
 import sys
 
-from ..solvers import SOLVERS, solve
-from .options import add_case_options, params_from_args
+from lightsail_mbs.solvers import SOLVERS, solve
+from lightsail_mbs.cli.options import add_case_options, params_from_args
 
 
 def register(sub) -> None:

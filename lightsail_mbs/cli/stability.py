@@ -13,8 +13,9 @@ from __future__ import annotations
 import json
 import time
 
-from .. import critical, stability, theory
-from .options import add_case_options, params_from_args
+from lightsail_mbs.analysis import finite_amplitude as critical, linear_stability as stability
+from lightsail_mbs.model import theory
+from lightsail_mbs.cli.options import add_case_options, params_from_args
 
 
 def register(sub) -> None:

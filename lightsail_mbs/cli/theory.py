@@ -3,8 +3,8 @@ from __future__ import annotations
 
 import json
 
-from .. import theory
-from .options import add_case_options, params_from_args
+from lightsail_mbs.model import theory
+from lightsail_mbs.cli.options import add_case_options, params_from_args
 
 
 def register(sub) -> None:

@@ -6,10 +6,10 @@ from __future__ import annotations
 
 import importlib
 
-from ..parameters import ParameterError, SailParameters
-from ..result import Result
+from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.result import Result
 
-SOLVERS = {"exudyn": "exudyn_chain", "reduced": "reduced"}
+SOLVERS = {"exudyn": "exudyn.chain", "reduced": "reduced.solver"}
 
 
 def solve(params: SailParameters, solver: str = "exudyn", *, progress: bool = False, **options) -> Result:

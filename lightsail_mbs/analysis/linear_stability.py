@@ -1,0 +1,184 @@
+"""Linear stability of the flat accelerating sail, from both solvers.
+
+In the frame accelerating at g₀ the flat sail (θ ≡ 0) is an exact equilibrium: every slice carries
+f₀ ŷ from the beam (Eq. 11) and −m g₀ ŷ = −f₀ ŷ from the frame. Tilting slice k by δθ_k changes
+its net load, f₀ cos²θ (−sin θ, cos θ) − f₀ ŷ, by
+
+    δF_k = −f₀ δθ_k x̂ + O(δθ²)       (the ŷ part changes only at second order, −(3/2) f₀ δθ²).
+
+With F_k = 0 at the base state, the generalized forces change by δQ = Σ_k J_kᵀ δF_k, and at the
+flat state J_kᵀ x̂ = ∂x_k/∂q is non-zero only for the axial coordinates (x₁, the stretches z).
+The mass matrix does not couple axial and transverse coordinates there either. So the load
+enters the linearised equations only as a one-way coupling from the angles into the axial
+rows: the Jacobian is block-triangular and its spectrum is that of the unloaded chain —
+the free–free beam (torsion), the tensioned string (TnT) or the free mechanism (rigid,
+all frequencies zero). Linear theory has no critical E or T: the instability of the runs is
+a finite-amplitude effect (see lightsail_mbs.critical).
+
+Two independent linearisations, both at the flat state:
+* reduced solver: central-difference Jacobian of ẏ = (q̇, q̈(q, q̇)) (reduced_dynamics), all
+  columns in one vectorised call;
+* Exudyn: M and the elastic/tension stiffness K from ``ComputeLinearizedSystem`` of the unlit
+  KinematicTree, plus the load stiffness by central differences of the tree's own load
+  function (exudyn_model.generalized_force) and the analytic frame force. Exudyn's own
+  forward-difference Jacobian of the lit system is also available (``exudyn_load="solver"``);
+  its load part cancels f₀-sized terms and is noisy to ≈ 1 % of the softest bending
+  frequencies, whatever the difference step (scenario stability_linear.py shows it).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as sl
+
+from lightsail_mbs.model import shapes
+from lightsail_mbs.model.parameters import ParameterError, SailParameters
+
+RIGID_MODES = 3     # a free sail translates in x, y and rotates without restoring force
+FD_STEP = 1e-6      # central-difference step: rad for angles, m for positions and stretches
+
+
+def flat(p: SailParameters) -> SailParameters:
+    """The same sail without its defect (a₀ = 0): the flat equilibrium state."""
+    return p.replace(amplitude=0.0)
+
+
+def unlit(p: SailParameters) -> SailParameters:
+    """The same sail without the beam (I₀ = 0, hence g₀ = 0): the unloaded chain."""
+    return p.replace(intensity=0.0)
+
+
+# ---- reduced solver ------------------------------------------------------------------------
+def reduced_jacobian(p: SailParameters, step: float = FD_STEP, state: shapes.ChainState | None = None) -> np.ndarray:
+    """∂ẏ/∂y of the reduced model at rest in `state` (default: the flat state), y = (q, q̇)
+    (2·dof square), central differences."""
+    from lightsail_mbs.solvers.reduced.dynamics import ChainDynamics
+    from lightsail_mbs.solvers.reduced.kinematics import ChainModel
+
+    if state is None:
+        p = flat(p)
+        state = shapes.initial_state(p)
+    model = ChainModel.from_params(p)
+    q0 = model.pack(state.x[0], state.y[0], state.theta, state.z)
+    y0 = np.concatenate([q0, np.zeros_like(q0)])
+    size = y0.size
+    cols = np.concatenate([y0[:, None] + step * np.eye(size), y0[:, None] - step * np.eye(size)], axis=1)
+    dof = model.dof
+    acc = ChainDynamics(model).accelerations(cols[:dof], cols[dof:])
+    rates = np.concatenate([cols[dof:], acc])
+    return (rates[:, :size] - rates[:, size:]) / (2.0 * step)
+
+
+# ---- Exudyn --------------------------------------------------------------------------------
+def _frame_force(p: SailParameters, layout, q: np.ndarray) -> np.ndarray:
+    """Generalized force of −m g₀ ŷ on every slice in the tree coordinates: −m g₀ Σ_j ∂y_j/∂q,
+    y_j = Y + Σ_{i<j} (l + z_i) sin θ_i + (l/2) sin θ_j, θ_i = Σ_{k≤i} φ_k (exudyn_model)."""
+    n = p.n
+    theta = np.cumsum(q[layout.angle_index])
+    seg = layout.segments(q)
+    below = n - 1 - np.arange(n)                       # slices j > i
+    d_theta = seg * np.cos(theta) * below + 0.5 * p.slice_length * np.cos(theta)
+    grad = np.zeros(layout.size)
+    grad[1] = n
+    grad[layout.angle_index] = np.cumsum(d_theta[::-1])[::-1]
+    if layout.stretch_index.size:
+        grad[layout.stretch_index] = (np.sin(theta) * below)[:-1]
+    return -p.slice_mass * p.nominal_acceleration * grad
+
+
+def exudyn_linearization(p: SailParameters, *, exudyn_load: str = "central", step: float = FD_STEP,
+                         relative_epsilon: float | None = None):
+    """(M, K) of the Exudyn KinematicTree at the flat state: M q̈ + K q = 0 (K not symmetric with load).
+
+    exudyn_load="central": K = K_exudyn(unlit) − ∂(Q_beam + Q_frame)/∂q by central differences of
+    the tree's load function; "solver": Exudyn's own Jacobian of the lit system (forward
+    differences with ``relative_epsilon``, Exudyn's default 1e-7, on coordinates ≥ 1).
+    """
+    import exudyn as exu
+
+    from lightsail_mbs.solvers.exudyn import chain as exudyn_chain
+    from lightsail_mbs.solvers.exudyn.tree import generalized_force
+
+    if exudyn_load not in ("central", "solver"):
+        raise ParameterError(f"exudyn_load={exudyn_load!r} is invalid: allowed 'central' or 'solver'")
+    p = flat(p)
+    settings = exu.SimulationSettings()
+    if relative_epsilon is not None:
+        settings.staticSolver.newton.numericalDifferentiation.relativeEpsilon = float(relative_epsilon)
+        settings.staticSolver.newton.numericalDifferentiation.minimumCoordinateSize = 1.0
+    printing = exu.config.printToConsole
+    exu.config.printToConsole = False
+    try:
+        system = exudyn_chain.build(p if exudyn_load == "solver" else unlit(p))
+        mbs, layout = system[1], system[2]
+        mass, stiffness, _ = mbs.ComputeLinearizedSystem(settings)
+    finally:
+        exu.config.printToConsole = printing
+    if exudyn_load == "solver":
+        return np.asarray(mass), np.asarray(stiffness)
+    beam, tension_only = generalized_force(p, layout), generalized_force(unlit(p), layout)
+    q0 = layout.coordinates(shapes.initial_state(p))
+
+    def load(q):
+        return beam(q).copy() - tension_only(q) + _frame_force(p, layout, q)
+
+    jac = np.column_stack([(load(q0 + step * e) - load(q0 - step * e)) / (2 * step) for e in np.eye(q0.size)])
+    return np.asarray(mass), np.asarray(stiffness) - jac
+
+
+# ---- spectra -------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Spectrum:
+    """Squared angular frequencies ω² (rad²/s², ascending; negative = divergence) of a linearisation,
+    and the largest real part of its eigenvalues (s⁻¹, > 0: exponential growth)."""
+
+    omega_squared: np.ndarray
+    max_growth_rate: float
+
+    def frequencies_hz(self) -> np.ndarray:
+        """ω/2π of the elastic modes: the free sail's RIGID_MODES smallest ω² (translations x, y and
+        the rotation, zero up to round-off) and any ω² ≤ 0 dropped."""
+        w2 = self.omega_squared[RIGID_MODES:]
+        return np.sqrt(w2[w2 > 0]) / (2 * np.pi)
+
+
+def spectrum_of_jacobian(jac: np.ndarray) -> Spectrum:
+    """ω² = eig(−∂q̈/∂q) (velocity terms vanish at rest without damping) and max Re eig(jac)."""
+    dof = jac.shape[0] // 2
+    w2 = np.sort(np.linalg.eigvals(-jac[dof:, :dof]).real)
+    return Spectrum(w2, float(np.linalg.eigvals(jac).real.max()))
+
+
+def spectrum_of_system(mass: np.ndarray, stiffness: np.ndarray) -> Spectrum:
+    """ω² = eig(K, M) of M q̈ + K q = 0; growth rate max Re √(−ω²)."""
+    w2 = sl.eigvals(stiffness, mass)
+    growth = float(np.sqrt(-w2.astype(complex)).real.max())
+    return Spectrum(np.sort(w2.real), growth)
+
+
+def linear_spectrum(p: SailParameters, solver: str = "reduced", **options) -> Spectrum:
+    """The spectrum of the flat accelerating sail linearised with the named solver."""
+    if solver == "reduced":
+        return spectrum_of_jacobian(reduced_jacobian(p, **options))
+    if solver == "exudyn":
+        return spectrum_of_system(*exudyn_linearization(p, **options))
+    raise ParameterError(f"solver={solver!r} is invalid: allowed 'reduced' or 'exudyn'")
+
+
+def load_rate_scale(p: SailParameters) -> float:
+    """g₀ k (s⁻²), k = 2πν/L: the squared rate at which the load would act if it entered linearly
+    (a tilt θ = k w sends f₀θ along the sail per slice mass). The yardstick for spectrum shifts."""
+    return p.nominal_acceleration * 2 * np.pi * p.mode / p.length
+
+
+def load_shift(p: SailParameters, solver: str = "reduced", **options) -> dict:
+    """Compare the lit and unlit spectra of one sail: the largest |Δω²| over all modes, relative to
+    the larger of max ω² and the load scale g₀k, and the growth rates of both."""
+    lit, dark = linear_spectrum(p, solver, **options), linear_spectrum(unlit(p), solver, **options)
+    scale = max(float(np.abs(dark.omega_squared).max()), load_rate_scale(p))
+    return {"solver": solver, "max_shift": float(np.abs(lit.omega_squared - dark.omega_squared).max()),
+            "scale": scale,
+            "relative_shift": float(np.abs(lit.omega_squared - dark.omega_squared).max() / scale),
+            "growth_rate_lit": lit.max_growth_rate, "growth_rate_unlit": dark.max_growth_rate,
+            "omega_squared_lit": lit.omega_squared, "omega_squared_unlit": dark.omega_squared}

@@ -1,0 +1,96 @@
+"""Initial sail shapes: hinge points on the defect profile, every chord exactly one slice long.
+
+Paper Eq. (1): w(x) = a₀ sin(2πνx/L). Hinge 0 is at (0, 0); hinge k+1 is the point of the
+profile at chord distance c_k from hinge k, with c_k = l for rigid/torsion slices and
+c_k = l + z_k (slice plus pre-stretched spring, z_k = T/k_s) for k < n−1 in the extensible
+TnT model (Eqs 30–31 with l_s = 0). Slices lie along the chords, at rest.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from lightsail_mbs.model.parameters import SailParameters
+
+
+@dataclass(frozen=True)
+class ChainState:
+    """Slice centres (x, y), angles θ from +x, spring extensions z (length n−1, zeros if inextensible)."""
+
+    x: np.ndarray
+    y: np.ndarray
+    theta: np.ndarray
+    z: np.ndarray
+
+
+def sine_profile(p: SailParameters):
+    """w(x) = a₀ sin(2πνx/L), Eq. (1)."""
+    k = 2.0 * np.pi * p.mode / p.length
+    return lambda x: p.amplitude * np.sin(k * x)
+
+
+def multimode_coefficients(p: SailParameters) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Modes ν_k = k/2 (k = 1…K), amplitudes a_k and phases φ_k of a random defect.
+
+    a_k = ν_k^(−β) |g_k| with g_k standard normal and φ_k uniform in [0, 2π), drawn from
+    numpy's default generator seeded with params.defect_seed, then scaled so that the RMS
+    of w over 0 ≤ x ≤ L equals a₀/√2, the RMS of the paper's sine of amplitude a₀.
+    """
+    rng = np.random.default_rng(p.defect_seed)
+    nu = 0.5 * np.arange(1, p.defect_modes + 1)
+    a = nu ** (-p.defect_spectrum) * np.abs(rng.standard_normal(nu.size))
+    phase = rng.uniform(0.0, 2.0 * np.pi, nu.size)
+    x = np.linspace(0.0, p.length, 4097)
+    w = (a[:, None] * np.sin(2 * np.pi * nu[:, None] * x / p.length + phase[:, None])).sum(axis=0)
+    rms = np.sqrt(np.trapezoid(w * w, x) / p.length)
+    return nu, a * (p.amplitude / np.sqrt(2.0) / rms), phase
+
+
+def multimode_profile(p: SailParameters):
+    """w(x) = Σ_k a_k sin(2πν_k x/L + φ_k): a seeded random multi-mode defect (issue 9)."""
+    nu, a, phase = multimode_coefficients(p)
+    k = 2.0 * np.pi * nu / p.length
+    return lambda x: float(np.dot(a, np.sin(k * x + phase))) if np.ndim(x) == 0 else \
+        (a[:, None] * np.sin(k[:, None] * np.asarray(x)[None, :] + phase[:, None])).sum(axis=0)
+
+
+def defect_profile(p: SailParameters):
+    """The initial defect of a case: the paper's sine, or the multi-mode defect if defect_seed is set."""
+    return sine_profile(p) if p.defect_seed is None else multimode_profile(p)
+
+
+def initial_spring_extension(p: SailParameters) -> np.ndarray:
+    """z_k = T / k_s for the extensible TnT chain (pre-tension), else zeros (length n − 1)."""
+    z = np.zeros(p.n - 1)
+    if p.extensible:
+        z[:] = p.tension / p.axial_stiffness
+    return z
+
+
+def hinge_points(p: SailParameters, profile=None) -> np.ndarray:
+    """(n+1, 2) hinge points on `profile` (default: defect_profile(p)) with exact chord lengths."""
+    w = profile or defect_profile(p)
+    z = initial_spring_extension(p)
+    chords = np.full(p.n, p.slice_length)
+    chords[:-1] += z
+    pts = np.zeros((p.n + 1, 2))
+    pts[0] = (0.0, w(0.0))
+    for k, c in enumerate(chords):
+        x0, y0 = pts[k]
+        gap = lambda x: np.hypot(x - x0, w(x) - y0) - c  # noqa: E731
+        x1 = brentq(gap, x0, x0 + c * (1 + 1e-9), xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
+        pts[k + 1] = (x1, w(x1))
+    return pts
+
+
+def initial_state(p: SailParameters, profile=None) -> ChainState:
+    """Slice centres and angles of the initial shape (slice k spans its hinge k to hinge k + l·e_k)."""
+    pts = hinge_points(p, profile)
+    d = np.diff(pts, axis=0)
+    theta = np.arctan2(d[:, 1], d[:, 0])
+    half = 0.5 * p.slice_length
+    x = pts[:-1, 0] + half * np.cos(theta)
+    y = pts[:-1, 1] + half * np.sin(theta)
+    return ChainState(x=x, y=y, theta=theta, z=initial_spring_extension(p))

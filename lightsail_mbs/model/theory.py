@@ -1,0 +1,60 @@
+"""Closed-form quasi-static theory of the paper's Section II (Eqs 4, 7–10).
+
+All functions take a :class:`SailParameters` and return SI values. Tensions are
+returned in newtons: the paper's per-width value multiplied by the width W.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from lightsail_mbs.model.parameters import SPEED_OF_LIGHT, SailParameters
+
+
+def radiation_pressure(p: SailParameters) -> float:
+    """2 I₀ / c: pressure on a flat perfect reflector at normal incidence (Pa)."""
+    return 2.0 * p.intensity / SPEED_OF_LIGHT
+
+
+def nominal_acceleration(p: SailParameters) -> float:
+    """g₀ ≈ 2 I₀ / (c ρ h): first-order term of Eq. (4) (m/s²)."""
+    return p.nominal_acceleration
+
+
+def perturbed_acceleration(p: SailParameters) -> float:
+    """Eq. (4) with its second-order term: g₀ [1 − 2π²ν²(a₀/L)²] (the printed 'n' is the mode ν)."""
+    return p.nominal_acceleration * (1.0 - 2.0 * np.pi ** 2 * p.mode ** 2 * (p.amplitude / p.length) ** 2)
+
+
+def critical_modulus(p: SailParameters, x0) -> np.ndarray:
+    """E_cr(x₀) = −(3/2)(2I₀/c) a₀ L² / (π² ν² h³) · sin(2πνx₀/L), Eq. (7) (Pa)."""
+    return -critical_modulus_max(p) * np.sin(2.0 * np.pi * p.mode * np.asarray(x0, float) / p.length)
+
+
+def critical_modulus_max(p: SailParameters) -> float:
+    """E_cr,max = (3/2)(2I₀/c) a₀ L² / (π² ν² h³), Eq. (8) (Pa)."""
+    return 1.5 * radiation_pressure(p) * p.amplitude * p.length ** 2 / (np.pi ** 2 * p.mode ** 2 * p.thickness ** 3)
+
+
+def critical_tension(p: SailParameters, x0) -> np.ndarray:
+    """T_cr(x₀) = −(1/2)(2I₀/c) a₀ sin(2πνx₀/L) · W, Eq. (9) (N)."""
+    return -critical_tension_max(p) * np.sin(2.0 * np.pi * p.mode * np.asarray(x0, float) / p.length)
+
+
+def critical_tension_max(p: SailParameters) -> float:
+    """T_cr,max = (1/2)(2I₀/c) a₀ · W, Eq. (10) (N)."""
+    return 0.5 * radiation_pressure(p) * p.amplitude * p.width
+
+
+def summary(p: SailParameters) -> dict:
+    """All closed-form numbers of Section II for one case."""
+    return {
+        "g0": nominal_acceleration(p),
+        "g0_perturbed": perturbed_acceleration(p),
+        "radiation_pressure": radiation_pressure(p),
+        "e_cr_max": critical_modulus_max(p),
+        "t_cr_max": critical_tension_max(p),
+        "slice_length": p.slice_length,
+        "slice_mass": p.slice_mass,
+        "torsional_stiffness": p.torsional_stiffness,
+        "axial_stiffness": p.axial_stiffness if p.model == "tnt" else None,
+    }

@@ -1,0 +1,1 @@
+"""The Exudyn solver: the chain as one ObjectKinematicTree integrated by Exudyn."""

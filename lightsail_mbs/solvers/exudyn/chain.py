@@ -1,0 +1,274 @@
+"""Exudyn solver: the sail as a chain of rigid slices integrated by Exudyn's implicit solver.
+
+Model (paper Sec. III.A–C; details in exudyn_model): n planar rigid slices (m = ρhWl,
+J = ml²/12) joined by revolute joints, as ONE Exudyn ``ObjectKinematicTree`` in the paper's
+own minimal coordinates q = [X, Y, θ₁, (z₁), φ₂, …] (Eqs 13–14, 30–31).
+torsion: torsional spring-dampers k_T = EI/l on θ_{k+1} − θ_k; rigid: none; tnt: k_T per
+params.bending, each hinge also slides along the preceding slice (spring-damper k_s, pre-stretched
+to T/k_s) and the follower tension T acts at both ends along the end slices (Eq. 32); with
+params.axial_springs=False the slides are rigid (plain revolute joints + end tension).
+The frame accelerates at g₀: every slice carries −m g₀ ŷ (the tree's gravity), and x, y are
+slice centres in that frame.
+Supports and a tip load (params.boundary, params.tip_load: the classic validations of Appendices
+A–B) are added as Exudyn constraints and loads by exudyn_boundary; the sail itself is free.
+
+Why this formulation (measured on the 2-core machine, stable 6 s torsion case, n = 30,
+h = 1 ms, relTol 1e-10):
+- redundant bodies (30 × ObjectRigidBody2D + 29 RevoluteJoint2D + an ObjectGenericODE2 spanning
+  all nodes with one vectorised load function) and this tree give the same soft-torsion failure
+  time (2.11121 s vs 2.11122 s) and similar speed (≈1.1 s vs ≈1.2 s), but in the redundant form
+  the TnT spring extension z ≈ 1e-14 m is a difference of hinge coordinates of order 1 m
+  (round-off ≈ 1e-16 m, 1 % of the pre-stretch): its Newton residual sits on a round-off floor.
+  In the tree z is itself a coordinate, exact to relative machine precision.
+- springs, dampers and the frame force are C++ (joint P/D control, gravity); only the
+  state-dependent load is Python: one vectorised force user function for the whole chain
+  (≈ 20–30 µs a call), evaluated at every Newton iterate, so the load is exact, not lagged.
+- Exudyn symbolic user functions would move that into C++, but in Exudyn 1.13.6 a symbolic
+  Vector of 8 or more entries aborts the process (free(): invalid pointer) when indexed, so the
+  tree's force vector (n + 2 ≥ 32 entries) cannot be recorded; per-slice symbolic loads
+  (LoadForceVector) cannot read the state. A Python function per slice costs ≈ 5.6 s.
+
+Solver: Exudyn generalized-α (implicit, second order, ρ∞ = 0.9), modified Newton, one fixed step
+h that divides the output interval, one ``SolveSteps`` call for the whole run. A post-step
+function checks, every SAMPLES_PER_CHECK output samples, the amplitude of every step since the
+last check and stops the solver at failure (amplitude ≥ failure_ratio × initial); the Result ends
+at the first output sample past failure; stop_at_failure=False runs on. (Restarting SolveSteps
+in chunks instead perturbs the generalized-α state at every restart: the rigid ν = 1.5 failure
+time moved by 4 %.) A Newton failure, an Exudyn error or a non-finite state is recorded in
+Result.error with the trajectory up to there.
+
+Convergence study (validation/benchmark.py --convergence; step and both Newton tolerances
+halved together; failure time, change against the defaults):
+
+    soft torsion (E = 4.5e9 Pa)  h = 1 / 0.5 / 0.25 ms
+                                 2.11498 / 2.11226 / 2.11163 s  (−0.13 / −0.16 %)
+    soft TnT (E = 1e11 Pa, T = 3.34e-8 N)  h = 0.25 / 0.125 / 0.0625 ms
+                                 2.10443 / 2.10531 / 2.10440 s  (+0.04 / −0.00 %)
+    rigid ν = 1.5                h = 5 / 2.5 / 1.25 µs
+                                 6.760 / 6.781 / 6.783 ms  (+0.32 / +0.34 %)
+    relTol 1e-10 instead of 1e-8 at the default step: −0.000 % / −0.000 % / +0.27 %
+
+In minimal coordinates the Newton tolerance hardly moves the failure time (Exudyn's default
+relTol 1e-8 suffices, unlike the prototype's 0.2 s shift). Defaults: h = STEP_FACTOR·sqrt(L/g₀)
+= 1 ms for the paper's torsion case, relTol 1e-8, absTol 1e-8 f₀. Extensible TnT needs h/4
+(EXTENSIBLE_STEP_DIVISOR): its never-resolved axial springs (ω ≈ 6e5 rad/s) start out of balance
+with the load's axial components and ring, and the failure time read 1.941 / 1.897 s at h = 1 /
+0.5 ms against 2.104 s converged; the rigid axial limit (axial_springs=False) converges at 1 ms.
+The rigid case needs h/6 (RIGID_STEP_DIVISOR; 10 µs → 5 µs moved it 1.1 %).
+"""
+from __future__ import annotations
+
+import math
+import time as _time
+
+import numpy as np
+
+from lightsail_mbs import analysis
+from lightsail_mbs.model import shapes
+from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.solvers.progress import Progress
+from lightsail_mbs.result import Result
+from lightsail_mbs.solvers.exudyn.supports import add_supports
+from lightsail_mbs.solvers.exudyn.tree import ChainLayout, generalized_force, tree_arguments
+
+# Step size h = STEP_FACTOR · sqrt(L / g₀) (capped by the output interval): the radiation
+# load sets the time scale of the instability (paper torsion case: sqrt(1 m / 667 m/s²) = 38.7 ms,
+# h = 1 ms; paper rigid case: 1.22 ms, h capped to the 10 µs output interval).
+STEP_FACTOR = 0.026
+# Extensible TnT: the axial springs (ω ≈ 6e5 rad/s, never resolved) start out of balance with the
+# load's axial components and ring; the failure time converges to 1 % only at h/4 (study in
+# the module docstring), so extensible chains take a 4× smaller step.
+EXTENSIBLE_STEP_DIVISOR = 4
+# Rigid chains (no bending springs, the paper's rigid case: a₀ = 1 mm, I₀ = 1e11 W/m²): the
+# failure time moves 1.1 % from h = 10 µs to 5 µs and 0.3 % from 5 to 2.5 µs, hence a 6× smaller
+# step (5 µs there).
+RIGID_STEP_DIVISOR = 6
+NEWTON_REL_TOL = 1e-8           # residual reduction per step (Exudyn default)
+NEWTON_ABS_FACTOR = 1e-8        # absolute residual tolerance as a fraction of f₀ × defect slope (see default_abs_tol)
+SPECTRAL_RADIUS = 0.9           # generalized-α numerical damping of the highest frequencies
+SAMPLES_PER_CHECK = 50          # failure check (and progress) after this many output samples
+
+
+def default_step_size(p: SailParameters) -> float:
+    """h = STEP_FACTOR · sqrt(L/g₀) (/ EXTENSIBLE_STEP_DIVISOR for extensible TnT, / RIGID_STEP_DIVISOR
+    for the rigid model), at most the output interval (which it then divides)."""
+    g0 = p.nominal_acceleration
+    h = STEP_FACTOR * math.sqrt(p.length / g0) if g0 > 0 else math.inf
+    if p.extensible:
+        h /= EXTENSIBLE_STEP_DIVISOR
+    elif p.model == "rigid":
+        h /= RIGID_STEP_DIVISOR
+    return min(h, p.sample_interval)
+
+
+def default_abs_tol(p: SailParameters) -> float:
+    """Absolute Newton tolerance (N per coordinate): NEWTON_ABS_FACTOR × f₀ × 2πνa₀/L (or m·1 m/s² for f₀).
+
+    The load and the frame force cancel on a flat slice; what drives the deformation is f₀ times the
+    slope of the defect, 2πνa₀/L (1 for a flat sail). A tolerance on f₀ alone let thin sails
+    (g₀ = 6.7e4 m/s², h = 10 nm) drift by 1.6e-5 rad in 0.3 s from the reduced solution; scaled by the
+    slope they agree to 5e-10 rad, for +35–55 % Newton iterations on the paper cases."""
+    scale = p.flat_force if p.flat_force > 0 else p.slice_mass
+    slope = 2.0 * math.pi * p.mode * p.amplitude / p.length
+    return NEWTON_ABS_FACTOR * scale * (slope if slope > 0 else 1.0)
+
+
+def build(p: SailParameters, initial: shapes.ChainState | None = None):
+    """The assembled Exudyn system starting at rest in `initial` (default shapes.initial_state(p)):
+    (SystemContainer, mbs, layout, sensors (q, q̇), force function)."""
+    import exudyn as exu
+    from exudyn.itemInterface import NodeGenericODE2, ObjectKinematicTree, SensorNode
+
+    layout = ChainLayout.of(p)
+    q0 = layout.coordinates(initial or shapes.initial_state(p))
+    load = generalized_force(p, layout)
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    node = mbs.AddNode(NodeGenericODE2(referenceCoordinates=[0.0] * layout.size, initialCoordinates=q0,
+                                       initialCoordinates_t=[0.0] * layout.size,
+                                       numberOfODE2Coordinates=layout.size))
+    tree = mbs.AddObject(ObjectKinematicTree(nodeNumber=node, forceUserFunction=lambda mbs, t, i, q, q_t: load(q),
+                                             **tree_arguments(p, layout, exu)))
+    add_supports(p, mbs, node, tree, layout, q0)        # supports and tip load (validations; none for a sail)
+    sensors = [mbs.AddSensor(SensorNode(nodeNumber=node, storeInternal=True, writeToFile=False,
+                                        outputVariableType=kind))
+               for kind in (exu.OutputVariableType.Coordinates, exu.OutputVariableType.Coordinates_t)]
+    mbs.Assemble()
+    return SC, mbs, layout, sensors, load
+
+
+def settings(p: SailParameters, step_size: float, rel_tol: float, abs_tol: float,
+             spectral_radius: float = SPECTRAL_RADIUS):
+    import exudyn as exu
+
+    s = exu.SimulationSettings()
+    ti = s.timeIntegration
+    ti.endTime = p.t_final
+    ti.numberOfSteps = max(1, int(round(p.t_final / step_size)))
+    ti.newton.relativeTolerance = rel_tol
+    ti.newton.absoluteTolerance = abs_tol
+    ti.generalizedAlpha.spectralRadius = spectral_radius
+    ti.minimumStepSize = step_size * 1e-4
+    ti.verboseMode = 0
+    s.solution.file.write = False
+    s.solution.sensors.writePeriod = 0.5 * step_size      # every step; _samples keeps the output grid
+    s.linearSolver.solverType = exu.LinearSolverType.EXUdense
+    return s
+
+
+def run(params: SailParameters, *, progress: bool = False, step_size: float | None = None,
+        newton_rel_tol: float | None = None, newton_abs_tol: float | None = None,
+        spectral_radius: float = SPECTRAL_RADIUS, samples_per_check: int = SAMPLES_PER_CHECK,
+        **options) -> Result:
+    """Integrate one case to t_final or to failure; see the module docstring."""
+    import exudyn as exu
+
+    if options:
+        raise ParameterError(f"options={sorted(options)} are invalid: the exudyn solver accepts step_size, "
+                             "newton_rel_tol, newton_abs_tol, spectral_radius, samples_per_check")
+    p = params
+    dt = p.sample_interval
+    h = default_step_size(p) if step_size is None else float(step_size)
+    if not (h > 0 and math.isfinite(h)):
+        raise ParameterError(f"step_size={step_size!r} is invalid: allowed 0 < step_size ≤ output interval {dt:g}")
+    h = dt / math.ceil(dt / h * (1 - 1e-12))        # whole steps per output sample
+    rel_tol = NEWTON_REL_TOL if newton_rel_tol is None else float(newton_rel_tol)
+    abs_tol = default_abs_tol(p) if newton_abs_tol is None else float(newton_abs_tol)
+    if not 0 <= spectral_radius <= 1:
+        raise ParameterError(f"spectral_radius={spectral_radius!r} is invalid: allowed 0 ≤ ρ∞ ≤ 1")
+    for name, v in (("newton_rel_tol", rel_tol), ("newton_abs_tol", abs_tol)):
+        if not (v >= 0 and math.isfinite(v)):
+            raise ParameterError(f"{name}={v!r} is invalid: allowed a finite value ≥ 0")
+
+    start = _time.perf_counter()
+    initial = shapes.initial_state(p)
+    limit = p.failure_ratio * analysis.amplitude(initial.x, initial.y)
+    checking = p.stop_at_failure and limit > 0       # a flat sail (a₀ = 0) has no failure to stop at
+    SC, mbs, layout, sensors, _ = build(p, initial)
+    s = settings(p, h, rel_tol, abs_tol, spectral_radius)
+    steps_per_sample = int(round(dt / h))
+    bar = Progress(p.t_final, progress, label=f"exudyn {p.model} n={p.n}")
+    check_steps = max(1, int(samples_per_check)) * steps_per_sample
+    watch = {"steps": 0, "failed": False}
+
+    def after_step(mbs, t) -> bool:
+        """Every check_steps steps: progress, and the amplitude of the new rows; False stops."""
+        watch["steps"] += 1
+        if watch["steps"] % check_steps:
+            return True
+        bar.update(t)
+        if checking:
+            q = mbs.GetSensorStoredData(sensors[0])[-(check_steps + 1):]
+            if np.any(analysis.amplitude(*layout.positions(q[:, 1:])[:2]) >= limit):
+                watch["failed"] = True
+                return False
+        return True
+
+    mbs.SetPostStepUserFunction(after_step)
+    solver = exu.MainSolverImplicitSecondOrder()
+    error = None
+    printing = exu.config.printToConsole
+    exu.config.printToConsole = False      # keep stdout clean (the CLI prints JSON there)
+    try:
+        solver.InitializeSolver(mbs, s)
+        ok = solver.SolveSteps(mbs, s)
+        if not ok:
+            error = (f"Newton did not converge at t = {solver.it.currentTime:.9g} s "
+                     f"(exudyn: {solver.GetErrorString()})")
+        elif not np.all(np.isfinite(mbs.systemData.GetODE2Coordinates())):
+            error = f"non-finite state at t = {solver.it.currentTime:.9g} s"
+        solver.FinalizeSolver(mbs, s)
+    except exu.ExudynError as exc:       # solver failures are results, not crashes
+        error = f"exudyn: {exc}".strip()
+    finally:
+        exu.config.printToConsole = printing
+        bar.update(solver.it.currentTime)
+        bar.close()
+    wall = _time.perf_counter() - start
+
+    q, q_t = (_samples(mbs.GetSensorStoredData(sn), dt, h) for sn in sensors)
+    t_now = float(solver.it.currentTime)
+    if error is None and len(q) and t_now > q[-1, 0] + 0.5 * dt:   # a final sample the sensor
+        q = np.vstack((q, np.concatenate(([t_now], mbs.systemData.GetODE2Coordinates()))))  # skipped
+        q_t = np.vstack((q_t, np.concatenate(([t_now], mbs.systemData.GetODE2Coordinates_t()))))
+    rows = min(len(q), len(q_t))
+    if rows == 0:                                     # failed before the first sample
+        q = np.concatenate(([0.0], layout.coordinates(initial)))[None, :]
+        q_t = np.zeros_like(q)
+        rows = 1
+    q, q_t = q[:rows], q_t[:rows]
+    x, y, theta, z = layout.positions(q[:, 1:])
+    vx, vy, omega, z_rate = layout.velocities(q[:, 1:], q_t[:, 1:])
+    if checking:
+        amp = analysis.amplitude(x, y)
+        over = np.nonzero(amp >= limit)[0]
+        if over.size:                                 # end at the first sample past failure
+            cut = over[0] + 1
+            q, x, y, theta, z, vx, vy, omega, z_rate = (a[:cut] for a in (q, x, y, theta, z, vx, vy, omega, z_rate))
+    info = {
+        "formulation": "ObjectKinematicTree (minimal coordinates), generalized-alpha",
+        "step_size": h,
+        "newton_rel_tol": rel_tol,
+        "newton_abs_tol": abs_tol,
+        "spectral_radius": spectral_radius,
+        "steps": int(round((q[-1, 0] if len(q) else 0.0) / h)),
+        "newton_iterations": int(solver.it.newtonStepsCount),
+        "jacobian_evaluations": int(solver.it.newtonJacobiCount),
+        "steps_per_sample": steps_per_sample,
+        "coordinates": layout.size,
+    }
+    return Result.from_trajectory(p, "exudyn", q[:, 0], x, y, theta, vx, vy, omega,
+                                  z=z if z.shape[-1] else None, z_rate=z_rate if z.shape[-1] else None,
+                                  wall_time=wall, error=error, info=info)
+
+
+def _samples(data: np.ndarray, dt: float, h: float) -> np.ndarray:
+    """The stored rows (one per step of size h) that lie on the output grid k·dt, once each."""
+    data = np.asarray(data, float)
+    if data.ndim != 2 or not len(data):
+        return np.zeros((0, 0))
+    index = np.round(data[:, 0] / dt)
+    on_grid = np.abs(data[:, 0] - index * dt) < 0.25 * h
+    data, index = data[on_grid], index[on_grid]
+    keep = np.concatenate(([True], np.diff(index) > 0))
+    return data[keep]

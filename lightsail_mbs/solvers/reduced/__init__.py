@@ -1,0 +1,1 @@
+"""The in-house reduced-Lagrangian solver, independent of Exudyn."""

@@ -1,0 +1,208 @@
+"""Compiled explicit Dormand–Prince 8(5,3) integrator (DOP853) for the reduced chain.
+
+The same method, step-size control, initial step and 7th-order dense output as
+scipy.integrate.DOP853 (Hairer, Nørsett & Wanner, *Solving ODEs I*, Sec. II.10; the Butcher
+tableau, error and interpolation coefficients are read from scipy), but the whole step loop
+runs in numba-compiled code calling the compiled right-hand side (reduced_dynamics.rhs_into):
+no Python work per step. Error norm: RMS of the 5th-order estimate scaled by
+atol + rtol·max(|y|, |y_new|), combined with the 3rd-order one as err5²/√(err5² + 0.01 err3²);
+step factor 0.9·err^(−1/8) bounded to [0.2, 10] (no growth right after a rejection).
+
+Output is produced in chunks of sample times (`Dop853.advance`), so the caller can stop at
+failure, show progress and keep memory bounded, at one Python call per chunk.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+from scipy.integrate._ivp import dop853_coefficients as tableau
+
+from lightsail_mbs.solvers.reduced.dynamics import rhs_into
+
+STAGES = tableau.N_STAGES                              # 12 stages per step
+A = np.ascontiguousarray(tableau.A)                    # (16, 16): 12 step stages + 3 dense-output stages
+B = np.ascontiguousarray(tableau.B)
+C = np.ascontiguousarray(tableau.C)
+E3 = np.ascontiguousarray(tableau.E3)
+E5 = np.ascontiguousarray(tableau.E5)
+D = np.ascontiguousarray(tableau.D)                    # (4, 16) interpolation coefficients
+ERROR_EXPONENT = -1.0 / 8.0                             # −1/(error estimator order + 1)
+SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0
+
+OK, FINISHED, STEP_TOO_SMALL, NOT_FINITE = 0, 1, 2, 3
+STATUS = {STEP_TOO_SMALL: "required step size is less than spacing between numbers",
+          NOT_FINITE: "non-finite state"}
+
+
+@njit(cache=True)
+def _rms(v):
+    return np.sqrt(np.mean(v * v))
+
+
+@njit(cache=True)
+def initial_step(y0, f0, k, t_span, rtol, atol, max_step, order):
+    """Hairer's starting step (Solving ODEs I, Sec. II.4) for an error estimator of this order,
+    as scipy's select_initial_step."""
+    scale = atol + np.abs(y0) * rtol
+    d0, d1 = _rms(y0 / scale), _rms(f0 / scale)
+    h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
+    h0 = min(h0, t_span)
+    f1 = np.empty_like(y0)
+    rhs_into(y0 + h0 * f0, k, f1)
+    d2 = _rms((f1 - f0) / scale) / h0
+    if d1 <= 1e-15 and d2 <= 1e-15:
+        h1 = max(1e-6, h0 * 1e-3)
+    else:
+        h1 = (0.01 / max(d1, d2)) ** (1.0 / (order + 1))
+    return min(100 * h0, h1, t_span, max_step)
+
+
+@njit(cache=True)
+def _interpolate(interp, y_old, x, out):
+    """The 7th-order dense output y_old + Σ interp-terms at x = (t − t_old)/h (Horner-like form)."""
+    out[:] = 0.0
+    for i in range(6, -1, -1):
+        out += interp[i]
+        out *= x if (6 - i) % 2 == 0 else 1.0 - x
+    out += y_old
+
+
+@njit(cache=True)
+def advance(k, state, y, f, interp, y_old, t_bound, rtol, atol, max_step, samples, out, A, B, C, E3, E5, D):
+    """Step from state = [t, |h|, steps, nfev, t_old, h_old] (updated in place, with y, its
+    derivative f and the interpolant of the last step, interp and y_old) until every time in
+    `samples` (increasing) is passed, writing the interpolated states into the rows of out.
+    Samples inside the last step of the previous call come from its stored interpolant.
+    Returns (status, number of samples written)."""
+    size = y.size
+    K = np.empty((16, size))
+    y_new = np.empty(size)
+    f_new = np.empty(size)
+    stage = np.empty(size)
+    written = 0
+    t, h_abs = state[0], state[1]
+    if not (np.all(np.isfinite(y)) and np.all(np.isfinite(f))):
+        return NOT_FINITE, written
+    while written < samples.size and samples[written] <= t:
+        _interpolate(interp, y_old, (samples[written] - state[4]) / state[5], out[written])
+        written += 1
+    while written < samples.size:
+        if t >= t_bound:
+            return FINISHED, written
+        min_step = 10.0 * (np.nextafter(t, np.inf) - t)
+        h_abs = min(h_abs, max_step)
+        if h_abs < min_step:
+            h_abs = min_step
+        rejected = False
+        while True:
+            if h_abs < min_step:
+                state[0], state[1] = t, h_abs
+                return STEP_TOO_SMALL, written
+            t_new = min(t + h_abs, t_bound)
+            h = t_new - t
+            h_abs = h
+            K[0] = f
+            for s in range(1, STAGES):
+                stage[:] = y
+                for j in range(s):
+                    stage += (h * A[s, j]) * K[j]
+                rhs_into(stage, k, K[s])
+            y_new[:] = y
+            for j in range(STAGES):
+                y_new += (h * B[j]) * K[j]
+            rhs_into(y_new, k, f_new)
+            K[STAGES] = f_new
+            state[3] += STAGES
+            scale = atol + np.maximum(np.abs(y), np.abs(y_new)) * rtol
+            err5 = np.zeros(size)
+            err3 = np.zeros(size)
+            for j in range(STAGES + 1):
+                err5 += E5[j] * K[j]
+                err3 += E3[j] * K[j]
+            e5 = np.sum((err5 / scale) ** 2)
+            e3 = np.sum((err3 / scale) ** 2)
+            if e5 == 0.0 and e3 == 0.0:
+                error = 0.0
+            else:
+                error = abs(h) * e5 / np.sqrt((e5 + 0.01 * e3) * size)
+            if error < 1.0:
+                factor = MAX_FACTOR if error == 0.0 else min(MAX_FACTOR, SAFETY * error ** ERROR_EXPONENT)
+                if rejected:
+                    factor = min(1.0, factor)
+                h_abs *= factor
+                break
+            if np.isfinite(error):
+                h_abs *= max(MIN_FACTOR, SAFETY * error ** ERROR_EXPONENT)
+            else:            # overflow in a too-long trial step
+                h_abs *= MIN_FACTOR
+            rejected = True
+        state[2] += 1
+        if not np.all(np.isfinite(y_new)):
+            state[0], state[1] = t, h_abs
+            return NOT_FINITE, written
+        if samples[written] <= t_new:
+            # three extra stages and the 7th-order interpolant on [t, t_new]
+            for s in range(STAGES + 1, 16):
+                stage[:] = y
+                for j in range(s):
+                    stage += (h * A[s, j]) * K[j]
+                rhs_into(stage, k, K[s])
+            state[3] += 3
+            interp[0] = y_new - y
+            interp[1] = h * f - interp[0]
+            interp[2] = 2 * interp[0] - h * (f_new + f)
+            for r in range(4):
+                interp[3 + r] = 0.0
+                for j in range(16):
+                    interp[3 + r] += (h * D[r, j]) * K[j]
+            y_old[:] = y
+            state[4], state[5] = t, h
+            while written < samples.size and samples[written] <= t_new:
+                _interpolate(interp, y_old, (samples[written] - t) / h, out[written])
+                written += 1
+        t = t_new
+        y[:] = y_new
+        f[:] = f_new
+    state[0], state[1] = t, h_abs
+    return OK, written
+
+
+class Dop853:
+    """The compiled integrator for one chain (constants k) from y0 at t = 0 up to t_bound."""
+
+    def __init__(self, k, y0, t_bound, rtol, atol, max_step=np.inf, first_step=None):
+        self.k = k
+        self.y = np.array(y0, float)
+        self.f = np.empty_like(self.y)
+        rhs_into(self.y, k, self.f)
+        self.t_bound = float(t_bound)
+        self.rtol = float(rtol)
+        self.atol = np.broadcast_to(np.asarray(atol, float), self.y.shape).copy()
+        self.max_step = float(max_step)
+        h0 = first_step if first_step is not None else initial_step(self.y, self.f, k, self.t_bound,
+                                                                    self.rtol, self.atol, self.max_step, 7)
+        self.state = np.array([0.0, float(h0), 0.0, 2.0, 0.0, 1.0])     # t, |h|, steps, nfev, t_old, h_old
+        self.interp = np.zeros((7, self.y.size))
+        self.y_old = self.y.copy()
+        self.status = OK
+
+    @property
+    def t(self) -> float:
+        return float(self.state[0])
+
+    @property
+    def steps(self) -> int:
+        return int(self.state[2])
+
+    @property
+    def nfev(self) -> int:
+        return int(self.state[3])
+
+    def advance(self, samples: np.ndarray) -> np.ndarray:
+        """Integrate past the sample times (increasing, > t); returns the states there as columns
+        (fewer columns if the run ended early: self.status is then FINISHED or an error code)."""
+        out = np.empty((samples.size, self.y.size))
+        self.status, written = advance(self.k, self.state, self.y, self.f, self.interp, self.y_old, self.t_bound, self.rtol, self.atol,
+                                       self.max_step, np.ascontiguousarray(samples, float), out,
+                                       A, B, C, E3, E5, D)
+        return out[:written].T
