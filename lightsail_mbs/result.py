@@ -8,7 +8,8 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import analysis
-from lightsail_mbs.model.parameters import SailParameters
+from lightsail_mbs.model.parameters import RUN_FIELDS, SailParameters
+from lightsail_mbs.solvers.settings import RunSettings
 
 ARRAYS = ("time", "x", "y", "theta", "z", "vx", "vy", "omega", "z_rate", "amplitude")
 
@@ -36,11 +37,12 @@ class Result:
     wall_time: float = 0.0
     error: str | None = None          # a solver failure (divergence, no Newton convergence), recorded
     info: dict = field(default_factory=dict)  # solver settings and statistics (steps, tolerances, ...)
+    settings: RunSettings = field(default_factory=RunSettings)   # the run control it was made with
 
     @classmethod
     def from_trajectory(cls, params: SailParameters, solver: str, time, x, y, theta, vx, vy, omega,
                         z=None, z_rate=None, wall_time: float = 0.0, error: str | None = None,
-                        info: dict | None = None) -> "Result":
+                        info: dict | None = None, settings: RunSettings | None = None) -> "Result":
         """Build a Result from raw solver output; the amplitude is computed here (analysis.amplitude)."""
         time = np.asarray(time, float)
         steps = time.shape[0]
@@ -51,12 +53,13 @@ class Result:
         arrays["z_rate"] = empty if z_rate is None else np.asarray(z_rate, float).reshape(steps, -1)
         return cls(params, solver, time, **arrays,
                    amplitude=np.atleast_1d(analysis.amplitude(arrays["x"], arrays["y"])),
-                   wall_time=float(wall_time), error=error, info=dict(info or {}))
+                   wall_time=float(wall_time), error=error, info=dict(info or {}),
+                   settings=settings or RunSettings())
 
     # ---- summary ---------------------------------------------------------------------------
     @property
     def failure_time(self) -> float | None:
-        return analysis.failure_time(self.time, self.amplitude, self.params.failure_ratio)
+        return analysis.failure_time(self.time, self.amplitude, self.settings.failure_ratio)
 
     @property
     def failed(self) -> bool:
@@ -89,6 +92,7 @@ class Result:
             "error": self.error,
             "info": self.info,
             "parameters": self.params.to_dict(),
+            "settings": self.settings.to_dict(),
         }
 
     # ---- persistence -----------------------------------------------------------------------
@@ -106,8 +110,11 @@ class Result:
         with np.load(Path(path), allow_pickle=False) as data:
             summary = json.loads(str(data["summary_json"]))
             arrays = {k: np.array(data[k]) for k in ARRAYS}
-        return cls(params=SailParameters.from_dict(summary["parameters"]), solver=summary["solver"],
-                   wall_time=summary["wall_time"], error=summary["error"], info=summary["info"], **arrays)
+        parameters = summary["parameters"]
+        settings = summary.get("settings") or {k: parameters[k] for k in RUN_FIELDS if k in parameters}
+        return cls(params=SailParameters.from_dict(parameters), solver=summary["solver"],
+                   wall_time=summary["wall_time"], error=summary["error"], info=summary["info"],
+                   settings=RunSettings.from_dict(settings), **arrays)
 
 
 def _jsonable(value):

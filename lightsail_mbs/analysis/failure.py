@@ -81,9 +81,9 @@ def dissipated_power(result) -> np.ndarray:
     """Heat generated in the dampers over time (W): c_T Σ(θ̇_j − θ̇_{j−1})² + c_s Σ ż_j²,
     with c_T, c_s the SailParameters dampers (explicit c plus material β k)."""
     p = result.params
-    power = p.torsional_damper * (np.diff(result.omega, axis=1) ** 2).sum(axis=1)
+    power = p.total_torsional_damping * (np.diff(result.omega, axis=1) ** 2).sum(axis=1)
     if result.z_rate.shape[1]:
-        power = power + p.axial_damper * (result.z_rate ** 2).sum(axis=1)
+        power = power + p.total_axial_damping * (result.z_rate ** 2).sum(axis=1)
     return power
 
 

@@ -49,14 +49,14 @@ STIFFNESS = {"torsion": ("youngs_modulus", theory.critical_modulus_max),
 
 def wavenumber(p: SailParameters) -> float:
     """k = 2πν/L (1/m)."""
-    return 2.0 * math.pi * p.mode / p.length
+    return 2.0 * math.pi * p.defect_mode / p.length
 
 
 def time_scale(p: SailParameters) -> float:
     """t_c = 1/(k √(g₀ a₀)) (s): the time the second-order load needs to move the defect by a₀."""
-    if p.amplitude <= 0 or p.nominal_acceleration <= 0:
+    if p.defect_amplitude <= 0 or p.nominal_acceleration <= 0:
         raise ParameterError("amplitude and intensity must be > 0 for a finite-amplitude time scale")
-    return 1.0 / (wavenumber(p) * math.sqrt(p.nominal_acceleration * p.amplitude))
+    return 1.0 / (wavenumber(p) * math.sqrt(p.nominal_acceleration * p.defect_amplitude))
 
 
 def _stiffness(p: SailParameters):
@@ -100,13 +100,15 @@ class ScaledRun:
 
 
 def scaled_run(p: SailParameters, tau_final: float, *, samples_per_tau: int = 50, rtol: float = 1e-8,
-               theta_perturbation: np.ndarray | None = None, stop_at_failure: bool = True) -> ScaledRun:
-    """Integrate the reduced model (DOP853, atol = rtol × reduced.state_scales) from rest in the defect
-    shape (plus an optional small angle perturbation, rad per slice) up to τ = tau_final, or to failure
-    (stop_at_failure), or until the amplitude reaches BLOWUP_RATIO·a(0) (past failure)."""
-    from lightsail_mbs.solvers.reduced.solver import state_scales
+               theta_perturbation: np.ndarray | None = None, stop_at_failure: bool = True,
+               failure_ratio: float = 2.0) -> ScaledRun:
+    """Integrate the reduced model (scipy's DOP853, atol = rtol × sampling.state_scales) from rest in the
+    defect shape (plus an optional small angle perturbation, rad per slice) up to τ = tau_final, or to
+    failure (amplitude ≥ failure_ratio·a(0), located by an event, when stop_at_failure), or until the
+    amplitude reaches BLOWUP_RATIO·a(0) (past failure)."""
     from lightsail_mbs.solvers.reduced.dynamics import ChainDynamics
     from lightsail_mbs.solvers.reduced.kinematics import ChainModel, centres
+    from lightsail_mbs.solvers.reduced.sampling import state_scales
 
     if p.extensible:
         raise ParameterError("scaled runs use the inextensible chain: set axial_springs=False for tnt")
@@ -117,7 +119,7 @@ def scaled_run(p: SailParameters, tau_final: float, *, samples_per_tau: int = 50
     q0 = model.pack(start.x[0], start.y[0], theta, start.z)
     y0 = np.concatenate([q0, np.zeros_like(q0)])
     amp0 = analysis.amplitude(start.x, start.y)
-    limit = p.failure_ratio * amp0
+    limit = failure_ratio * amp0
     dynamics = ChainDynamics(model)
 
     def amplitude_of(y):
@@ -135,7 +137,7 @@ def scaled_run(p: SailParameters, tau_final: float, *, samples_per_tau: int = 50
 
     t_eval = tc * np.linspace(0.0, tau_final, int(round(tau_final * samples_per_tau)) + 1)
     sol = solve_ivp(dynamics.rhs, (0.0, t_eval[-1]), y0, method="DOP853", t_eval=t_eval, rtol=rtol,
-                    atol=rtol * state_scales(model), events=[failed, left_small_slopes])
+                    atol=rtol * state_scales(model, p.defect_mode), events=[failed, left_small_slopes])
     x, yy = centres(model, sol.y[:model.dof])
     amp = np.atleast_1d(analysis.amplitude(x.T, yy.T)) / amp0
     fail = sol.t_events[0]
@@ -194,7 +196,7 @@ def divergence(p: SailParameters, tau_final: float, *, size: float = 1e-9, seed:
     perturbation of RMS size × (defect slope 2πνa₀/L); both run past failure up to tau_final or
     until either leaves the small-slope regime (then the arrays end)."""
     rng = np.random.default_rng(seed)
-    slope = wavenumber(p) * p.amplitude
+    slope = wavenumber(p) * p.defect_amplitude
     kick = rng.standard_normal(p.n)
     kick *= size * slope / np.sqrt(np.mean(kick ** 2))
     a = scaled_run(p, tau_final, samples_per_tau=samples_per_tau, rtol=rtol, stop_at_failure=False)
@@ -219,7 +221,7 @@ def one_mode_force(p: SailParameters, amplitudes: np.ndarray, step: float = 1e-3
     from lightsail_mbs.solvers.reduced.kinematics import ChainModel, body_forces, torsion_torques
 
     model = ChainModel.from_params(p)
-    da = step * p.amplitude
+    da = step * p.defect_amplitude
     out = np.empty(len(amplitudes))
     for i, a in enumerate(amplitudes):
         s, plus, minus = _shape(p, a), _shape(p, a + da), _shape(p, a - da)
@@ -272,13 +274,13 @@ class OneModeModel:
 
 def one_mode_model(p: SailParameters, span: float = 2.5, points: int = 201) -> OneModeModel:
     """Build the one-mode model of a sail (torsion or TnT) by integrating one_mode_force in a."""
-    a = np.linspace(-span, span, points) * p.amplitude
+    a = np.linspace(-span, span, points) * p.defect_amplitude
     potentials = []
     for ratio in (0.0, 1.0):
         force = one_mode_force(with_ratio(p, ratio), a)
         v = np.concatenate([[0.0], np.cumsum(0.5 * (force[1:] + force[:-1]) * np.diff(a))])
         potentials.append(-(v - np.interp(0.0, a, v)))
-    return OneModeModel(a / p.amplitude, potentials[0], potentials[1] - potentials[0])
+    return OneModeModel(a / p.defect_amplitude, potentials[0], potentials[1] - potentials[0])
 
 
 def boundary_for_run(ratios, failure_taus, tau_run: float) -> float | None:

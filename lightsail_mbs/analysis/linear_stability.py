@@ -41,7 +41,7 @@ FD_STEP = 1e-6      # central-difference step: rad for angles, m for positions a
 
 def flat(p: SailParameters) -> SailParameters:
     """The same sail without its defect (a₀ = 0): the flat equilibrium state."""
-    return p.replace(amplitude=0.0)
+    return p.replace(defect_amplitude=0.0)
 
 
 def unlit(p: SailParameters) -> SailParameters:
@@ -169,7 +169,7 @@ def linear_spectrum(p: SailParameters, solver: str = "reduced", **options) -> Sp
 def load_rate_scale(p: SailParameters) -> float:
     """g₀ k (s⁻²), k = 2πν/L: the squared rate at which the load would act if it entered linearly
     (a tilt θ = k w sends f₀θ along the sail per slice mass). The yardstick for spectrum shifts."""
-    return p.nominal_acceleration * 2 * np.pi * p.mode / p.length
+    return p.nominal_acceleration * 2 * np.pi * p.defect_mode / p.length
 
 
 def load_shift(p: SailParameters, solver: str = "reduced", **options) -> dict:

@@ -22,7 +22,7 @@ NEWTON_TOLERANCE = 1e-14      # relative to the largest coordinate change of the
 
 def full_load(p: SailParameters) -> SailParameters:
     """The case with its tip load at P₀ from the start (τ = 0), flat and unlit."""
-    return p.replace(tip_load_time_constant=0.0, amplitude=0.0, intensity=0.0)
+    return p.replace(tip_load_time_constant=0.0, defect_amplitude=0.0, intensity=0.0)
 
 
 def static_state(p: SailParameters, solver: str = "exudyn") -> shapes.ChainState:

@@ -1,4 +1,4 @@
-"""`lightsail-mbs montecarlo`: failure probability over random multi-mode defects (issue 9)."""
+"""`lightsail-mbs montecarlo`: failure probability over random multi-mode defects ."""
 from __future__ import annotations
 
 import dataclasses
@@ -6,7 +6,7 @@ import json
 
 from lightsail_mbs.studies import montecarlo
 from lightsail_mbs.solvers import SOLVERS
-from lightsail_mbs.cli.options import add_case_options, params_from_args
+from lightsail_mbs.cli.options import add_case_options, params_from_args, settings_from_args
 
 
 def register(sub) -> None:
@@ -16,7 +16,8 @@ def register(sub) -> None:
                    help="the parameter swept [default youngs_modulus]")
     p.add_argument("--values", required=True, help="comma-separated values of the swept parameter (SI)")
     p.add_argument("--seeds", type=int, default=50, help="defects per value (seeds 0…N−1) [50]")
-    p.add_argument("--defect-modes", type=int, default=10, help="modes ν = 1/2 … K/2 in each defect [10]")
+    p.add_argument("--defect-mode-count", "--defect-modes", type=int, default=10,
+                   help="modes ν = 1/2 … K/2 in each defect [10]")
     p.add_argument("--defect-spectrum", type=float, default=1.0, help="mean amplitude ∝ ν^(−β) [1]")
     p.add_argument("--solver", choices=sorted(SOLVERS), default="exudyn")
     p.add_argument("--store", required=True, help="folder of the per-case store (resumable)")
@@ -27,10 +28,11 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    base = params_from_args(args).replace(defect_modes=args.defect_modes, defect_spectrum=args.defect_spectrum,
+    base = params_from_args(args).replace(defect_mode_count=args.defect_mode_count, defect_spectrum=args.defect_spectrum,
                                           defect_seed=0)
     values = [float(v) for v in args.values.split(",") if v.strip()]
     rows = montecarlo.run(base, args.vary, values, args.seeds, args.store, solver=args.solver,
+                          settings=settings_from_args(args),
                           workers=args.workers, scheduler=args.scheduler)
     if args.json:
         print(json.dumps([dataclasses.asdict(r) for r in rows]))

@@ -1,9 +1,11 @@
-"""Shared command-line options: the case parameters, mapped one to one onto SailParameters."""
+"""Shared command-line options: the case (SailParameters) and the run control (RunSettings), one option
+per field."""
 from __future__ import annotations
 
 import argparse
 
 from lightsail_mbs.model.parameters import SailParameters
+from lightsail_mbs.solvers.settings import RunSettings
 
 # option name -> (SailParameters field, type, help)
 CASE_OPTIONS = {
@@ -16,8 +18,8 @@ CASE_OPTIONS = {
     "--modulus": ("youngs_modulus", float, "Young's modulus E (Pa)"),
     "--tension": ("tension", float, "boundary tension T (N), TnT only"),
     "--intensity": ("intensity", float, "laser intensity I₀ (W/m²)"),
-    "--amplitude": ("amplitude", float, "initial defect amplitude a₀ (m)"),
-    "--mode": ("mode", float, "defect mode number ν"),
+    "--defect-amplitude": ("defect_amplitude", float, "initial defect amplitude a₀ (m)"),
+    "--defect-mode": ("defect_mode", float, "defect mode number ν (wavelengths over L)"),
     "--beam-waist": ("beam_waist", float, "Gaussian beam waist w (m); inf = uniform beam"),
     "--beam-center": ("beam_center", float, "Gaussian beam axis x_c (m); default L/2"),
     "--reflectivity": ("reflectivity", float, "specular reflectivity R"),
@@ -26,27 +28,47 @@ CASE_OPTIONS = {
     "--axial-damping": ("axial_damping", float, "axial damping c_s (N·s/m)"),
     "--stiffness-damping": ("stiffness_damping", float,
                             "material damping β (s): c = β k on every spring; loss factor η at ω: β = η/ω"),
+}
+# option name -> (RunSettings field, type, help)
+RUN_OPTIONS = {
     "--t-final": ("t_final", float, "final time (s)"),
     "--output-interval": ("output_interval", float, "output interval (s); default min(1 ms, t_final/1000)"),
-    "--failure-ratio": ("failure_ratio", float, "failure when amplitude ≥ ratio × initial (default 2)"),
+    "--failure-ratio": ("failure_ratio", float, "failure when amplitude ≥ ratio × initial"),
 }
+# shorter spellings accepted for some options
+ALIASES = {"--defect-amplitude": ["--amplitude"], "--defect-mode": ["--mode"]}
 
 
-def add_case_options(parser: argparse.ArgumentParser) -> None:
+def add_case_options(parser: argparse.ArgumentParser, run: bool = True) -> None:
+    """The case options (and, with run=True, the run options) on a parser."""
     defaults = SailParameters()
     g = parser.add_argument_group("case (defaults: the paper's torsion case)")
     for opt, (name, typ, text) in CASE_OPTIONS.items():
-        g.add_argument(opt, dest=name, type=typ, default=None,
+        g.add_argument(opt, *ALIASES.get(opt, []), dest=name, type=typ, default=None,
                        help=f"{text} [default {getattr(defaults, name)}]")
     g.add_argument("--bending", dest="bending", action=argparse.BooleanOptionalAction, default=None,
                    help="torsional springs k_T = EI/l on/off [default: on for torsion, off for tnt as in the paper]")
     g.add_argument("--axial-springs", dest="axial_springs", action=argparse.BooleanOptionalAction, default=None,
                    help="TnT: extensible slices with k_s = (n−1)EhW/L, or their rigid limit [default on]")
+    if not run:
+        return
+    settings = RunSettings()
+    g = parser.add_argument_group("run")
+    for opt, (name, typ, text) in RUN_OPTIONS.items():
+        g.add_argument(opt, dest=name, type=typ, default=None, help=f"{text} [default {getattr(settings, name)}]")
     g.add_argument("--run-past-failure", dest="stop_at_failure", action="store_false", default=None,
                    help="keep integrating after the amplitude has doubled")
 
 
 def params_from_args(args: argparse.Namespace) -> SailParameters:
-    names = [v[0] for v in CASE_OPTIONS.values()] + ["bending", "axial_springs", "stop_at_failure"]
+    """The SailParameters of the given case options (defaults for the others)."""
+    names = [v[0] for v in CASE_OPTIONS.values()] + ["bending", "axial_springs"]
     given = {k: getattr(args, k) for k in names if getattr(args, k, None) is not None}
     return SailParameters(**given)
+
+
+def settings_from_args(args: argparse.Namespace) -> RunSettings:
+    """The RunSettings of the given run options (defaults for the others)."""
+    names = [v[0] for v in RUN_OPTIONS.values()] + ["stop_at_failure"]
+    given = {k: getattr(args, k) for k in names if getattr(args, k, None) is not None}
+    return RunSettings(**given)

@@ -1,37 +1,25 @@
-"""`lightsail-mbs reproduce`: recompute the paper's figures with the scenario scripts in scenarios/.
+"""`lightsail-mbs reproduce`: recompute the paper's figures with the pipelines of lightsail_mbs.paper.
 
-Each scenario (scenarios/fig*.py, found next to the installed package in a source checkout) writes
-its PNG and CSV files into --out and prints the numbers it plotted; this command prints the wall
-time of each. Cases go through the resumable sweep store (--store, default OUT/store): a rerun
-recomputes nothing already finished.
+Each pipeline writes its PNG and CSV files into --out and prints the numbers it plotted; this command
+prints the wall time of each. Cases go through the resumable sweep store (--store, default OUT/store): a
+rerun recomputes nothing already finished.
 """
 from __future__ import annotations
 
-import importlib.util
 import time
 from pathlib import Path
 
 from lightsail_mbs.model.parameters import ParameterError
+from lightsail_mbs.paper import PIPELINES, pipeline
 from lightsail_mbs.solvers import SOLVERS
-
-# paper figure number -> scenario module (scenarios/<name>.py)
-SCENARIOS = {5: "fig5", 6: "fig6_8", 7: "fig6_8", 8: "fig6_8", 9: "fig9", 10: "fig10_11", 11: "fig10_11",
-             12: "fig12", **{k: "fig18_23" for k in range(18, 24)}}
-SCENARIO_DIR = Path(__file__).resolve().parents[2] / "scenarios"
 
 
 def register(sub) -> None:
     p = sub.add_parser("reproduce", help="recompute the paper's figures (PNG + CSV + printed tables)")
-    add_reproduce_options(p, figures=True)
-    p.set_defaults(func=run)
-
-
-def add_reproduce_options(p, figures: bool) -> None:
-    if figures:
-        which = p.add_mutually_exclusive_group(required=True)
-        which.add_argument("--figure", type=int, action="append", choices=sorted(SCENARIOS),
-                           help="paper figure number (repeatable): " + ", ".join(map(str, sorted(SCENARIOS))))
-        which.add_argument("--all", action="store_true", help="every figure")
+    which = p.add_mutually_exclusive_group(required=True)
+    which.add_argument("--figure", type=int, action="append", choices=sorted(PIPELINES),
+                       help="paper figure number (repeatable): " + ", ".join(map(str, sorted(PIPELINES))))
+    which.add_argument("--all", action="store_true", help="every figure")
     p.add_argument("--out", default="results", help="output folder of PNG and CSV files [results]")
     p.add_argument("--store", default=None, help="folder of the resumable case store [OUT/store]")
     p.add_argument("--solver", choices=sorted(SOLVERS), default="exudyn", help="[exudyn]")
@@ -40,30 +28,19 @@ def add_reproduce_options(p, figures: bool) -> None:
     p.add_argument("--quick", action="store_true",
                    help="smoke test: fewer slices, modes and thicknesses, shorter runs (not the paper's numbers)")
     p.add_argument("--quiet", action="store_true", help="no progress bars")
-
-
-def load_scenario(name: str):
-    """Import scenarios/<name>.py by path (the folder is not part of the installed package)."""
-    path = SCENARIO_DIR / f"{name}.py"
-    if not path.is_file():
-        raise ParameterError(f"scenario {name!r} not found at {path}: reproduce needs the source checkout "
-                             "(pip install -e .)")
-    spec = importlib.util.spec_from_file_location(f"lightsail_scenarios.{name}", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    p.set_defaults(func=run)
 
 
 def run(args) -> int:
     if args.workers is not None and args.workers < 1:
         raise ParameterError(f"workers={args.workers!r} is invalid: allowed an integer ≥ 1")
-    numbers = sorted(SCENARIOS) if args.all else sorted(set(args.figure))
-    names = list(dict.fromkeys(SCENARIOS[k] for k in numbers))
+    numbers = sorted(PIPELINES) if args.all else sorted(set(args.figure))
+    names = list(dict.fromkeys(PIPELINES[k] for k in numbers))
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     walls = []
     for name in names:
-        module = load_scenario(name)
+        module = pipeline(name)
         start = time.perf_counter()
         module.run(out, solver=args.solver, workers=args.workers, scheduler=args.scheduler, quick=args.quick,
                    store=args.store, progress=not args.quiet)
@@ -71,14 +48,8 @@ def run(args) -> int:
         figs = ", ".join(str(k) for k in module.FIGURES)
         walls.append((figs, name, wall))
         print(f"\nFig. {figs} ({name}): wall time {wall:.1f} s", flush=True)
-    print("\n| figures | scenario | wall time (s) |\n|---|---|---|")
+    print("\n| figures | pipeline | wall time (s) |\n|---|---|---|")
     for figs, name, wall in walls:
         print(f"| {figs} | {name} | {wall:.1f} |")
     print(f"| all | | {sum(w for *_, w in walls):.1f} |")
     return 0
-
-
-def main_for_scenario(figures, argv) -> int:
-    """`python scenarios/figN.py [options]`: the reproduce command for that scenario's figures."""
-    from lightsail_mbs.cli import main
-    return main(["reproduce", "--figure", str(figures[0]), *argv])

@@ -5,7 +5,7 @@ import json
 import sys
 
 from lightsail_mbs.solvers import SOLVERS, solve
-from lightsail_mbs.cli.options import add_case_options, params_from_args
+from lightsail_mbs.cli.options import add_case_options, params_from_args, settings_from_args
 
 
 def register(sub) -> None:
@@ -20,7 +20,7 @@ def register(sub) -> None:
 
 def run(args) -> int:
     params = params_from_args(args)
-    result = solve(params, args.solver, progress=not args.quiet)
+    result = solve(params, args.solver, settings_from_args(args), progress=not args.quiet)
     if args.out:
         result.save(args.out)
     summary = result.summary()

@@ -9,7 +9,7 @@ from lightsail_mbs.cli.options import add_case_options, params_from_args
 
 def register(sub) -> None:
     p = sub.add_parser("theory", help="g0, E_cr,max and T_cr,max for a case (paper Eqs 4, 8, 10)")
-    add_case_options(p)
+    add_case_options(p, run=False)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=run)
 

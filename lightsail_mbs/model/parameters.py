@@ -9,9 +9,8 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
-import numpy as np
 
 SPEED_OF_LIGHT = 299_792_458.0  # m/s
 MODELS = ("rigid", "torsion", "tnt")
@@ -19,32 +18,41 @@ MODELS = ("rigid", "torsion", "tnt")
 # "cantilever" (slice 1 clamped at its initial pose, Appendix A), "pinned" (hinge 0 pinned, hinge n on a
 # roller along x that lets the end tension T through: a string or simply supported beam, Appendix B).
 BOUNDARIES = ("free", "cantilever", "pinned")
-# Fields added for the validations; to_dict omits them at their defaults so that the keys of
-# stored sweep cases and saved runs of free sails stay what they were.
+# Fields of the validations that to_dict omits at their defaults (a free, unloaded sail), so that the
+# record of a sail lists only what describes it.
 VALIDATION_DEFAULTS = {"boundary": "free", "tip_load": 0.0, "tip_load_time_constant": 0.0}
+# Names under which saved runs and store records written before the current field names hold them.
+LEGACY_NAMES = {"amplitude": "defect_amplitude", "mode": "defect_mode", "defect_modes": "defect_mode_count"}
+# Run control that saved runs of that format kept with the case (now solvers.settings.RunSettings).
+RUN_FIELDS = ("t_final", "output_interval", "stop_at_failure", "failure_ratio")
 
 
 class ParameterError(ValueError):
     """A parameter is outside its allowed range; the message names it, its value and the range."""
 
 
-def _check(name: str, value, ok: bool, allowed: str) -> None:
+def check(name: str, value, ok: bool, allowed: str) -> None:
     if not ok:
         raise ParameterError(f"{name}={value!r} is invalid: allowed {allowed}")
 
 
-def _finite(name: str, value) -> float:
+def finite(name: str, value) -> float:
     try:
         v = float(value)
     except (TypeError, ValueError):
         raise ParameterError(f"{name}={value!r} is invalid: allowed a finite real number") from None
-    _check(name, value, math.isfinite(v), "a finite real number (no NaN or inf)")
+    check(name, value, math.isfinite(v), "a finite real number (no NaN or inf)")
     return v
 
 
 @dataclass(frozen=True)
 class SailParameters:
-    """One lightsail case. Defaults: the paper's torsion study (Sec. IV.B, Fig. 6)."""
+    """One lightsail case: the sail, its supports, its defect and the beam (SI units).
+
+    Defaults: the paper's torsion study (Sec. IV.B, Fig. 6). Run control (duration, sampling, stop
+    rule) is a separate :class:`~lightsail_mbs.solvers.settings.RunSettings`. Every field is checked
+    on construction; a bad value raises :class:`ParameterError` naming the field and its range.
+    """
 
     model: str = "torsion"
     n: int = 30                        # number of rigid slices
@@ -55,10 +63,10 @@ class SailParameters:
     youngs_modulus: float = 4.5e13     # E, Pa
     tension: float = 0.0               # T, N (paper's per-width value × W); TnT only
     intensity: float = 1e8             # I₀, W/m²
-    amplitude: float = 1e-5            # a₀, m
-    mode: float = 1.5                  # ν
+    defect_amplitude: float = 1e-5     # a₀, m
+    defect_mode: float = 1.5           # ν: wavelengths of the sine defect over L (Eq. 1)
     defect_seed: int | None = None     # None: the paper's sine; an int: random multi-mode defect (shapes.py)
-    defect_modes: int = 10             # multi-mode defect: modes ν_k = k/2, k = 1…K
+    defect_mode_count: int = 10        # multi-mode defect: modes ν_k = k/2, k = 1…K
     defect_spectrum: float = 1.0       # multi-mode defect: mean amplitude ∝ ν_k^(−β)
     beam_waist: float = math.inf       # w, m: Gaussian beam I₀ exp(−2(x − x_c)²/w²); inf = uniform (paper)
     beam_center: float | None = None   # x_c, m; None: the sail's middle L/2
@@ -69,68 +77,57 @@ class SailParameters:
     torsional_damping: float = 0.0     # c_T, N·m·s/rad
     axial_damping: float = 0.0         # c_s, N·s/m
     stiffness_damping: float = 0.0     # β, s: material (Rayleigh) damping c = β k added to every spring
-    t_final: float = 6.0               # s
-    output_interval: float | None = None  # s; None: min(1 ms, t_final/1000)
-    stop_at_failure: bool = True       # end the run when the amplitude has doubled
-    failure_ratio: float = 2.0         # failure: amplitude(t) ≥ failure_ratio · amplitude(0)
     boundary: str = "free"             # end supports, one of BOUNDARIES
     tip_load: float = 0.0              # P₀, N: transverse (+y) dead load at the centre of slice n (Eq. 43)
     tip_load_time_constant: float = 0.0  # τ, s: P(t) = P₀(1 − e^(−t/τ)) (Eq. 43); 0: P₀ from t = 0
-    extra: dict = field(default_factory=dict, compare=False, repr=False)
 
     def __post_init__(self):
-        _check("model", self.model, self.model in MODELS, f"one of {', '.join(MODELS)}")
-        _check("n", self.n, isinstance(self.n, int) and not isinstance(self.n, bool) and 2 <= self.n <= 5000,
+        check("model", self.model, self.model in MODELS, f"one of {', '.join(MODELS)}")
+        check("n", self.n, isinstance(self.n, int) and not isinstance(self.n, bool) and 2 <= self.n <= 5000,
                "an integer 2 ≤ n ≤ 5000")
         for name in ("length", "width", "thickness", "density"):
-            v = _finite(name, getattr(self, name))
-            _check(name, v, v > 0, "> 0")
-        for name in ("youngs_modulus", "tension", "intensity", "amplitude",
+            v = finite(name, getattr(self, name))
+            check(name, v, v > 0, "> 0")
+        for name in ("youngs_modulus", "tension", "intensity", "defect_amplitude",
                      "torsional_damping", "axial_damping", "stiffness_damping"):
-            v = _finite(name, getattr(self, name))
-            _check(name, v, v >= 0, "≥ 0")
-        _check("youngs_modulus", self.youngs_modulus,
+            v = finite(name, getattr(self, name))
+            check(name, v, v >= 0, "≥ 0")
+        check("youngs_modulus", self.youngs_modulus,
                self.youngs_modulus > 0 or not (self.model == "tnt" and self.axial_springs),
                "> 0 for the tnt model with axial springs")
-        _check("defect_seed", self.defect_seed, self.defect_seed is None
+        check("defect_seed", self.defect_seed, self.defect_seed is None
                or (isinstance(self.defect_seed, int) and not isinstance(self.defect_seed, bool)
                    and self.defect_seed >= 0), "None or an integer ≥ 0")
-        _check("defect_modes", self.defect_modes, isinstance(self.defect_modes, int) and 1 <= self.defect_modes <= 200,
-               "an integer 1 ≤ K ≤ 200")
-        _finite("defect_spectrum", self.defect_spectrum)
-        _check("beam_waist", self.beam_waist, not math.isnan(float(self.beam_waist)) and self.beam_waist > 0,
+        check("defect_mode_count", self.defect_mode_count,
+              isinstance(self.defect_mode_count, int) and 1 <= self.defect_mode_count <= 200, "an integer 1 ≤ K ≤ 200")
+        finite("defect_spectrum", self.defect_spectrum)
+        check("beam_waist", self.beam_waist, not math.isnan(float(self.beam_waist)) and self.beam_waist > 0,
                "> 0 (inf for a uniform beam)")
         if self.beam_center is None:
             object.__setattr__(self, "beam_center", 0.5 * self.length)
-        _finite("beam_center", self.beam_center)
+        finite("beam_center", self.beam_center)
         for name in ("reflectivity", "absorptivity"):
-            v = _finite(name, getattr(self, name))
-            _check(name, v, 0 <= v <= 1, "0 ≤ value ≤ 1")
-        _check("absorptivity", self.absorptivity, self.reflectivity + self.absorptivity <= 1,
+            v = finite(name, getattr(self, name))
+            check(name, v, 0 <= v <= 1, "0 ≤ value ≤ 1")
+        check("absorptivity", self.absorptivity, self.reflectivity + self.absorptivity <= 1,
                f"≤ 1 − reflectivity = {1 - self.reflectivity:g} (R + α + transmissivity = 1)")
-        _check("reflectivity", self.reflectivity, 2 * self.reflectivity + self.absorptivity > 0,
+        check("reflectivity", self.reflectivity, 2 * self.reflectivity + self.absorptivity > 0,
                "> 0 or absorptivity > 0 (a transparent sail feels no load)")
-        v = _finite("mode", self.mode)
-        _check("mode", v, v > 0, "> 0 (whole or half integers in the paper)")
-        v = _finite("t_final", self.t_final)
-        _check("t_final", v, v > 0, "> 0")
-        if self.output_interval is not None:
-            v = _finite("output_interval", self.output_interval)
-            _check("output_interval", v, 0 < v <= self.t_final, f"0 < output_interval ≤ t_final={self.t_final}")
-        v = _finite("failure_ratio", self.failure_ratio)
-        _check("failure_ratio", v, v > 1, "> 1")
-        _check("tension", self.tension, self.tension == 0 or self.model == "tnt",
+        v = finite("defect_mode", self.defect_mode)
+        check("defect_mode", v, v > 0, "> 0 (whole or half integers in the paper)")
+        check("tension", self.tension, self.tension == 0 or self.model == "tnt",
                "0 unless model='tnt' (boundary tension exists only in the TnT model)")
-        _check("boundary", self.boundary, self.boundary in BOUNDARIES, f"one of {', '.join(BOUNDARIES)}")
-        _finite("tip_load", self.tip_load)
-        v = _finite("tip_load_time_constant", self.tip_load_time_constant)
-        _check("tip_load_time_constant", v, v >= 0, "≥ 0 (0: the full load from t = 0)")
+        check("boundary", self.boundary, self.boundary in BOUNDARIES, f"one of {', '.join(BOUNDARIES)}")
+        finite("tip_load", self.tip_load)
+        v = finite("tip_load_time_constant", self.tip_load_time_constant)
+        check("tip_load_time_constant", v, v >= 0, "≥ 0 (0: the full load from t = 0)")
         if self.bending is None:
             object.__setattr__(self, "bending", self.model == "torsion")
-        _check("bending", self.bending, isinstance(self.bending, bool), "True, False or None")
-        _check("amplitude", self.amplitude, self.amplitude < self.length / (2 * math.pi * self.mode),
-               f"< L/(2πν) = {self.length / (2 * math.pi * self.mode):.3g} m (a sine steeper than 45° "
-               "is outside the model)")
+        check("bending", self.bending, isinstance(self.bending, bool), "True, False or None")
+        check("defect_amplitude", self.defect_amplitude,
+              self.defect_amplitude < self.length / (2 * math.pi * self.defect_mode),
+              f"< L/(2πν) = {self.length / (2 * math.pi * self.defect_mode):.3g} m (a sine steeper than 45° "
+              "is outside the model)")
 
     # ---- derived quantities (paper Sec. III) -------------------------------------------------
     @property
@@ -170,14 +167,14 @@ class SailParameters:
         return (self.n - 1) * self.youngs_modulus * self.thickness * self.width / self.length
 
     @property
-    def torsional_damper(self) -> float:
+    def total_torsional_damping(self) -> float:
         """c_T + β k_T (N·m·s/rad) on the relative rate θ̇_j − θ̇_{j−1} of each interior hinge (0: rigid)."""
         if self.model == "rigid":
             return 0.0
         return self.torsional_damping + self.stiffness_damping * self.torsional_stiffness
 
     @property
-    def axial_damper(self) -> float:
+    def total_axial_damping(self) -> float:
         """c_s + β k_s (N·s/m) on each axial spring rate ż_j (0 without axial springs)."""
         if not self.extensible:
             return 0.0
@@ -191,7 +188,7 @@ class SailParameters:
     @property
     def displacement_scale(self) -> float:
         """Typical transverse displacement for solver tolerances: a₀, or 1e-6 L for a flat sail."""
-        return self.amplitude if self.amplitude > 0 else 1e-6 * self.length
+        return self.defect_amplitude if self.defect_amplitude > 0 else 1e-6 * self.length
 
     @property
     def flat_force(self) -> float:
@@ -218,21 +215,6 @@ class SailParameters:
         momentum = 2.0 * self.reflectivity + self.absorptivity
         return momentum * self.mean_intensity / (SPEED_OF_LIGHT * self.density * self.thickness)
 
-    @property
-    def sample_interval(self) -> float:
-        """The output interval actually used (s)."""
-        if self.output_interval is not None:
-            return float(self.output_interval)
-        return min(1e-3, self.t_final / 1000.0)
-
-    def sample_times(self) -> np.ndarray:
-        """Output times 0, Δt, 2Δt, … up to t_final, with t_final appended when Δt does not divide it (s)."""
-        dt = self.sample_interval
-        times = dt * np.arange(int(math.floor(self.t_final / dt + 1e-9)) + 1)
-        if times[-1] < self.t_final * (1 - 1e-12):
-            times = np.append(times, self.t_final)
-        return times
-
     def replace(self, **changes) -> "SailParameters":
         """A copy with some fields changed (validated again)."""
         if "model" in changes and "bending" not in changes:
@@ -246,35 +228,43 @@ class SailParameters:
         return self.tip_load * -math.expm1(-t / self.tip_load_time_constant)
 
     def to_dict(self) -> dict:
+        """The fields as a dict (the validation fields omitted at their defaults)."""
         d = dataclasses.asdict(self)
-        d.pop("extra")
         for name, default in VALIDATION_DEFAULTS.items():
             if d[name] == default:
                 del d[name]
-        d.update(self.extra)
         return d
 
     @classmethod
     def from_dict(cls, d: dict) -> "SailParameters":
-        names = {f.name for f in dataclasses.fields(cls)} - {"extra"}
-        known = {k: v for k, v in d.items() if k in names}
-        return cls(**known, extra={k: v for k, v in d.items() if k not in names})
+        """The case of a dict from to_dict; the names of older saved runs (LEGACY_NAMES) are read too
+        and their run-control entries (RUN_FIELDS) skipped. An unknown key raises ParameterError."""
+        names = {f.name for f in dataclasses.fields(cls)}
+        known = {}
+        for key, value in d.items():
+            key = LEGACY_NAMES.get(key, key)
+            if key in RUN_FIELDS:
+                continue
+            check("parameters", key, key in names, f"field names of SailParameters ({', '.join(sorted(names))})")
+            known[key] = value
+        return cls(**known)
 
 
 def paper_case(name: str, **changes) -> SailParameters:
     """The paper's cases by name (Sec. IV): 'rigid' (Fig. 5), 'torsion-stable' (Fig. 6),
-    'torsion-soft' (Fig. 7), 'tnt-stable' (Fig. 10), 'tnt-soft' (Fig. 11)."""
-    cases = {
-        "rigid": dict(model="rigid", n=40, intensity=1e11, amplitude=1e-3, mode=1.5, t_final=0.01),
-        "torsion-stable": dict(model="torsion", youngs_modulus=4.5e13),
-        "torsion-soft": dict(model="torsion", youngs_modulus=4.5e9),
-        "tnt-stable": dict(model="tnt", tension=3.34e-3, youngs_modulus=TNT_DEFAULT_MODULUS),
-        "tnt-soft": dict(model="tnt", tension=3.34e-8, youngs_modulus=TNT_DEFAULT_MODULUS),
-    }
-    if name not in cases:
-        raise ParameterError(f"case={name!r} is invalid: allowed one of {', '.join(cases)}")
-    return SailParameters(**{**cases[name], **changes})
+    'torsion-soft' (Fig. 7), 'tnt-stable' (Fig. 10), 'tnt-soft' (Fig. 11). Their runs:
+    :func:`lightsail_mbs.solvers.settings.paper_settings`."""
+    if name not in PAPER_CASES:
+        raise ParameterError(f"case={name!r} is invalid: allowed one of {', '.join(PAPER_CASES)}")
+    return SailParameters(**{**PAPER_CASES[name], **changes})
 
 
 # The paper gives no E for its TnT runs; 1e11 Pa (a stiff polymer/ceramic film, k_s ≈ 2.9e6 N/m at n = 30)
 TNT_DEFAULT_MODULUS = 1e11
+PAPER_CASES = {
+    "rigid": dict(model="rigid", n=40, intensity=1e11, defect_amplitude=1e-3, defect_mode=1.5),
+    "torsion-stable": dict(model="torsion", youngs_modulus=4.5e13),
+    "torsion-soft": dict(model="torsion", youngs_modulus=4.5e9),
+    "tnt-stable": dict(model="tnt", tension=3.34e-3, youngs_modulus=TNT_DEFAULT_MODULUS),
+    "tnt-soft": dict(model="tnt", tension=3.34e-8, youngs_modulus=TNT_DEFAULT_MODULUS),
+}

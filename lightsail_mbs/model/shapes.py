@@ -27,8 +27,8 @@ class ChainState:
 
 def sine_profile(p: SailParameters):
     """w(x) = a₀ sin(2πνx/L), Eq. (1)."""
-    k = 2.0 * np.pi * p.mode / p.length
-    return lambda x: p.amplitude * np.sin(k * x)
+    k = 2.0 * np.pi * p.defect_mode / p.length
+    return lambda x: p.defect_amplitude * np.sin(k * x)
 
 
 def multimode_coefficients(p: SailParameters) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -39,13 +39,13 @@ def multimode_coefficients(p: SailParameters) -> tuple[np.ndarray, np.ndarray, n
     of w over 0 ≤ x ≤ L equals a₀/√2, the RMS of the paper's sine of amplitude a₀.
     """
     rng = np.random.default_rng(p.defect_seed)
-    nu = 0.5 * np.arange(1, p.defect_modes + 1)
+    nu = 0.5 * np.arange(1, p.defect_mode_count + 1)
     a = nu ** (-p.defect_spectrum) * np.abs(rng.standard_normal(nu.size))
     phase = rng.uniform(0.0, 2.0 * np.pi, nu.size)
     x = np.linspace(0.0, p.length, 4097)
     w = (a[:, None] * np.sin(2 * np.pi * nu[:, None] * x / p.length + phase[:, None])).sum(axis=0)
     rms = np.sqrt(np.trapezoid(w * w, x) / p.length)
-    return nu, a * (p.amplitude / np.sqrt(2.0) / rms), phase
+    return nu, a * (p.defect_amplitude / np.sqrt(2.0) / rms), phase
 
 
 def multimode_profile(p: SailParameters):

@@ -22,27 +22,27 @@ def nominal_acceleration(p: SailParameters) -> float:
 
 def perturbed_acceleration(p: SailParameters) -> float:
     """Eq. (4) with its second-order term: g₀ [1 − 2π²ν²(a₀/L)²] (the printed 'n' is the mode ν)."""
-    return p.nominal_acceleration * (1.0 - 2.0 * np.pi ** 2 * p.mode ** 2 * (p.amplitude / p.length) ** 2)
+    return p.nominal_acceleration * (1.0 - 2.0 * np.pi ** 2 * p.defect_mode ** 2 * (p.defect_amplitude / p.length) ** 2)
 
 
 def critical_modulus(p: SailParameters, x0) -> np.ndarray:
     """E_cr(x₀) = −(3/2)(2I₀/c) a₀ L² / (π² ν² h³) · sin(2πνx₀/L), Eq. (7) (Pa)."""
-    return -critical_modulus_max(p) * np.sin(2.0 * np.pi * p.mode * np.asarray(x0, float) / p.length)
+    return -critical_modulus_max(p) * np.sin(2.0 * np.pi * p.defect_mode * np.asarray(x0, float) / p.length)
 
 
 def critical_modulus_max(p: SailParameters) -> float:
     """E_cr,max = (3/2)(2I₀/c) a₀ L² / (π² ν² h³), Eq. (8) (Pa)."""
-    return 1.5 * radiation_pressure(p) * p.amplitude * p.length ** 2 / (np.pi ** 2 * p.mode ** 2 * p.thickness ** 3)
+    return 1.5 * radiation_pressure(p) * p.defect_amplitude * p.length ** 2 / (np.pi ** 2 * p.defect_mode ** 2 * p.thickness ** 3)
 
 
 def critical_tension(p: SailParameters, x0) -> np.ndarray:
     """T_cr(x₀) = −(1/2)(2I₀/c) a₀ sin(2πνx₀/L) · W, Eq. (9) (N)."""
-    return -critical_tension_max(p) * np.sin(2.0 * np.pi * p.mode * np.asarray(x0, float) / p.length)
+    return -critical_tension_max(p) * np.sin(2.0 * np.pi * p.defect_mode * np.asarray(x0, float) / p.length)
 
 
 def critical_tension_max(p: SailParameters) -> float:
     """T_cr,max = (1/2)(2I₀/c) a₀ · W, Eq. (10) (N)."""
-    return 0.5 * radiation_pressure(p) * p.amplitude * p.width
+    return 0.5 * radiation_pressure(p) * p.defect_amplitude * p.width
 
 
 def summary(p: SailParameters) -> dict:

@@ -22,11 +22,11 @@ MICRO = 1e6  # m → µm
 
 
 # ---- running ---------------------------------------------------------------------------------
-def run_cases(params_list, store_dir, *, solver: str = "exudyn", workers=None, scheduler=None,
+def run_cases(params_list, store_dir, settings, *, solver: str = "exudyn", workers=None, scheduler=None,
               label: str = "cases", progress: bool = True) -> list[tuple[dict, Result | None]]:
     """Run (or find in the store) every case with its full Result saved; return (record, Result) pairs
     in order. A case whose solver failed comes back with its record and, if any, its partial Result."""
-    cases = [Case(p, solver, save_result=True) for p in params_list]
+    cases = [Case(p, solver, save_result=True, settings=settings) for p in params_list]
     records = run_sweep(cases, store_dir, workers=workers, scheduler=scheduler, label=label, progress=progress)
     out = []
     for record in records:
@@ -160,16 +160,16 @@ def plot_map(ax, points: list[tuple[float, float, bool]], boundary: list[tuple[f
 
 # ---- the angle-history figures of a stable and a soft case (Figs 6–8, 10–11) ------------------
 def angle_history_figures(out, name: str, cases: dict, figures: list[tuple[int, str, float | None]],
-                          describe, *, solver="exudyn", workers=None, scheduler=None, store=None,
+                          describe, *, settings, solver="exudyn", workers=None, scheduler=None, store=None,
                           progress=True) -> list[dict]:
-    """Run the labelled cases ({label: SailParameters}), then per (figure number, label, t_max) draw
+    """Run the labelled cases ({label: SailParameters}) with the same RunSettings, then per (figure number, label, t_max) draw
     θ_i(t) of a few slices into OUT/fig<number>.png. Writes OUT/<name>_summary.csv (failure, frequency
     of the stable runs by spectral.angle_frequency) and OUT/<name>_angles_<label>.csv; returns the rows.
     describe(params) -> the case's title text (e.g. its E and E_cr,max).
     """
     from lightsail_mbs.analysis.spectral import angle_frequency
     out = Path(out)
-    runs = dict(zip(cases, run_cases(list(cases.values()), Path(store or out / "store") / name, solver=solver,
+    runs = dict(zip(cases, run_cases(list(cases.values()), Path(store or out / "store") / name, settings, solver=solver,
                                      workers=workers, scheduler=scheduler, label=name, progress=progress)))
     rows = []
     for label, (record, result) in runs.items():
@@ -193,12 +193,13 @@ def angle_history_figures(out, name: str, cases: dict, figures: list[tuple[int, 
 
 
 # ---- stability maps (Figs 9, 12) -------------------------------------------------------------
-def stability_map_figure(out, name: str, number: int, base, thicknesses, modes, *, factor=1.5, solver="exudyn",
+def stability_map_figure(out, name: str, number: int, base, thicknesses, modes, *, settings, factor=1.5,
+                         solver="exudyn",
                          workers=None, scheduler=None, store=None, progress=True, ratio_limit=10.0,
                          recheck_all=False, **sweep_options) -> list[dict]:
     """Bisect and draw a stability map: OUT/<name>.png, <name>_boundaries.csv, <name>_points.csv.
 
-    Every (thickness, mode) boundary is bisected (stability_map.boundary_map) at base.t_final; those
+    Every (thickness, mode) boundary is bisected (studies.maps.boundary_map) at settings.t_final; those
     whose boundary/analytic ratio is outside [1/ratio_limit, ratio_limit] (or not bracketed) — all of
     them if recheck_all — are bisected again at 2 × t_final, to show how the boundary moves with the
     run time. Returns the rows (one per thickness and mode, with boundary_2t and ratio_2t where
@@ -210,12 +211,13 @@ def stability_map_figure(out, name: str, number: int, base, thicknesses, modes, 
     pairs = [(float(h), float(nu)) for h in thicknesses for nu in modes]
     kwargs = dict(store_dir=store, solver=solver, factor=factor, workers=workers, scheduler=scheduler,
                   progress=progress, **sweep_options)
-    found = boundary_map(base, pairs, **kwargs)
+    found = boundary_map(base, pairs, settings=settings, **kwargs)
     odd = [(r.thickness, r.mode) for r in found
            if recheck_all or r.ratio is None or not 1.0 / ratio_limit <= r.ratio <= ratio_limit]
     longer = {}
     if odd:
-        longer = {(r.thickness, r.mode): r for r in boundary_map(base.replace(t_final=2 * base.t_final), odd, **kwargs)}
+        twice = settings.replace(t_final=2 * settings.t_final)
+        longer = {(r.thickness, r.mode): r for r in boundary_map(base, odd, settings=twice, **kwargs)}
     rows = []
     for r in found:
         row = r.as_dict()
@@ -235,7 +237,7 @@ def stability_map_figure(out, name: str, number: int, base, thicknesses, modes, 
     for k, nu in enumerate(modes):
         mine = [r for r in found if r.mode == float(nu)]
         offset = 10 ** (0.04 * (k - (len(modes) - 1) / 2))
-        analytic = (h_line, np.array([critical(base.replace(thickness=h, mode=float(nu))) for h in h_line]))
+        analytic = (h_line, np.array([critical(base.replace(thickness=h, defect_mode=float(nu))) for h in h_line]))
         plot_map(ax[0, 0], [(r.thickness, v, s) for r in mine for v, s in r.points if s is not None],
                  [(r.thickness, *sorted((r.stable_value, r.unstable_value))) for r in mine if r.boundary],
                  analytic, label, label=f"ν = {nu:g}: " if len(modes) > 1 else "", color=f"C{k}",
@@ -245,8 +247,8 @@ def stability_map_figure(out, name: str, number: int, base, thicknesses, modes, 
         if again:
             ax[0, 0].plot([r.thickness * MICRO * offset for r in again], [r.boundary for r in again], "s--",
                           color=f"C{k}", mfc="none", lw=0.8, ms=6,
-                          label=f"{f'ν = {nu:g}: ' if len(modes) > 1 else ''}boundary at {2 * base.t_final:g} s")
-    values = [critical(base.replace(thickness=h, mode=float(nu))) for h in thicknesses for nu in modes]
+                          label=f"{f'ν = {nu:g}: ' if len(modes) > 1 else ''}boundary at {2 * settings.t_final:g} s")
+    values = [critical(base.replace(thickness=h, defect_mode=float(nu))) for h in thicknesses for nu in modes]
     ax[0, 0].set_ylim(min(values) / 1e3, max(values) * 1e3)
     for r in found:
         if r.boundary is None:
@@ -254,7 +256,7 @@ def stability_map_figure(out, name: str, number: int, base, thicknesses, modes, 
             note = (f"{r.status} in {r.t_final:g} s:\n{'stable' if r.points[-1][1] else 'failed'} "
                     f"from {min(known):.2g} to {max(known):.2g}") if known else f"{r.status}:\nno run finished"
             ax[0, 0].annotate(note, (r.thickness * MICRO, min(values) / 1e2), fontsize=7, ha="center")
-    ax[0, 0].set_title(f"Fig. {number}: {base.model} stability map, {base.t_final:g} s runs, n = {base.n}, "
+    ax[0, 0].set_title(f"Fig. {number}: {base.model} stability map, {settings.t_final:g} s runs, n = {base.n}, "
                        f"analytic: {'E_cr,max (Eq. 8)' if swept == 'youngs_modulus' else 'T_cr,max (Eq. 10)'}",
                        fontsize=9)
     handles, labels = ax[0, 0].get_legend_handles_labels()

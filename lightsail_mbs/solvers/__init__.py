@@ -1,20 +1,59 @@
-"""One solver interface: solve(params, solver="exudyn" | "reduced") -> Result.
+"""One solver interface: ``solve(params, solver, settings) -> Result``.
 
-Each solver is a module of this package exposing ``run(params, *, progress=False, **options)``.
+How to run a case:
+
+1. Describe the sail: ``params = SailParameters(model="torsion", youngs_modulus=4.5e9)`` (or
+   ``paper_case("torsion-soft")``).
+2. Say how the run is watched: ``settings = RunSettings(t_final=6.0)`` (duration, output interval,
+   stop rule; ``paper_settings(name)`` for the paper's cases).
+3. ``result = solve(params, "reduced", settings)`` (or ``"exudyn"``), with the solver's own options
+   as keywords (Exudyn: ``step_size``, ``newton_rel_tol``, …; reduced: ``rtol``, ``method``, …).
+4. Read the :class:`~lightsail_mbs.result.Result`: ``result.failure_time``, ``result.summary()``,
+   ``result.save("run.npz")``.
+
+Each solver is a module ``lightsail_mbs.solvers.<name>`` exposing
+``run(params, settings, *, progress=False, **options)`` that keeps the contract of
+:mod:`lightsail_mbs.solvers.skeleton` (sampling, stop rule, errors as results). A third solver is a
+new folder here and one line in ``SOLVERS``.
 """
 from __future__ import annotations
 
 import importlib
+from typing import TYPE_CHECKING
 
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
-from lightsail_mbs.result import Result
+from lightsail_mbs.solvers.settings import RunSettings, paper_settings
+
+if TYPE_CHECKING:
+    from lightsail_mbs.result import Result
 
 SOLVERS = {"exudyn": "exudyn.chain", "reduced": "reduced.solver"}
 
+__all__ = ["SOLVERS", "RunSettings", "paper_settings", "solve"]
 
-def solve(params: SailParameters, solver: str = "exudyn", *, progress: bool = False, **options) -> Result:
-    """Run one case with the named solver and return its Result."""
+
+def solve(params: SailParameters, solver: str = "exudyn", settings: RunSettings | None = None, *,
+          progress: bool = False, **options) -> Result:
+    """Run one case with the named solver and return its Result.
+
+    Parameters
+    ----------
+    params : SailParameters
+        The physical case.
+    solver : {"exudyn", "reduced"}
+        The engine: Exudyn's KinematicTree chain or the in-house reduced-Lagrangian chain.
+    settings : RunSettings, optional
+        Duration, output interval and stop rule (default ``RunSettings()``: 6 s, stop at failure).
+    progress : bool
+        Show a progress bar on stderr.
+    **options
+        The solver's own numerical options (see its module); an unknown one raises ParameterError.
+    """
     if solver not in SOLVERS:
         raise ParameterError(f"solver={solver!r} is invalid: allowed one of {', '.join(SOLVERS)}")
+    if settings is None:
+        settings = RunSettings()
+    if not isinstance(settings, RunSettings):
+        raise ParameterError(f"settings={settings!r} is invalid: allowed a RunSettings")
     module = importlib.import_module(f".{SOLVERS[solver]}", __name__)
-    return module.run(params, progress=progress, **options)
+    return module.run(params, settings, progress=progress, **options)

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 from lightsail_mbs.model.parameters import ParameterError
+from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.studies.sweep import Case, Sweep, solve_case
 
 
@@ -159,7 +160,8 @@ class _Search:
         self.out.status, self.out.message = status, message
 
 
-def bisect_boundaries(problems: dict, *, store_dir, solver: str = "exudyn", options: dict | None = None,
+def bisect_boundaries(problems: dict, *, store_dir, solver: str = "exudyn", settings: RunSettings | None = None,
+                      options: dict | None = None,
                       stable: Callable[[dict], bool | None] = default_stable, factor: float = 1.5,
                       log: bool = True, stable_above: bool = True, points_per_round: int = 1,
                       max_expansions: int = 6, workers: int | None = None, scheduler=None,
@@ -187,7 +189,8 @@ def bisect_boundaries(problems: dict, *, store_dir, solver: str = "exudyn", opti
             search.answers = {}
             for value in search.wanted():
                 try:
-                    case = Case(search.problem.make_params(value), solver, dict(options or {}))
+                    case = Case(search.problem.make_params(value), solver, dict(options or {}),
+                                settings=settings or RunSettings())
                 except ParameterError as exc:
                     search.out.evaluations.append((value, None, None))
                     search.stop("error", f"no case at {value:.6g}: {exc}")

@@ -1,4 +1,4 @@
-"""Cross-validation of the two solvers (issue 4): Exudyn's implicit chain vs the reduced-Lagrangian chain.
+"""Cross-validation of the two solvers: Exudyn's implicit chain vs the reduced-Lagrangian chain.
 
 For each case both solvers run the same SailParameters; the report gives the largest angle
 difference max |Δθ| over the samples where both amplitudes are below 1.5× their initial value
@@ -17,9 +17,10 @@ import numpy as np
 from lightsail_mbs import analysis
 from lightsail_mbs.model.parameters import ParameterError, SailParameters, paper_case
 from lightsail_mbs.solvers import solve
+from lightsail_mbs.solvers.settings import RunSettings, paper_settings
 
 WINDOW_RATIO = 1.5           # compare angles while both amplitudes are < 1.5 × initial
-ANGLE_LIMIT = 1e-6           # rad, issue 4
+ANGLE_LIMIT = 1e-6           # rad
 FAILURE_TIME_LIMIT = 0.01    # relative
 
 
@@ -27,6 +28,7 @@ FAILURE_TIME_LIMIT = 0.01    # relative
 class Case:
     name: str
     params: SailParameters
+    settings: RunSettings
     note: str
     reduced_options: dict = field(default_factory=lambda: dict(rtol=1e-10))
     exudyn_step_scale: float = 1.0   # × exudyn_chain.default_step_size: generalized-α is 2nd order, the
@@ -37,24 +39,28 @@ def free_tnt() -> SailParameters:
     """An unlit, untensioned extensible chain with bending on, thick (h = 1 cm) so that its axial
     springs (ω ≈ 10⁴ rad/s) stay within a factor ~10 of its bending modes and both solvers resolve them."""
     return SailParameters(model="tnt", n=6, intensity=0.0, tension=0.0, bending=True, youngs_modulus=1e9,
-                          thickness=1e-2, amplitude=1e-2, t_final=0.02)
+                          thickness=1e-2, defect_amplitude=1e-2)
 
 
+SIX_SECONDS = RunSettings(t_final=6.0)
 CASES = {
-    "rigid-0.5": Case("rigid-0.5", paper_case("rigid", mode=0.5), "Fig. 5c–d: mode ½ does not fail"),
+    "rigid-0.5": Case("rigid-0.5", paper_case("rigid", defect_mode=0.5), paper_settings("rigid"),
+                      "Fig. 5c–d: mode ½ does not fail"),
     # the stiffness-free chain amplifies round-off ~e^25 by the 1.5× window: the reduced solution itself
     # moves by 2e-7 … 5e-6 rad between rtol 1e-9 … 1e-12, so both solvers run near their limits here
-    "rigid-1.5": Case("rigid-1.5", paper_case("rigid", mode=1.5), "Fig. 5a–b: trough failure",
+    "rigid-1.5": Case("rigid-1.5", paper_case("rigid", defect_mode=1.5), paper_settings("rigid"),
+                      "Fig. 5a–b: trough failure",
                       dict(rtol=1e-12, atol=1e-17), exudyn_step_scale=0.0625),
-    "torsion-stable": Case("torsion-stable", paper_case("torsion-stable"), "Fig. 6: E = 4.5e13 Pa",
+    "torsion-stable": Case("torsion-stable", paper_case("torsion-stable"), SIX_SECONDS, "Fig. 6: E = 4.5e13 Pa",
                            exudyn_step_scale=0.25),
-    "torsion-soft": Case("torsion-soft", paper_case("torsion-soft"), "Fig. 7: E = 4.5e9 Pa",
+    "torsion-soft": Case("torsion-soft", paper_case("torsion-soft"), SIX_SECONDS, "Fig. 7: E = 4.5e9 Pa",
                          exudyn_step_scale=0.125),
-    "tnt-stable": Case("tnt-stable", paper_case("tnt-stable"), "Fig. 10: T = 3.34e-3 N"),
-    "tnt-soft": Case("tnt-soft", paper_case("tnt-soft"), "Fig. 11: T = 3.34e-8 N", exudyn_step_scale=0.125),
-    "free-torsion": Case("free-torsion", paper_case("torsion-stable", intensity=0.0, t_final=1.0),
+    "tnt-stable": Case("tnt-stable", paper_case("tnt-stable"), SIX_SECONDS, "Fig. 10: T = 3.34e-3 N"),
+    "tnt-soft": Case("tnt-soft", paper_case("tnt-soft"), SIX_SECONDS, "Fig. 11: T = 3.34e-8 N",
+                     exudyn_step_scale=0.125),
+    "free-torsion": Case("free-torsion", paper_case("torsion-stable", intensity=0.0), RunSettings(t_final=1.0),
                          "free vibration, I₀ = 0", exudyn_step_scale=0.25),
-    "free-tnt": Case("free-tnt", free_tnt(), "free vibration, I₀ = 0, T = 0, bending on",
+    "free-tnt": Case("free-tnt", free_tnt(), RunSettings(t_final=0.02), "free vibration, I₀ = 0, T = 0, bending on",
                      dict(rtol=1e-10, method="DOP853"), exudyn_step_scale=0.25),
 }
 
@@ -78,7 +84,7 @@ def common_samples(time_a: np.ndarray, time_b: np.ndarray, interval: float):
 
 def compare(case: Case, exudyn, reduced) -> dict:
     """The report row of one case from the two Results."""
-    ie, ir = common_samples(exudyn.time, reduced.time, case.params.sample_interval)
+    ie, ir = common_samples(exudyn.time, reduced.time, case.settings.sample_interval)
     ratio = np.maximum(exudyn.amplitude[ie] / exudyn.amplitude[0], reduced.amplitude[ir] / reduced.amplitude[0])
     inside = np.nonzero(ratio >= WINDOW_RATIO)[0]
     end = int(inside[0]) if inside.size else ie.size
@@ -107,7 +113,7 @@ def plot(case: Case, exudyn, reduced, path: Path) -> Path:
     import matplotlib.pyplot as plt
 
     n = case.params.n
-    ie, ir = common_samples(exudyn.time, reduced.time, case.params.sample_interval)
+    ie, ir = common_samples(exudyn.time, reduced.time, case.settings.sample_interval)
     t = reduced.time[ir]
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
     for k, colour in zip((0, n // 2, n - 1), ("C0", "C1", "C2")):
@@ -174,9 +180,9 @@ def run(names: list[str] | None = None, out_dir: Path | str = "validation", prog
     for case in select(names):
         if progress:
             print(f"crosscheck {case.name}: {case.note}", flush=True)
-        step = default_step_size(case.params) * case.exudyn_step_scale * exudyn_step_scale
-        exudyn = solve(case.params, "exudyn", progress=progress, step_size=step)
-        reduced = solve(case.params, "reduced", progress=progress, **case.reduced_options)
+        step = default_step_size(case.params, case.settings) * case.exudyn_step_scale * exudyn_step_scale
+        exudyn = solve(case.params, "exudyn", case.settings, progress=progress, step_size=step)
+        reduced = solve(case.params, "reduced", case.settings, progress=progress, **case.reduced_options)
         row = compare(case, exudyn, reduced)
         row["exudyn_step"] = step
         rows.append(row)

@@ -14,6 +14,7 @@ from typing import Callable
 from lightsail_mbs.model import theory
 from lightsail_mbs.studies.bisection import BoundaryProblem, bisect_boundaries
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.studies.sweep import solve_case
 
 # the swept parameter of each model and its analytic critical value
@@ -54,12 +55,13 @@ class MapRow:
                 "status": self.status, "evaluations": len(self.points)}
 
 
-def boundary_map(base: SailParameters, cases, *, store_dir, solver: str = "exudyn",
+def boundary_map(base: SailParameters, cases, *, store_dir, settings: RunSettings, solver: str = "exudyn",
                  factor: float = 1.5, span: float = 30.0, workers=None, scheduler=None,
                  progress: bool = True, options: dict | None = None, max_expansions: int = 1,
                  case_function: Callable = solve_case) -> list[MapRow]:
     """Bisect the boundary of ``base`` (model torsion: E; tnt: T) at every (thickness, mode) of
-    ``cases``; one row per case, in their order. All boundaries advance at once on one sweep.
+    ``cases``; one row per case, in their order, each run with ``settings``. All boundaries advance at
+    once on one sweep.
     max_expansions: widenings of a bracket whose ends agree (each doubles its log-width; one
     takes the lower end from analytic/span to analytic/span³ — no stiffness to speak of).
     case_function: how a case runs (default: the named solver; tests pass a stand-in).
@@ -71,14 +73,15 @@ def boundary_map(base: SailParameters, cases, *, store_dir, solver: str = "exudy
     name, critical = SWEPT[base.model]
     problems, analytic = {}, {}
     for h, nu in cases:
-        p = base.replace(thickness=float(h), mode=float(nu))
+        p = base.replace(thickness=float(h), defect_mode=float(nu))
         a = float(critical(p))
         analytic[(float(h), float(nu))] = a
         problems[(float(h), float(nu))] = BoundaryProblem(
             lambda value, p=p: p.replace(**{name: float(value)}), a / span, a * span)
-    found = bisect_boundaries(problems, store_dir=store_dir, solver=solver, options=options, factor=factor,
+    found = bisect_boundaries(problems, store_dir=store_dir, solver=solver, settings=settings, options=options,
+                              factor=factor,
                               workers=workers, scheduler=scheduler, progress=progress, max_expansions=max_expansions,
                               case_function=case_function)
-    return [MapRow(h, nu, base.t_final, analytic[(h, nu)], b.stable_value, b.unstable_value, b.status,
+    return [MapRow(h, nu, settings.t_final, analytic[(h, nu)], b.stable_value, b.unstable_value, b.status,
                    b.message, [(v, s) for v, s, _ in b.evaluations])
             for (h, nu), b in found.items()]

@@ -1,4 +1,4 @@
-"""Monte Carlo over random multi-mode defects (issue 9): failure probability and failure times.
+"""Monte Carlo over random multi-mode defects: failure probability and failure times.
 
 For each value of a swept parameter (E or T), N seeded defects (shapes.multimode_profile, seeds
 0…N−1) run through the sweep engine. Per value we report the failure probability with its 95 %
@@ -12,9 +12,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.studies.sweep import Case, run_sweep, solve_case
 
-SWEEPABLE = ("youngs_modulus", "tension", "thickness", "intensity", "amplitude")
+SWEEPABLE = ("youngs_modulus", "tension", "thickness", "intensity", "defect_amplitude")
 
 
 def wilson_interval(failures: int, trials: int, confidence: float = 0.95) -> tuple[float, float]:
@@ -46,13 +47,14 @@ class MonteCarloRow:
 
 
 def cases(base: SailParameters, parameter: str, values, seeds: int, solver: str = "exudyn",
-          options: dict | None = None) -> list[Case]:
+          options: dict | None = None, settings: RunSettings | None = None) -> list[Case]:
     """The sweep: every (value, seed) pair, seeds 0…seeds−1."""
     if parameter not in SWEEPABLE:
         raise ParameterError(f"parameter={parameter!r} is invalid: allowed one of {', '.join(SWEEPABLE)}")
     if not isinstance(seeds, int) or seeds < 1:
         raise ParameterError(f"seeds={seeds!r} is invalid: allowed an integer ≥ 1")
-    return [Case(base.replace(**{parameter: float(v)}, defect_seed=s), solver, dict(options or {}))
+    return [Case(base.replace(**{parameter: float(v)}, defect_seed=s), solver, dict(options or {}),
+                 settings=settings or RunSettings())
             for v in values for s in range(seeds)]
 
 
@@ -74,11 +76,11 @@ def summarise(values, seeds: int, records: list[dict]) -> list[MonteCarloRow]:
 
 
 def run(base: SailParameters, parameter: str, values, seeds: int, store_dir, *, solver: str = "exudyn",
-        options: dict | None = None, workers: int | None = None, scheduler=None, progress: bool = True,
-        case_function=solve_case) -> list[MonteCarloRow]:
+        settings: RunSettings | None = None, options: dict | None = None, workers: int | None = None,
+        scheduler=None, progress: bool = True, case_function=solve_case) -> list[MonteCarloRow]:
     """Run (or resume) the Monte Carlo sweep and summarise it per value."""
     values = [float(v) for v in values]
-    records = run_sweep(cases(base, parameter, values, seeds, solver, options), store_dir, workers=workers,
+    records = run_sweep(cases(base, parameter, values, seeds, solver, options, settings), store_dir, workers=workers,
                         scheduler=scheduler, progress=progress, case_function=case_function, label="monte carlo")
     return summarise(values, seeds, records)
 

@@ -22,19 +22,21 @@ import sys
 from dataclasses import dataclass, field
 from typing import Callable
 
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.model.parameters import LEGACY_NAMES, ParameterError, SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.studies.runners import available_cores, dask_client, make_runner
+from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.studies.store import CaseStore, to_json
 
 __all__ = ["Case", "Sweep", "run_sweep", "solve_case", "available_cores", "dask_client"]
 
 KEY_LENGTH = 20  # hex digits of the SHA-256 of a case's description
+STORED_NAMES = {new: old for old, new in LEGACY_NAMES.items()}   # field names in the key's parameter dict
 
 
 @dataclass(frozen=True)
 class Case:
-    """One run of a sweep: ``solve(params, solver, **options)``.
+    """One run of a sweep: ``solve(params, solver, settings, **options)``.
 
     ``save_result`` asks for the full Result (.npz) to be stored too; it is not part of the key.
     """
@@ -43,6 +45,7 @@ class Case:
     solver: str = "exudyn"
     options: dict = field(default_factory=dict)
     save_result: bool = False
+    settings: RunSettings = field(default_factory=RunSettings)
     key: str = field(init=False, compare=False)
 
     def __post_init__(self):
@@ -54,14 +57,17 @@ class Case:
         object.__setattr__(self, "key", hashlib.sha256(text.encode()).hexdigest()[:KEY_LENGTH])
 
     def description(self) -> dict:
-        """What the key identifies: the full parameter dict, the solver and its options."""
-        return {"parameters": self.params.to_dict(), "solver": self.solver, "options": self.options}
+        """What the key identifies: the case and its run settings in one parameter dict (under the
+        field names of the store's key format, STORED_NAMES), the solver and its options."""
+        parameters = {STORED_NAMES.get(k, k): v for k, v in self.params.to_dict().items()}
+        parameters.update(self.settings.to_dict())
+        return {"parameters": parameters, "solver": self.solver, "options": self.options}
 
 
 def solve_case(case: Case) -> Result:
-    """The default case function: ``lightsail_mbs.solve(params, solver, **options)``, no progress bar."""
+    """The default case function: ``lightsail_mbs.solve(params, solver, settings, **options)``, no progress bar."""
     from lightsail_mbs.solvers import solve
-    return solve(case.params, case.solver, progress=False, **case.options)
+    return solve(case.params, case.solver, case.settings, progress=False, **case.options)
 
 
 class Sweep:

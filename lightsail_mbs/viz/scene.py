@@ -243,7 +243,7 @@ def make_style(results, indices, layout: Layout, exaggeration=None, color_by="cu
     vmax = max((float(np.abs(hinge_values(r, i, color_by)).max(initial=0.0)) for r, idx in zip(results, indices)
                 for i in idx), default=0.0)
     time_span = (min(float(r.time[0]) for r in results),
-                 max(max(float(r.params.t_final), float(r.time[-1])) for r in results))
+                 max(max(float(r.settings.t_final), float(r.time[-1])) for r in results))
     return Style(layout, float(exaggeration), adaptive, color_by, color_scale, vmax, bool(arrows), time_span)
 
 

@@ -66,10 +66,13 @@ import numpy as np
 from lightsail_mbs import analysis
 from lightsail_mbs.model import shapes
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
-from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.result import Result
+from lightsail_mbs.solvers.exudyn.console import silenced
 from lightsail_mbs.solvers.exudyn.supports import add_supports
 from lightsail_mbs.solvers.exudyn.tree import ChainLayout, generalized_force, tree_arguments
+from lightsail_mbs.solvers.progress import Progress
+from lightsail_mbs.solvers.settings import RunSettings
+from lightsail_mbs.solvers.skeleton import FailureMonitor
 
 # Step size h = STEP_FACTOR · sqrt(L / g₀) (capped by the output interval): the radiation
 # load sets the time scale of the instability (paper torsion case: sqrt(1 m / 667 m/s²) = 38.7 ms,
@@ -89,7 +92,7 @@ SPECTRAL_RADIUS = 0.9           # generalized-α numerical damping of the highes
 SAMPLES_PER_CHECK = 50          # failure check (and progress) after this many output samples
 
 
-def default_step_size(p: SailParameters) -> float:
+def default_step_size(p: SailParameters, settings: RunSettings) -> float:
     """h = STEP_FACTOR · sqrt(L/g₀) (/ EXTENSIBLE_STEP_DIVISOR for extensible TnT, / RIGID_STEP_DIVISOR
     for the rigid model), at most the output interval (which it then divides)."""
     g0 = p.nominal_acceleration
@@ -98,7 +101,7 @@ def default_step_size(p: SailParameters) -> float:
         h /= EXTENSIBLE_STEP_DIVISOR
     elif p.model == "rigid":
         h /= RIGID_STEP_DIVISOR
-    return min(h, p.sample_interval)
+    return min(h, settings.sample_interval)
 
 
 def default_abs_tol(p: SailParameters) -> float:
@@ -109,7 +112,7 @@ def default_abs_tol(p: SailParameters) -> float:
     (g₀ = 6.7e4 m/s², h = 10 nm) drift by 1.6e-5 rad in 0.3 s from the reduced solution; scaled by the
     slope they agree to 5e-10 rad, for +35–55 % Newton iterations on the paper cases."""
     scale = p.flat_force if p.flat_force > 0 else p.slice_mass
-    slope = 2.0 * math.pi * p.mode * p.amplitude / p.length
+    slope = 2.0 * math.pi * p.defect_mode * p.defect_amplitude / p.length
     return NEWTON_ABS_FACTOR * scale * (slope if slope > 0 else 1.0)
 
 
@@ -137,14 +140,15 @@ def build(p: SailParameters, initial: shapes.ChainState | None = None):
     return SC, mbs, layout, sensors, load
 
 
-def settings(p: SailParameters, step_size: float, rel_tol: float, abs_tol: float,
-             spectral_radius: float = SPECTRAL_RADIUS):
+def simulation_settings(t_final: float, step_size: float, rel_tol: float, abs_tol: float,
+                        spectral_radius: float = SPECTRAL_RADIUS):
+    """Exudyn's SimulationSettings for one generalized-α run of fixed step to t_final."""
     import exudyn as exu
 
     s = exu.SimulationSettings()
     ti = s.timeIntegration
-    ti.endTime = p.t_final
-    ti.numberOfSteps = max(1, int(round(p.t_final / step_size)))
+    ti.endTime = t_final
+    ti.numberOfSteps = max(1, int(round(t_final / step_size)))
     ti.newton.relativeTolerance = rel_tol
     ti.newton.absoluteTolerance = abs_tol
     ti.generalizedAlpha.spectralRadius = spectral_radius
@@ -156,7 +160,7 @@ def settings(p: SailParameters, step_size: float, rel_tol: float, abs_tol: float
     return s
 
 
-def run(params: SailParameters, *, progress: bool = False, step_size: float | None = None,
+def run(params: SailParameters, settings: RunSettings, *, progress: bool = False, step_size: float | None = None,
         newton_rel_tol: float | None = None, newton_abs_tol: float | None = None,
         spectral_radius: float = SPECTRAL_RADIUS, samples_per_check: int = SAMPLES_PER_CHECK,
         **options) -> Result:
@@ -167,8 +171,8 @@ def run(params: SailParameters, *, progress: bool = False, step_size: float | No
         raise ParameterError(f"options={sorted(options)} are invalid: the exudyn solver accepts step_size, "
                              "newton_rel_tol, newton_abs_tol, spectral_radius, samples_per_check")
     p = params
-    dt = p.sample_interval
-    h = default_step_size(p) if step_size is None else float(step_size)
+    dt = settings.sample_interval
+    h = default_step_size(p, settings) if step_size is None else float(step_size)
     if not (h > 0 and math.isfinite(h)):
         raise ParameterError(f"step_size={step_size!r} is invalid: allowed 0 < step_size ≤ output interval {dt:g}")
     h = dt / math.ceil(dt / h * (1 - 1e-12))        # whole steps per output sample
@@ -182,12 +186,11 @@ def run(params: SailParameters, *, progress: bool = False, step_size: float | No
 
     start = _time.perf_counter()
     initial = shapes.initial_state(p)
-    limit = p.failure_ratio * analysis.amplitude(initial.x, initial.y)
-    checking = p.stop_at_failure and limit > 0       # a flat sail (a₀ = 0) has no failure to stop at
+    monitor = FailureMonitor(analysis.amplitude(initial.x, initial.y), settings)
     SC, mbs, layout, sensors, _ = build(p, initial)
-    s = settings(p, h, rel_tol, abs_tol, spectral_radius)
+    s = simulation_settings(settings.t_final, h, rel_tol, abs_tol, spectral_radius)
     steps_per_sample = int(round(dt / h))
-    bar = Progress(p.t_final, progress, label=f"exudyn {p.model} n={p.n}")
+    bar = Progress(settings.t_final, progress, label=f"exudyn {p.model} n={p.n}")
     check_steps = max(1, int(samples_per_check)) * steps_per_sample
     watch = {"steps": 0, "failed": False}
 
@@ -197,9 +200,9 @@ def run(params: SailParameters, *, progress: bool = False, step_size: float | No
         if watch["steps"] % check_steps:
             return True
         bar.update(t)
-        if checking:
+        if monitor.active:
             q = mbs.GetSensorStoredData(sensors[0])[-(check_steps + 1):]
-            if np.any(analysis.amplitude(*layout.positions(q[:, 1:])[:2]) >= limit):
+            if monitor.first_failure(analysis.amplitude(*layout.positions(q[:, 1:])[:2])) is not None:
                 watch["failed"] = True
                 return False
         return True
@@ -207,21 +210,19 @@ def run(params: SailParameters, *, progress: bool = False, step_size: float | No
     mbs.SetPostStepUserFunction(after_step)
     solver = exu.MainSolverImplicitSecondOrder()
     error = None
-    printing = exu.config.printToConsole
-    exu.config.printToConsole = False      # keep stdout clean (the CLI prints JSON there)
     try:
-        solver.InitializeSolver(mbs, s)
-        ok = solver.SolveSteps(mbs, s)
-        if not ok:
-            error = (f"Newton did not converge at t = {solver.it.currentTime:.9g} s "
-                     f"(exudyn: {solver.GetErrorString()})")
-        elif not np.all(np.isfinite(mbs.systemData.GetODE2Coordinates())):
-            error = f"non-finite state at t = {solver.it.currentTime:.9g} s"
-        solver.FinalizeSolver(mbs, s)
+        with silenced():
+            solver.InitializeSolver(mbs, s)
+            ok = solver.SolveSteps(mbs, s)
+            if not ok:
+                error = (f"Newton did not converge at t = {solver.it.currentTime:.9g} s "
+                         f"(exudyn: {solver.GetErrorString()})")
+            elif not np.all(np.isfinite(mbs.systemData.GetODE2Coordinates())):
+                error = f"non-finite state at t = {solver.it.currentTime:.9g} s"
+            solver.FinalizeSolver(mbs, s)
     except exu.ExudynError as exc:       # solver failures are results, not crashes
         error = f"exudyn: {exc}".strip()
     finally:
-        exu.config.printToConsole = printing
         bar.update(solver.it.currentTime)
         bar.close()
     wall = _time.perf_counter() - start
@@ -239,12 +240,10 @@ def run(params: SailParameters, *, progress: bool = False, step_size: float | No
     q, q_t = q[:rows], q_t[:rows]
     x, y, theta, z = layout.positions(q[:, 1:])
     vx, vy, omega, z_rate = layout.velocities(q[:, 1:], q_t[:, 1:])
-    if checking:
-        amp = analysis.amplitude(x, y)
-        over = np.nonzero(amp >= limit)[0]
-        if over.size:                                 # end at the first sample past failure
-            cut = over[0] + 1
-            q, x, y, theta, z, vx, vy, omega, z_rate = (a[:cut] for a in (q, x, y, theta, z, vx, vy, omega, z_rate))
+    over = monitor.first_failure(analysis.amplitude(x, y))
+    if over is not None:                              # end at the first sample past failure
+        cut = over + 1
+        q, x, y, theta, z, vx, vy, omega, z_rate = (a[:cut] for a in (q, x, y, theta, z, vx, vy, omega, z_rate))
     info = {
         "formulation": "ObjectKinematicTree (minimal coordinates), generalized-alpha",
         "step_size": h,
@@ -259,7 +258,7 @@ def run(params: SailParameters, *, progress: bool = False, step_size: float | No
     }
     return Result.from_trajectory(p, "exudyn", q[:, 0], x, y, theta, vx, vy, omega,
                                   z=z if z.shape[-1] else None, z_rate=z_rate if z.shape[-1] else None,
-                                  wall_time=wall, error=error, info=info)
+                                  wall_time=wall, error=error, info=info, settings=settings)
 
 
 def _samples(data: np.ndarray, dt: float, h: float) -> np.ndarray:

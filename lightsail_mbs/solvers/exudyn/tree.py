@@ -183,14 +183,14 @@ def tree_arguments(p: SailParameters, layout: ChainLayout, exu) -> dict:
         inertias[i] = np.diag([J, J, J])
         if k > 0:
             stiffness[i] = p.torsional_stiffness
-            damping[i] = p.torsional_damper
+            damping[i] = p.total_torsional_damping
             if not layout.stretch_index.size:
                 offsets[i] = [l, 0.0, 0.0]
     for i in layout.stretch_index:
         types[i] = exu.JointType.PrismaticX
         offsets[i] = [l, 0.0, 0.0]
         stiffness[i] = p.axial_stiffness
-        damping[i] = p.axial_damper
+        damping[i] = p.total_axial_damping
     return dict(
         gravity=[0.0, -p.nominal_acceleration, 0.0],
         jointTypes=types,

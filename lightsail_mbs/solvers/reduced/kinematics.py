@@ -45,9 +45,9 @@ class ChainModel:
     def from_params(cls, p: SailParameters) -> "ChainModel":
         return cls(params=p, n=p.n, half_length=0.5 * p.slice_length, mass=p.slice_mass,
                    inertia=p.slice_inertia, torsional_stiffness=p.torsional_stiffness,
-                   torsional_damping=p.torsional_damper,
+                   torsional_damping=p.total_torsional_damping,
                    axial_stiffness=p.axial_stiffness if p.extensible else 0.0,
-                   axial_damping=p.axial_damper,
+                   axial_damping=p.total_axial_damping,
                    tension=p.tension if p.model == "tnt" else 0.0, extensible=p.extensible)
 
     @property

@@ -19,13 +19,10 @@ time, not for the sail studies, which keep the O(n) path of reduced_dynamics), p
   reported in Result.info["constraint_drift"] (validation runs: ≲ 1e-12 m).
 
 run() integrates these chains with scipy's implicit steppers (Radau by default: the clamped and
-tensioned chains are stiff), sampling the dense output like reduced.run; reduced.run hands every
+tensioned chains are stiff), sampling the dense output like the free chain (sampling.py); solver.run hands every
 case with supports or a tip load over to it.
 """
 from __future__ import annotations
-
-import math
-import time as clock
 
 import numpy as np
 from scipy.integrate import BDF, LSODA, Radau
@@ -34,9 +31,12 @@ from scipy.linalg import solve_triangular
 from lightsail_mbs import analysis
 from lightsail_mbs.model import shapes
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
-from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.result import Result
-from lightsail_mbs.solvers.reduced.kinematics import (ChainModel, axial_forces, body_forces, centre_jacobian, centre_velocities, centres, torsion_torques)
+from lightsail_mbs.solvers.reduced.dynamics import ChainDynamics
+from lightsail_mbs.solvers.reduced.kinematics import (ChainModel, axial_forces, body_forces, centre_jacobian,
+                                                      centres, torsion_torques)
+from lightsail_mbs.solvers.reduced.sampling import sampled_run, state_scales, stepper_advance, trajectory_result
+from lightsail_mbs.solvers.settings import RunSettings
 
 METHODS = {"Radau": Radau, "BDF": BDF, "LSODA": LSODA}
 DEFAULT_RTOL = 1e-6
@@ -170,8 +170,6 @@ class BoundedChainDynamics:
 def dynamics_of(p: SailParameters):
     """(dynamics with rhs(t, y), ChainModel) of the reduced solver for p: the O(n) ChainDynamics of
     reduced_dynamics for a free, unloaded chain, BoundedChainDynamics otherwise."""
-    from lightsail_mbs.solvers.reduced.dynamics import ChainDynamics
-
     model = ChainModel.from_params(p)
     if not needs_boundary(p):
         return ChainDynamics(model), model
@@ -179,34 +177,13 @@ def dynamics_of(p: SailParameters):
     return BoundedChainDynamics(model, model.pack(start.x[0], start.y[0], start.theta, start.z)), model
 
 
-def state_scales(model: ChainModel) -> np.ndarray:
-    """Magnitudes of y = (q, q̇) for the absolute tolerances: positions max(displacement_scale, P₀L³/(3EI)) (the
-    defect or the static tip deflection), angles 2π × that / L, rates those over the fastest
-    spring or tension time scale (at least 1 ms)."""
-    p = model.params
-    position = p.displacement_scale
-    bending = p.youngs_modulus * p.second_moment_of_area if model.torsional_stiffness else 0.0
-    if p.tip_load and bending:
-        position = max(position, abs(p.tip_load) * p.length ** 3 / (3 * bending))
-    rate = 1e3
-    if model.torsional_stiffness:
-        rate = max(rate, math.sqrt(model.torsional_stiffness / model.inertia))
-    if model.tension:
-        rate = max(rate, math.sqrt(model.tension / (model.mass * 2 * model.half_length)))
-    scales = [position, position] + [2 * math.pi * position / p.length] * p.n
-    if model.extensible:
-        scales += [position] * (p.n - 1)
-        rate = max(rate, math.sqrt(model.axial_stiffness / model.mass))
-    scales = np.array(scales)
-    return np.concatenate([scales, scales * rate])
-
-
-def run(params: SailParameters, *, progress: bool = False, rtol: float | None = None, atol=None,
-        method: str | None = None, **options) -> Result:
+def run(params: SailParameters, settings: RunSettings, *, progress: bool = False, rtol: float | None = None,
+        atol=None, method: str | None = None, **options) -> Result:
     """Integrate a chain with supports or a tip load (module docstring) and return its Result.
 
     rtol: relative tolerance (default 1e-6); atol: absolute tolerance, scalar or per state entry
-    (default rtol × state_scales); method: Radau (default), BDF or LSODA; options: max_step, first_step.
+    (default rtol × state_scales(model, 1)); method: Radau (default), BDF or LSODA; options: max_step,
+    first_step.
     """
     unknown = sorted(set(options) - set(OPTIONS))
     if unknown:
@@ -220,57 +197,18 @@ def run(params: SailParameters, *, progress: bool = False, rtol: float | None = 
         raise ParameterError(f"rtol={rtol!r} is invalid: allowed 0 < rtol < 1")
     dynamics, model = dynamics_of(params)
     if atol is None:
-        atol = rtol * state_scales(model)
+        atol = rtol * state_scales(model, 1.0)
     start = shapes.initial_state(params)
     q0 = model.pack(start.x[0], start.y[0], start.theta, start.z)
     y0 = np.concatenate([q0, np.zeros_like(q0)])
-    sample_times = params.sample_times()
-    limit = params.failure_ratio * analysis.amplitude(start.x, start.y)
-    checking = params.stop_at_failure and limit > 0
-
-    wall0 = clock.perf_counter()
-    bar = Progress(params.t_final, progress, label="reduced")
-    integrator = METHODS[method](dynamics.rhs, 0.0, y0, params.t_final, rtol=rtol, atol=atol,
+    integrator = METHODS[method](dynamics.rhs, 0.0, y0, settings.t_final, rtol=rtol, atol=atol,
                                  vectorized=method != "LSODA", **options)
-    states, error, steps, next_sample = [y0[:, None]], None, 0, 1
-    try:
-        while next_sample < sample_times.size:
-            message = integrator.step()
-            steps += 1
-            if integrator.status == "failed" or not np.all(np.isfinite(integrator.y)):
-                error = f"{method} failed at t = {integrator.t:.6g} s: {message or 'non-finite state'}"
-                break
-            stop = np.searchsorted(sample_times, integrator.t, side="right")
-            if stop > next_sample:
-                batch = integrator.dense_output()(sample_times[next_sample:stop])
-                states.append(batch)
-                next_sample = stop
-                if checking:
-                    x, y = centres(model, batch[:model.dof])
-                    above = np.nonzero(analysis.amplitude(x.T, y.T) >= limit)[0]
-                    if above.size:
-                        states[-1] = batch[:, :above[0] + 1]
-                        break
-            bar.update(integrator.t)
-            if integrator.status == "finished":
-                break
-    except (np.linalg.LinAlgError, ValueError, FloatingPointError) as exc:
-        error = f"{method} failed at t = {integrator.t:.6g} s: {exc}"
-    finally:
-        bar.close()
-    wall = clock.perf_counter() - wall0
-
-    ys = np.concatenate(states, axis=1)
-    q, qd = ys[:model.dof], ys[model.dof:]
-    x, y = centres(model, q)
-    vx, vy = centre_velocities(model, q, qd)
-    _, _, theta, z = model.split(q)
-    _, _, omega, z_rate = model.split(qd)
-    info = dict(method=method, rtol=rtol, atol=float(np.min(atol)), steps=steps, nfev=integrator.nfev,
+    states, error, wall = sampled_run(model, y0, analysis.amplitude(start.x, start.y), settings,
+                                      stepper_advance(method, integrator, y0.size), settings.sample_times().size,
+                                      progress)
+    q = states[:model.dof]
+    info = dict(method=method, rtol=rtol, atol=float(np.min(atol)), steps=integrator.steps, nfev=integrator.nfev,
                 njev=integrator.njev, nlu=integrator.nlu, coordinates=model.dof, boundary=params.boundary,
                 constraint_drift=float(np.max(dynamics.constraint_violation(q))),
                 formulation="minimal coordinates, dense M(q) with supports (reduced_boundary)")
-    return Result.from_trajectory(
-        params, "reduced", sample_times[:ys.shape[1]], x.T, y.T, theta.T, vx.T, vy.T, omega.T,
-        z=z.T if model.extensible else None, z_rate=z_rate.T if model.extensible else None,
-        wall_time=wall, error=error, info=info)
+    return trajectory_result(model, settings, states, wall_time=wall, error=error, info=info)

@@ -2,16 +2,15 @@
 modes ν = 1/2 … 5, 10 ms. Modes ν ≥ 1 fail (amplitude doubled) at a trough; ν = 1/2 does not.
 
 Writes fig5.png (shapes at failure, amplitude ratio vs time), fig5_failure_times.csv and
-fig5_shapes.csv. Usage: python scenarios/fig5.py --out DIR [--quick] (or lightsail-mbs reproduce --figure 5).
+fig5_shapes.csv. Run: lightsail-mbs reproduce --figure 5 --out DIR [--quick].
 """
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import numpy as np
 
-from lightsail_mbs import analysis, paper_case
+from lightsail_mbs import analysis, paper_case, paper_settings
 from lightsail_mbs.paper.common import new_figure, plot_shape, print_table, run_cases, save_figure, write_csv
 
 FIGURES = (5,)
@@ -22,8 +21,8 @@ QUICK_MODES = (0.5, 1.0, 1.5, 3.0)
 def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
     out = Path(out)
     modes = QUICK_MODES if quick else MODES
-    params = [paper_case("rigid", mode=nu) for nu in modes]
-    runs = run_cases(params, Path(store or out / "store") / "fig5", solver=solver, workers=workers,
+    params = [paper_case("rigid", defect_mode=nu) for nu in modes]
+    runs = run_cases(params, Path(store or out / "store") / "fig5", paper_settings("rigid"), solver=solver, workers=workers,
                      scheduler=scheduler, label="fig 5", progress=progress)
     rows, shapes = [], []
     for nu, (record, result) in zip(modes, runs):
@@ -80,8 +79,3 @@ def _plot(path, modes, runs) -> None:
     ax[1, 1].set_yticks([])
     fig.suptitle("Fig. 5: rigid sail, I₀ = 100 GW/m², a₀ = 1 mm, n = 40")
     save_figure(fig, path)
-
-
-if __name__ == "__main__":
-    from lightsail_mbs.cli.reproduce import main_for_scenario
-    sys.exit(main_for_scenario(FIGURES, sys.argv[1:]))

@@ -3,13 +3,11 @@
 Fig. 6: E = 4.5e13 Pa (100 × E_cr,max = 4.5e11 Pa) — stable oscillatory; Fig. 7: E = 4.5e9 Pa
 (E_cr,max / 100) — fails; Fig. 8: the soft run's first 100 ms, where it still looks stable.
 Writes fig6.png, fig7.png, fig8.png, fig6_8_angles_{stable,soft}.csv (θ of the plotted slices)
-and fig6_8_summary.csv. Usage: python scenarios/fig6_8.py --out DIR [--quick].
+and fig6_8_summary.csv. Run: lightsail-mbs reproduce --figure 6 --out DIR [--quick].
 """
 from __future__ import annotations
 
-import sys
-
-from lightsail_mbs import paper_case
+from lightsail_mbs import RunSettings, paper_case
 from lightsail_mbs.model import theory
 from lightsail_mbs.paper.common import angle_history_figures, print_table
 
@@ -22,17 +20,13 @@ def describe(p) -> str:
 
 
 def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
-    changes = dict(n=10, t_final=1.0) if quick else {}
+    changes = dict(n=10) if quick else {}
+    settings = RunSettings(t_final=1.0 if quick else 6.0)
     cases = {"stable": paper_case("torsion-stable", **changes), "soft": paper_case("torsion-soft", **changes)}
     rows = angle_history_figures(out, "fig6_8", cases, [(6, "stable", None), (7, "soft", None), (8, "soft", 0.1)],
-                                 describe, solver=solver, workers=workers, scheduler=scheduler, store=store,
+                                 describe, settings=settings, solver=solver, workers=workers, scheduler=scheduler, store=store,
                                  progress=progress)
     for row, p in zip(rows, cases.values()):
         row.update(E_Pa=p.youngs_modulus, E_cr_max_Pa=theory.critical_modulus_max(p))
-    print_table(f"Figs 6–8 — torsion sail, h = 1 µm, ν = 3/2, {cases['soft'].t_final:g} s", rows)
+    print_table(f"Figs 6–8 — torsion sail, h = 1 µm, ν = 3/2, {settings.t_final:g} s", rows)
     return {"rows": rows}
-
-
-if __name__ == "__main__":
-    from lightsail_mbs.cli.reproduce import main_for_scenario
-    sys.exit(main_for_scenario(FIGURES, sys.argv[1:]))

@@ -3,15 +3,13 @@ thickness h = 0.01–10 µm for modes ν = 1, 3/2, 2 (I₀ = 0.1 GW/m², a₀ = 
 At each h and ν the stable/failed boundary in T is bisected in log space to a bracket ≤ 1.5 wide and
 compared with T_cr,max (Eq. 10, independent of h and ν); every boundary is bisected again with 12 s
 runs to show how it depends on the run time. Writes fig12.png, fig12_boundaries.csv, fig12_points.csv.
-Usage: python scenarios/fig12.py --out DIR [--quick].
+Run: lightsail-mbs reproduce --figure 12 --out DIR [--quick].
 """
 from __future__ import annotations
 
-import sys
-
 import numpy as np
 
-from lightsail_mbs import paper_case
+from lightsail_mbs import RunSettings, paper_case
 from lightsail_mbs.paper.common import print_table, stability_map_figure
 
 FIGURES = (12,)
@@ -20,19 +18,15 @@ MODES = (1.0, 1.5, 2.0)
 
 
 def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
-    base = paper_case("tnt-stable", n=30, t_final=6.0, axial_springs=False)
+    base = paper_case("tnt-stable", n=30, axial_springs=False)
+    settings = RunSettings(t_final=6.0)
     thicknesses = THICKNESSES
     if quick:
-        base, thicknesses = base.replace(n=10, t_final=1.0), np.logspace(-7, -5, 3)
-    rows = stability_map_figure(out, "fig12", 12, base, thicknesses, MODES, solver=solver, workers=workers,
+        base, settings, thicknesses = base.replace(n=10), RunSettings(t_final=1.0), np.logspace(-7, -5, 3)
+    rows = stability_map_figure(out, "fig12", 12, base, thicknesses, MODES, settings=settings, solver=solver, workers=workers,
                                 scheduler=scheduler, store=store, progress=progress, recheck_all=True)
-    print_table(f"Fig. 12 — TnT map, {base.t_final:g} s: boundary T vs T_cr,max (Eq. 10)",
+    print_table(f"Fig. 12 — TnT map, {settings.t_final:g} s: boundary T vs T_cr,max (Eq. 10)",
                 [{"h_um": r["thickness_m"] * 1e6, "mode": r["mode"], "T_cr_max_N": r["analytic"],
                   "T_stable_N": r["stable_value"], "T_failed_N": r["unstable_value"], "ratio": r["ratio"],
                   "runs": r["evaluations"], "status": r["status"], "ratio_2t": r["ratio_2t"]} for r in rows])
     return {"rows": rows}
-
-
-if __name__ == "__main__":
-    from lightsail_mbs.cli.reproduce import main_for_scenario
-    sys.exit(main_for_scenario(FIGURES, sys.argv[1:]))

@@ -10,16 +10,15 @@ Unstable regime, T ≪ T_cr,max:
 Each figure: left, the time series (θ of one slice, or amplitude / a₀); right, the measured number
 against the varied parameter, with its log-log slope. Writes fig18.png … fig23.png,
 fig18_23_runs.csv (one row per run and figure), fig18_23_series.csv (the plotted time series) and
-fig18_23_trends.csv (the trend numbers). Usage: python scenarios/fig18_23.py --out DIR [--quick].
+fig18_23_trends.csv (the trend numbers). Run: lightsail-mbs reproduce --figure 18 --out DIR [--quick].
 """
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import numpy as np
 
-from lightsail_mbs import paper_case
+from lightsail_mbs import RunSettings, paper_case
 from lightsail_mbs.paper.common import new_figure, print_table, run_cases, save_figure, write_csv
 from lightsail_mbs.analysis.spectral import angle_frequency
 
@@ -28,24 +27,26 @@ T_STABLE, T_SOFT = 3.34e-3, 3.34e-8          # N
 H, NU = 1e-6, 1.5
 # figure -> (varied field, its values, fixed fields, regime)
 STUDIES = {
-    18: ("tension", [3.34e-5, 3.34e-4, 3.34e-3, 3.34e-2], dict(thickness=H, mode=NU), "stable"),
-    19: ("thickness", [1e-8, 1e-7, 1e-6, 1e-5], dict(tension=T_STABLE, mode=NU), "stable"),
+    18: ("tension", [3.34e-5, 3.34e-4, 3.34e-3, 3.34e-2], dict(thickness=H, defect_mode=NU), "stable"),
+    19: ("thickness", [1e-8, 1e-7, 1e-6, 1e-5], dict(tension=T_STABLE, defect_mode=NU), "stable"),
     20: ("mode", [1.0, 1.5, 2.0], dict(tension=T_STABLE, thickness=H), "stable"),
-    21: ("tension", [3.34e-10, 3.34e-9, 3.34e-8, 3.34e-7], dict(thickness=H, mode=NU), "unstable"),
+    21: ("tension", [3.34e-10, 3.34e-9, 3.34e-8, 3.34e-7], dict(thickness=H, defect_mode=NU), "unstable"),
     22: ("mode", [1.0, 1.5, 2.0], dict(tension=T_SOFT, thickness=H), "unstable"),
-    23: ("thickness", [1e-8, 1e-7, 1e-6, 1e-5], dict(tension=T_SOFT, mode=NU), "unstable"),
+    23: ("thickness", [1e-8, 1e-7, 1e-6, 1e-5], dict(tension=T_SOFT, defect_mode=NU), "unstable"),
 }
 STABLE_WINDOW = 2.0                          # s of the stable time series shown (all of it is in the CSV)
 UNIT = {"tension": ("T", "N", 1.0), "thickness": ("h", "µm", 1e6), "mode": ("ν", "", 1.0)}
+FIELD = {"mode": "defect_mode"}               # varied name (CSV, plots) -> SailParameters field
 
 
 def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
     out = Path(out)
     base = paper_case("tnt-stable", axial_springs=False)
-    base = base.replace(n=10, t_final=3.0) if quick else base
-    params = {(fig, v): base.replace(**fixed, **{field: v})
+    base = base.replace(n=10) if quick else base
+    settings = RunSettings(t_final=3.0 if quick else 6.0)
+    params = {(fig, v): base.replace(**fixed, **{FIELD.get(field, field): v})
               for fig, (field, values, fixed, _) in STUDIES.items() for v in values}
-    done = dict(zip(params, run_cases(list(params.values()), Path(store or out / "store") / "fig18_23",
+    done = dict(zip(params, run_cases(list(params.values()), Path(store or out / "store") / "fig18_23", settings,
                                       solver=solver, workers=workers, scheduler=scheduler, label="figs 18-23",
                                       progress=progress)))
     rows, series, trends = [], [], []
@@ -57,7 +58,7 @@ def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, stor
             freq = angle_frequency(result) if ok and regime == "stable" and not record.get("failed") else None
             measured.append(freq if regime == "stable" else record.get("failure_time"))
             rows.append({"figure": fig, "regime": regime, "tension_N": params[(fig, v)].tension,
-                         "thickness_m": params[(fig, v)].thickness, "mode": params[(fig, v)].mode,
+                         "thickness_m": params[(fig, v)].thickness, "mode": params[(fig, v)].defect_mode,
                          "failed": record.get("failed"), "failure_time_s": record.get("failure_time"), "frequency_Hz": freq,
                          "max_amplitude_ratio": record.get("max_amplitude_ratio"), "t_end_s": record.get("t_end"),
                          "error": record["error"] or ""})
@@ -70,7 +71,7 @@ def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, stor
     write_csv(out / "fig18_23_runs.csv", rows)
     write_csv(out / "fig18_23_series.csv", series)
     write_csv(out / "fig18_23_trends.csv", trends)
-    print_table(f"Figs 18–23 — TnT trends ({base.t_final:g} s runs, n = {base.n})",
+    print_table(f"Figs 18–23 — TnT trends ({settings.t_final:g} s runs, n = {base.n})",
                 [{k: r[k] for k in ("figure", "regime", "tension_N", "thickness_m", "mode", "failed",
                                     "failure_time_s", "frequency_Hz", "error")} for r in rows])
     print_table("Figs 18–23 — trend numbers (slope: d ln y / d ln x over the finite values)", trends)
@@ -126,8 +127,3 @@ def _plot(path, fig_number, field, values, results, measured, regime, trend) -> 
     ax[0, 1].set_title("" if slope is None else f"log-log slope {slope:.2f}", fontsize=9)
     fig.suptitle(f"Fig. {fig_number}: TnT, {regime} regime, varying {name}")
     save_figure(fig, path)
-
-
-if __name__ == "__main__":
-    from lightsail_mbs.cli.reproduce import main_for_scenario
-    sys.exit(main_for_scenario(FIGURES, sys.argv[1:]))

@@ -7,13 +7,11 @@ by T/k_s ≈ 1e-9 m, while their ~10⁵ rad/s axial modes make a run 20–90× s
 reduced solver: over 1 s the stable case's angles agree within 5e-9 rad (θ ~ 1e-4 rad), frequency
 2.811 Hz both; the soft case fails at 2.102 s with springs, 2.107 s without.
 Writes fig10.png, fig11.png, fig10_11_angles_{stable,soft}.csv and fig10_11_summary.csv.
-Usage: python scenarios/fig10_11.py --out DIR [--quick].
+Run: lightsail-mbs reproduce --figure 10 --out DIR [--quick].
 """
 from __future__ import annotations
 
-import sys
-
-from lightsail_mbs import paper_case
+from lightsail_mbs import RunSettings, paper_case
 from lightsail_mbs.model import theory
 from lightsail_mbs.paper.common import angle_history_figures, print_table
 
@@ -21,22 +19,18 @@ FIGURES = (10, 11)
 
 
 def describe(p) -> str:
-    return (f"TnT, h = {p.thickness * 1e6:g} µm, ν = {p.mode:g}, T = {p.tension:.3g} N "
+    return (f"TnT, h = {p.thickness * 1e6:g} µm, ν = {p.defect_mode:g}, T = {p.tension:.3g} N "
             f"(T_cr,max = {theory.critical_tension_max(p):.3g} N)")
 
 
 def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
-    changes = dict(n=10, t_final=1.0) if quick else {}
+    changes = dict(n=10) if quick else {}
+    settings = RunSettings(t_final=1.0 if quick else 6.0)
     cases = {"stable": paper_case("tnt-stable", axial_springs=False, **changes),
              "soft": paper_case("tnt-soft", axial_springs=False, **changes)}
     rows = angle_history_figures(out, "fig10_11", cases, [(10, "stable", None), (11, "soft", None)], describe,
-                                 solver=solver, workers=workers, scheduler=scheduler, store=store, progress=progress)
+                                 settings=settings, solver=solver, workers=workers, scheduler=scheduler, store=store, progress=progress)
     for row, p in zip(rows, cases.values()):
         row.update(T_N=p.tension, T_cr_max_N=theory.critical_tension_max(p))
-    print_table(f"Figs 10–11 — TnT sail, h = 1 µm, ν = 3/2, {cases['soft'].t_final:g} s", rows)
+    print_table(f"Figs 10–11 — TnT sail, h = 1 µm, ν = 3/2, {settings.t_final:g} s", rows)
     return {"rows": rows}
-
-
-if __name__ == "__main__":
-    from lightsail_mbs.cli.reproduce import main_for_scenario
-    sys.exit(main_for_scenario(FIGURES, sys.argv[1:]))
