@@ -72,3 +72,13 @@ def settings_from_args(args: argparse.Namespace) -> RunSettings:
     names = [v[0] for v in RUN_OPTIONS.values()] + ["stop_at_failure"]
     given = {k: getattr(args, k) for k in names if getattr(args, k, None) is not None}
     return RunSettings(**given)
+
+
+def scenario_parser(doc: str, quick_help: str) -> argparse.ArgumentParser:
+    """Options shared by the scenario scripts beyond the paper: --out (default ./results), --solver
+    (default reduced), --quick (a smoke test, described by quick_help)."""
+    parser = argparse.ArgumentParser(description=doc.splitlines()[0])
+    parser.add_argument("--out", default="results", help="output folder of PNG and CSV files [results]")
+    parser.add_argument("--solver", choices=("reduced", "exudyn"), default="reduced")
+    parser.add_argument("--quick", action="store_true", help=quick_help)
+    return parser

@@ -13,7 +13,8 @@ from __future__ import annotations
 
 from lightsail_mbs import RunSettings, paper_case
 from lightsail_mbs.model import theory
-from lightsail_mbs.paper.common import angle_history_figures, print_table
+from lightsail_mbs.paper.common import angle_history_figures
+from lightsail_mbs.studies.tables import print_table
 
 FIGURES = (10, 11)
 

@@ -10,7 +10,8 @@ from __future__ import annotations
 import numpy as np
 
 from lightsail_mbs import RunSettings, paper_case
-from lightsail_mbs.paper.common import print_table, stability_map_figure
+from lightsail_mbs.paper.common import stability_map_figure
+from lightsail_mbs.studies.tables import print_table
 
 FIGURES = (12,)
 THICKNESSES = np.logspace(-8, -5, 7)      # m: 0.01 … 10 µm, half decades

@@ -19,7 +19,9 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import RunSettings, paper_case
-from lightsail_mbs.paper.common import new_figure, print_table, run_cases, save_figure, write_csv
+from lightsail_mbs.studies.sweep import run_cases
+from lightsail_mbs.studies.tables import print_table, write_csv
+from lightsail_mbs.viz.plots import new_figure, save_figure
 from lightsail_mbs.analysis.spectral import angle_frequency
 
 FIGURES = (18, 19, 20, 21, 22, 23)

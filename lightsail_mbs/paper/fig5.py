@@ -11,7 +11,9 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import analysis, paper_case, paper_settings
-from lightsail_mbs.paper.common import new_figure, plot_shape, print_table, run_cases, save_figure, write_csv
+from lightsail_mbs.studies.sweep import run_cases
+from lightsail_mbs.studies.tables import print_table, write_csv
+from lightsail_mbs.viz.plots import new_figure, plot_shape, save_figure
 
 FIGURES = (5,)
 MODES = tuple(0.5 * k for k in range(1, 11))     # ν = 1/2, 1, …, 5

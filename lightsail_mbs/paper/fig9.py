@@ -9,7 +9,8 @@ from __future__ import annotations
 import numpy as np
 
 from lightsail_mbs import RunSettings, SailParameters
-from lightsail_mbs.paper.common import print_table, stability_map_figure
+from lightsail_mbs.paper.common import stability_map_figure
+from lightsail_mbs.studies.tables import print_table
 
 FIGURES = (9,)
 THICKNESSES = np.logspace(-8, -5, 7)      # m: 0.01 … 10 µm, half decades

@@ -20,6 +20,7 @@ from __future__ import annotations
 import hashlib
 import sys
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Callable
 
 from lightsail_mbs.model.parameters import LEGACY_NAMES, ParameterError, SailParameters
@@ -28,7 +29,7 @@ from lightsail_mbs.studies.runners import available_cores, dask_client, make_run
 from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.studies.store import CaseStore, to_json
 
-__all__ = ["Case", "Sweep", "run_sweep", "solve_case", "available_cores", "dask_client"]
+__all__ = ["Case", "Sweep", "run_sweep", "run_cases", "solve_case", "available_cores", "dask_client"]
 
 KEY_LENGTH = 20  # hex digits of the SHA-256 of a case's description
 STORED_NAMES = {new: old for old, new in LEGACY_NAMES.items()}   # field names in the key's parameter dict
@@ -189,3 +190,19 @@ def _fewer(workers: int | None, cases: int) -> int | None:
     if workers is not None and not (isinstance(workers, int) and workers >= 1):
         return workers   # let Sweep reject it with its message
     return max(1, min(workers or available_cores(), cases))
+
+
+def run_cases(params_list, store_dir, settings, *, solver: str = "exudyn", workers=None, scheduler=None,
+              label: str = "cases", progress: bool = True) -> list[tuple[dict, Result | None]]:
+    """Run (or find in the store) every case with its full Result saved; return (record, Result) pairs
+    in order. settings: one RunSettings for every case, or one per case. A case whose solver failed comes
+    back with its record and, if any, its partial Result."""
+    if isinstance(settings, RunSettings):
+        settings = [settings] * len(params_list)
+    cases = [Case(p, solver, save_result=True, settings=s) for p, s in zip(params_list, settings, strict=True)]
+    records = run_sweep(cases, store_dir, workers=workers, scheduler=scheduler, label=label, progress=progress)
+    out = []
+    for record in records:
+        path = record.get("result_path")
+        out.append((record, Result.load(Path(store_dir) / path) if path else None))
+    return out
