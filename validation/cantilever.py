@@ -1,4 +1,4 @@
-"""Euler–Bernoulli cantilever (paper Appendix A, issue 5): `python validation/cantilever.py`.
+"""Euler–Bernoulli cantilever (paper Appendix A): `python validation/cantilever.py`.
 
 Writes validation/cantilever.md and cantilever_*.png:
 1. static tip deflection of the clamped chain under P₀, both solvers' static equilibria against the
@@ -20,7 +20,7 @@ import numpy as np  # noqa: E402
 
 from lightsail_mbs.model import chain_theory as ct  # noqa: E402
 from lightsail_mbs.studies import classic  # noqa: E402
-from lightsail_mbs.paper.common import new_figure, save_figure  # noqa: E402
+from lightsail_mbs.viz.plots import new_figure, save_figure  # noqa: E402
 from lightsail_mbs.solvers import solve  # noqa: E402
 from lightsail_mbs.analysis.statics import static_state  # noqa: E402
 
@@ -54,13 +54,13 @@ def static_rows(ns):
 
 
 def dynamic_runs(n=30):
-    p = classic.cantilever_case(n, output_interval=1e-4)
+    p, settings = classic.cantilever_case(n), classic.CANTILEVER_RUN.replace(output_interval=1e-4)
     runs = {}
     t0 = time.perf_counter()
-    runs["exudyn"] = solve(p, "exudyn", step_size=EXUDYN_STEP)
+    runs["exudyn"] = solve(p, "exudyn", settings, step_size=EXUDYN_STEP)
     print(f"exudyn dynamic: {time.perf_counter() - t0:.1f} s, error {runs['exudyn'].error}", flush=True)
     t0 = time.perf_counter()
-    runs["reduced"] = solve(p, "reduced", method="Radau", rtol=REDUCED_RTOL)
+    runs["reduced"] = solve(p, "reduced", settings, method="Radau", rtol=REDUCED_RTOL)
     print(f"reduced dynamic: {time.perf_counter() - t0:.1f} s, error {runs['reduced'].error}", flush=True)
     return p, runs
 

@@ -1,7 +1,7 @@
-"""Cross-validation report (issue 4): `python validation/crosscheck.py [--cases ...]`.
+"""Cross-validation report: `python validation/crosscheck.py [--cases ...]`.
 
 Runs every case with Exudyn's chain and the reduced-Lagrangian chain and writes
-validation/crosscheck.md plus one plot per case (lightsail_mbs.crosscheck does the work).
+validation/crosscheck.md plus one plot per case (lightsail_mbs.studies.crosscheck does the work).
 """
 import os
 import sys

@@ -1,4 +1,4 @@
-"""G3 guitar string (paper Appendix B, issue 5): `python validation/g3_string.py`.
+"""G3 guitar string (paper Appendix B): `python validation/g3_string.py`.
 
 (Not `string.py`: a script folder on sys.path with a `string.py` shadows the standard library's
 `string`, which `logging` imports, and breaks every other script in validation/.)
@@ -19,7 +19,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 from lightsail_mbs.studies import classic  # noqa: E402
-from lightsail_mbs.paper.common import new_figure, save_figure  # noqa: E402
+from lightsail_mbs.viz.plots import new_figure, save_figure  # noqa: E402
 from lightsail_mbs.solvers import solve  # noqa: E402
 
 OUT = Path(__file__).resolve().parent
@@ -38,9 +38,9 @@ def runs_for(solver, ns):
         p = classic.g3_string_case(n)
         t0 = time.perf_counter()
         if solver == "exudyn":
-            run = solve(p, "exudyn", step_size=EXUDYN_STEP)
+            run = solve(p, "exudyn", classic.STRING_RUN, step_size=EXUDYN_STEP)
         else:
-            run = solve(p, "reduced", method="Radau", rtol=REDUCED_RTOL)
+            run = solve(p, "reduced", classic.STRING_RUN, method="Radau", rtol=REDUCED_RTOL)
         fit = classic.string_fit(run)
         ref = classic.string_references(p)["discrete"]
         print(f"{solver} n={n}: {fit.frequency:.6f} Hz (exact chain {ref:.6f}, {fit.frequency / ref - 1:+.2e}), "
@@ -113,7 +113,7 @@ def report(measured):
              "`lightsail_mbs/chain_theory.py`; exact discrete spectra of the extensible chain from its "
              "assembled M, K).", "",
              f"**Continuous string.** f = (1/2L)√(T/μ) with μ = ρπd²/4 = {classic.line_density(p20):.5e} kg/m: "
-             f"**{ref['continuous']:.3f} Hz** (≈ 195.3 Hz, as the issue says). Our extensible chain is longer than L "
+             f"**{ref['continuous']:.3f} Hz** (≈ 195.3 Hz). Our extensible chain is longer than L "
              f"by the pre-stretch, L(1 + T/EA), T/EA = {p20.tension / (p20.youngs_modulus * p20.width * p20.thickness):.3e}, "
              f"and with the same mass its limit is {ref['continuous_stretched']:.3f} Hz; the inextensible chain "
              "tends to the nominal value.", "",

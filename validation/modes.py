@@ -1,4 +1,4 @@
-"""Linearised modes (issue 5): `python validation/modes.py`.
+"""Linearised modes: `python validation/modes.py`.
 
 Writes validation/modes.md and modes_*.png: eigenfrequencies of the chain linearised about the
 flat state from Exudyn (ComputeODE2Eigenvalues) and from the reduced solver (central-difference
@@ -19,7 +19,7 @@ import numpy as np  # noqa: E402
 from lightsail_mbs.model import chain_theory as ct  # noqa: E402
 from lightsail_mbs.studies import classic  # noqa: E402
 from lightsail_mbs.analysis import linearization as lin  # noqa: E402
-from lightsail_mbs.paper.common import new_figure, save_figure  # noqa: E402
+from lightsail_mbs.viz.plots import new_figure, save_figure  # noqa: E402
 
 OUT = Path(__file__).resolve().parent
 N = 30
@@ -122,7 +122,7 @@ def main(argv=None):
     lines += ["", f"Fitted order (mode 1): **{order:.2f}**. The rigid-slice chain with its slices' own rotary "
               "inertia J = ml²/12 is a consistent-mass discretisation; for the simply supported chain the closed form "
               "shows the x² error terms of stiffness and mass cancel, leaving −(kπ/n)⁴/1440: fourth order. Far "
-              "inside the issue's 0.5 % at n = 30.", ""]
+              "inside 0.5 % at n = 30.", ""]
 
     pc = classic.cantilever_case(N)
     cant, wall = spectra(pc, 3)
@@ -131,7 +131,7 @@ def main(argv=None):
     lines += ["The clamp over the whole first slice moves the effective root to x ≈ l: first-order offsets "
               "(+3.4 % for mode 1 at n = 30), the same as in the static deflection (cantilever.md).", ""]
 
-    pt = classic.g3_string_case(N, axial_springs=False, amplitude=0.0)
+    pt = classic.g3_string_case(N, axial_springs=False, defect_amplitude=0.0)
     tensioned_all = {"exudyn": lin.exudyn_angular_frequencies(pt), "reduced": lin.reduced_angular_frequencies(pt)}
     ten, wall = spectra(pt)
     closed = ct.pinned_chain_angular_frequencies(pt)[:MODES]
@@ -146,7 +146,7 @@ def main(argv=None):
               f"Inextensible TnT chain (`axial_springs=False`), n = {N}:", ""]
     lines += table("inextensible: exact chain = the closed form", {**ten, "exact chain": closed}, wall,
                    f1 * np.arange(1, MODES + 1), "continuous string kω₁")
-    pe = classic.g3_string_case(N, amplitude=0.0)
+    pe = classic.g3_string_case(N, defect_amplitude=0.0)
     ext, wall = spectra(pe)
     lines += [f"Extensible TnT chain (the paper's; segments l + T/k_s, exact chain from its assembled M, K), n = {N}:", ""]
     lines += table("extensible: exact chain = eigenvalues of its M, K", ext, wall, f1 * np.arange(1, MODES + 1),

@@ -11,30 +11,31 @@ import argparse
 import sys
 from pathlib import Path
 
-from lightsail_mbs import analysis, paper_case, solve
+from lightsail_mbs import analysis, paper_case, paper_settings, solve
 
 RIGID_MODES = (0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5, 5.0)
 
-# name -> (parameters, paper statement, check(summary) -> bool)
+# name -> (parameters, run settings, paper statement, check(summary) -> bool)
 CASES = {
-    "torsion E=4.5e13 (Fig. 6)": (paper_case("torsion-stable"), "stable oscillatory over 6 s",
-                                  lambda s: not s["failed"]),
-    "torsion E=4.5e9 (Fig. 7)": (paper_case("torsion-soft"), "fails after ≈ 2 s (1.5–2.3 s)",
+    "torsion E=4.5e13 (Fig. 6)": (paper_case("torsion-stable"), paper_settings("torsion-stable"),
+                                  "stable oscillatory over 6 s", lambda s: not s["failed"]),
+    "torsion E=4.5e9 (Fig. 7)": (paper_case("torsion-soft"), paper_settings("torsion-soft"),
+                                 "fails after ≈ 2 s (1.5–2.3 s)",
                                  lambda s: s["failed"] and 1.5 <= s["failure_time"] <= 2.3),
-    "tnt T=3.34e-3 N (Fig. 10)": (paper_case("tnt-stable"), "stable oscillatory over 6 s",
-                                  lambda s: not s["failed"]),
-    "tnt T=3.34e-8 N (Fig. 11)": (paper_case("tnt-soft"), "fails at ≈ 2 s (1.5–2.5 s)",
+    "tnt T=3.34e-3 N (Fig. 10)": (paper_case("tnt-stable"), paper_settings("tnt-stable"),
+                                  "stable oscillatory over 6 s", lambda s: not s["failed"]),
+    "tnt T=3.34e-8 N (Fig. 11)": (paper_case("tnt-soft"), paper_settings("tnt-soft"), "fails at ≈ 2 s (1.5–2.5 s)",
                                   lambda s: s["failed"] and 1.5 <= s["failure_time"] <= 2.5),
 }
 for nu in RIGID_MODES:
     CASES[f"rigid ν={nu:g} (Fig. 5)"] = (
-        paper_case("rigid", mode=nu),
+        paper_case("rigid", defect_mode=nu), paper_settings("rigid"),
         "does not fail in 10 ms" if nu == 0.5 else "fails at a trough before 10 ms",
         (lambda s: not s["failed"]) if nu == 0.5 else (lambda s: s["failed"] and s["trough"]))
 
 
-def run_case(params, solver):
-    result = solve(params, solver)
+def run_case(params, settings, solver):
+    result = solve(params, solver, settings)
     summary = result.summary()
     summary["trough"] = analysis.fails_at_trough(result.x[-1], result.y[-1])
     return summary
@@ -46,10 +47,10 @@ def main(argv=None) -> int:
     ap.add_argument("--out", default=str(Path(__file__).with_name("paper_cases.md")))
     args = ap.parse_args(argv)
     rows, all_ok = [], True
-    for name, (params, statement, check) in CASES.items():
+    for name, (params, settings, statement, check) in CASES.items():
         cells = []
         for solver in args.solvers:
-            s = run_case(params, solver)
+            s = run_case(params, settings, solver)
             ok = check(s) and s["error"] is None
             all_ok &= ok
             ft = "–" if s["failure_time"] is None else f"{s['failure_time']:.5g} s"

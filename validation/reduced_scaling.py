@@ -1,4 +1,4 @@
-"""Wall time of the reduced solver vs n at fixed simulated time (issue 4 scaling table).
+"""Wall time of the reduced solver vs n at fixed simulated time (scaling table).
 
 `python validation/reduced_scaling.py` prints Markdown tables for n = 10, 30, 100, 300, 1000 and
 the fitted exponents p of CPU time ∝ n^p, per run and per right-hand-side call, for
@@ -18,16 +18,16 @@ import time
 
 import numpy as np
 
-from lightsail_mbs import paper_case, solve
+from lightsail_mbs import RunSettings, paper_case, paper_settings, solve
 
 SIZES = (10, 30, 100, 300, 1000)
 
 
-def timed(params, repeats, **options):
+def timed(params, settings, repeats, **options):
     best, result = np.inf, None
     for _ in range(repeats):
         start = time.process_time()
-        result = solve(params, "reduced", **options)
+        result = solve(params, "reduced", settings, **options)
         best = min(best, time.process_time() - start)
     return best, result
 
@@ -38,18 +38,18 @@ def highest_bending_frequency(p):
 
 
 def scaling(cases, repeats):
-    for label, (make, sizes) in cases.items():
+    for label, (make, settings, sizes) in cases.items():
         print(f"\n### {label}\n\n| n | CPU time (s) | steps | RHS calls | µs per step | µs per RHS call "
               f"| ω_max·t |\n|---|---|---|---|---|---|---|")
         walls, per_call, per_step = [], [], []
         for n in sizes:
             p = make(n)
-            wall, r = timed(p, repeats)
+            wall, r = timed(p, settings, repeats)
             walls.append(wall)
             per_call.append(wall / r.info["nfev"])
             per_step.append(wall / max(r.info["steps"], 1))
             print(f"| {n} | {wall:.3g} | {r.info['steps']} | {r.info['nfev']} | {1e6 * per_step[-1]:.1f} "
-                  f"| {1e6 * per_call[-1]:.2f} | {highest_bending_frequency(p) * p.t_final:.3g} |", flush=True)
+                  f"| {1e6 * per_call[-1]:.2f} | {highest_bending_frequency(p) * settings.t_final:.3g} |", flush=True)
         fit = [np.polyfit(np.log(sizes), np.log(v), 1)[0] for v in (walls, per_step, per_call)]
         print(f"\nfitted exponents: CPU time ∝ n^{fit[0]:.2f}; per step ∝ n^{fit[1]:.2f}; "
               f"per RHS call ∝ n^{fit[2]:.2f}")
@@ -62,7 +62,7 @@ def tolerances():
                         ("rigid", (1e-8, 1e-9, 1e-10, 1e-11))]:
         reference = None
         for rtol in rtols:
-            r = solve(paper_case(case), "reduced", rtol=rtol)
+            r = solve(paper_case(case), "reduced", paper_settings(case), rtol=rtol)
             reference = reference or r.failure_time
             print(f"| {case} | {rtol:g} | {r.failure_time:.6f} | {(r.failure_time - reference) / reference:+.1e} "
                   f"| {r.info['steps']} |", flush=True)
@@ -77,13 +77,14 @@ def main():
     if args.tolerances:
         tolerances()
         return
-    solve(paper_case("torsion-soft", n=5, t_final=0.01), "reduced")            # load the compiled code
-    cases = {"rigid, 4 ms": (lambda n: paper_case("rigid", n=n, t_final=0.004), SIZES),
-             "soft torsion, 0.5 s": (lambda n: paper_case("torsion-soft", n=n, t_final=0.5), SIZES)}
+    short = RunSettings(t_final=0.01)
+    solve(paper_case("torsion-soft", n=5), "reduced", short)            # load the compiled code
+    cases = {"rigid, 4 ms": (lambda n: paper_case("rigid", n=n), RunSettings(t_final=0.004), SIZES),
+             "soft torsion, 0.5 s": (lambda n: paper_case("torsion-soft", n=n), RunSettings(t_final=0.5), SIZES)}
     if args.tnt:
-        solve(paper_case("tnt-stable", n=5, t_final=0.01), "reduced")
+        solve(paper_case("tnt-stable", n=5), "reduced", short)
         cases["extensible TnT T = 3.34e-3 N, 0.5 s (Radau)"] = (
-            lambda n: paper_case("tnt-stable", n=n, t_final=0.5), SIZES[:3])
+            lambda n: paper_case("tnt-stable", n=n), RunSettings(t_final=0.5), SIZES[:3])
     scaling(cases, args.repeats)
 
 

@@ -5,7 +5,7 @@ from lightsail_mbs.studies import crosscheck
 
 
 def register(sub) -> None:
-    p = sub.add_parser("crosscheck", help="run the Exudyn and reduced solvers side by side (issue 4 report)")
+    p = sub.add_parser("crosscheck", help="run the Exudyn and reduced solvers side by side (the cross-check report)")
     p.add_argument("--cases", nargs="+", metavar="CASE", choices=sorted(crosscheck.CASES),
                    help=f"subset of cases [default: all: {', '.join(crosscheck.CASES)}]")
     p.add_argument("--out", default="validation", help="directory for crosscheck.md and the plots [validation]")

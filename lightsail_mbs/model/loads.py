@@ -3,7 +3,7 @@
 Paper Eq. (11), a uniform beam on perfect reflectors: f_i = (2I₀/c) A cos²θ_i n_i with
 A = l W and n_i = (−sin θ_i, cos θ_i), applied at the slice centre.
 
-Generalised (issue 9) to a flat facet of specular reflectivity R, absorptivity α and
+Generalised to a flat facet of specular reflectivity R, absorptivity α and
 transmissivity 1 − R − α, lit by a beam travelling along +ŷ with local intensity I(x)
 (standard non-ideal flat-sail model, e.g. McInnes, *Solar Sailing*, 1999, Sec. 2.6, without
 diffuse reflection and thermal emission):

@@ -49,7 +49,7 @@ def multimode_coefficients(p: SailParameters) -> tuple[np.ndarray, np.ndarray, n
 
 
 def multimode_profile(p: SailParameters):
-    """w(x) = Σ_k a_k sin(2πν_k x/L + φ_k): a seeded random multi-mode defect (issue 9)."""
+    """w(x) = Σ_k a_k sin(2πν_k x/L + φ_k): a seeded random multi-mode defect."""
     nu, a, phase = multimode_coefficients(p)
     k = 2.0 * np.pi * nu / p.length
     return lambda x: float(np.dot(a, np.sin(k * x + phase))) if np.ndim(x) == 0 else \

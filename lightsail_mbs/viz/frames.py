@@ -1,4 +1,4 @@
-"""Headless frames and movies of a saved Result (issue 6).
+"""Headless frames and movies of a saved Result.
 
 render_frames(result, out_dir, ...) writes out_dir/frame_0000.png, ... of states sampled evenly
 (by count or simulated time); render_comparison does the same for two runs, one panel above the

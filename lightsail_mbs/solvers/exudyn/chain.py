@@ -1,6 +1,6 @@
 """Exudyn solver: the sail as a chain of rigid slices integrated by Exudyn's implicit solver.
 
-Model (paper Sec. III.A–C; details in exudyn_model): n planar rigid slices (m = ρhWl,
+Model (paper Sec. III.A–C; details in solvers.exudyn.tree): n planar rigid slices (m = ρhWl,
 J = ml²/12) joined by revolute joints, as ONE Exudyn ``ObjectKinematicTree`` in the paper's
 own minimal coordinates q = [X, Y, θ₁, (z₁), φ₂, …] (Eqs 13–14, 30–31).
 torsion: torsional spring-dampers k_T = EI/l on θ_{k+1} − θ_k; rigid: none; tnt: k_T per
@@ -10,51 +10,32 @@ params.axial_springs=False the slides are rigid (plain revolute joints + end ten
 The frame accelerates at g₀: every slice carries −m g₀ ŷ (the tree's gravity), and x, y are
 slice centres in that frame.
 Supports and a tip load (params.boundary, params.tip_load: the classic validations of Appendices
-A–B) are added as Exudyn constraints and loads by exudyn_boundary; the sail itself is free.
+A–B) are added as Exudyn constraints and loads by solvers.exudyn.supports; the sail itself is free.
 
-Why this formulation (measured on the 2-core machine, stable 6 s torsion case, n = 30,
-h = 1 ms, relTol 1e-10):
-- redundant bodies (30 × ObjectRigidBody2D + 29 RevoluteJoint2D + an ObjectGenericODE2 spanning
-  all nodes with one vectorised load function) and this tree give the same soft-torsion failure
-  time (2.11121 s vs 2.11122 s) and similar speed (≈1.1 s vs ≈1.2 s), but in the redundant form
-  the TnT spring extension z ≈ 1e-14 m is a difference of hinge coordinates of order 1 m
-  (round-off ≈ 1e-16 m, 1 % of the pre-stretch): its Newton residual sits on a round-off floor.
-  In the tree z is itself a coordinate, exact to relative machine precision.
+Why this formulation:
+- in minimal coordinates the TnT spring extension z is itself a coordinate, exact to relative
+  machine precision; in a redundant form (one rigid body per slice plus joints) it is a difference
+  of hinge coordinates of order 1 m, and its Newton residual sits on a round-off floor;
 - springs, dampers and the frame force are C++ (joint P/D control, gravity); only the
-  state-dependent load is Python: one vectorised force user function for the whole chain
-  (≈ 20–30 µs a call), evaluated at every Newton iterate, so the load is exact, not lagged.
-- Exudyn symbolic user functions would move that into C++, but in Exudyn 1.13.6 a symbolic
-  Vector of 8 or more entries aborts the process (free(): invalid pointer) when indexed, so the
-  tree's force vector (n + 2 ≥ 32 entries) cannot be recorded; per-slice symbolic loads
-  (LoadForceVector) cannot read the state. A Python function per slice costs ≈ 5.6 s.
+  state-dependent load is Python: one vectorised force user function for the whole chain,
+  evaluated at every Newton iterate, so the load is exact, not lagged;
+- Exudyn 1.13.6 symbolic user functions abort on symbolic vectors of 8 or more entries, so the
+  tree's force vector (n + 2 entries) cannot be recorded symbolically; per-slice symbolic loads
+  cannot read the state, and one Python function per slice is several times slower.
 
 Solver: Exudyn generalized-α (implicit, second order, ρ∞ = 0.9), modified Newton, one fixed step
-h that divides the output interval, one ``SolveSteps`` call for the whole run. A post-step
-function checks, every SAMPLES_PER_CHECK output samples, the amplitude of every step since the
-last check and stops the solver at failure (amplitude ≥ failure_ratio × initial); the Result ends
-at the first output sample past failure; stop_at_failure=False runs on. (Restarting SolveSteps
-in chunks instead perturbs the generalized-α state at every restart: the rigid ν = 1.5 failure
-time moved by 4 %.) A Newton failure, an Exudyn error or a non-finite state is recorded in
-Result.error with the trajectory up to there.
+h that divides the output interval, one ``SolveSteps`` call for the whole run (restarting it in
+chunks would perturb the generalized-α state at every restart). A post-step function checks, every
+SAMPLES_PER_CHECK output samples, the amplitude of every step since the last check and stops the
+solver at failure (amplitude ≥ failure_ratio × initial); the Result ends at the first output sample
+past failure; stop_at_failure=False runs on. A Newton failure, an Exudyn error or a non-finite state
+is recorded in Result.error with the trajectory up to there.
 
-Convergence study (validation/benchmark.py --convergence; step and both Newton tolerances
-halved together; failure time, change against the defaults):
-
-    soft torsion (E = 4.5e9 Pa)  h = 1 / 0.5 / 0.25 ms
-                                 2.11498 / 2.11226 / 2.11163 s  (−0.13 / −0.16 %)
-    soft TnT (E = 1e11 Pa, T = 3.34e-8 N)  h = 0.25 / 0.125 / 0.0625 ms
-                                 2.10443 / 2.10531 / 2.10440 s  (+0.04 / −0.00 %)
-    rigid ν = 1.5                h = 5 / 2.5 / 1.25 µs
-                                 6.760 / 6.781 / 6.783 ms  (+0.32 / +0.34 %)
-    relTol 1e-10 instead of 1e-8 at the default step: −0.000 % / −0.000 % / +0.27 %
-
-In minimal coordinates the Newton tolerance hardly moves the failure time (Exudyn's default
-relTol 1e-8 suffices, unlike the prototype's 0.2 s shift). Defaults: h = STEP_FACTOR·sqrt(L/g₀)
-= 1 ms for the paper's torsion case, relTol 1e-8, absTol 1e-8 f₀. Extensible TnT needs h/4
-(EXTENSIBLE_STEP_DIVISOR): its never-resolved axial springs (ω ≈ 6e5 rad/s) start out of balance
-with the load's axial components and ring, and the failure time read 1.941 / 1.897 s at h = 1 /
-0.5 ms against 2.104 s converged; the rigid axial limit (axial_springs=False) converges at 1 ms.
-The rigid case needs h/6 (RIGID_STEP_DIVISOR; 10 µs → 5 µs moved it 1.1 %).
+Step: h = STEP_FACTOR·sqrt(L/g₀) (1 ms for the paper's torsion case), divided by
+EXTENSIBLE_STEP_DIVISOR for the extensible TnT chain (its unresolved axial springs start out of
+balance with the load's axial components and ring) and by RIGID_STEP_DIVISOR for the rigid chain;
+Newton relTol 1e-8 and absTol 1e-8 f₀ × defect slope. The convergence study behind these numbers
+(`python validation/benchmark.py --convergence`) is in the documentation's solver page.
 """
 from __future__ import annotations
 
@@ -78,13 +59,10 @@ from lightsail_mbs.solvers.skeleton import FailureMonitor
 # load sets the time scale of the instability (paper torsion case: sqrt(1 m / 667 m/s²) = 38.7 ms,
 # h = 1 ms; paper rigid case: 1.22 ms, h capped to the 10 µs output interval).
 STEP_FACTOR = 0.026
-# Extensible TnT: the axial springs (ω ≈ 6e5 rad/s, never resolved) start out of balance with the
-# load's axial components and ring; the failure time converges to 1 % only at h/4 (study in
-# the module docstring), so extensible chains take a 4× smaller step.
+# Extensible TnT: the axial springs (never resolved) start out of balance with the load's axial
+# components and ring; the failure time converges to 1 % only at h/4.
 EXTENSIBLE_STEP_DIVISOR = 4
-# Rigid chains (no bending springs, the paper's rigid case: a₀ = 1 mm, I₀ = 1e11 W/m²): the
-# failure time moves 1.1 % from h = 10 µs to 5 µs and 0.3 % from 5 to 2.5 µs, hence a 6× smaller
-# step (5 µs there).
+# Rigid chains (no bending springs): the failure time converges to 0.3 % at h/6.
 RIGID_STEP_DIVISOR = 6
 NEWTON_REL_TOL = 1e-8           # residual reduction per step (Exudyn default)
 NEWTON_ABS_FACTOR = 1e-8        # absolute residual tolerance as a fraction of f₀ × defect slope (see default_abs_tol)

@@ -2,7 +2,7 @@
 
 The same method, step-size control, initial step and 7th-order dense output as
 scipy.integrate.DOP853 (Hairer, Nørsett & Wanner, *Solving ODEs I*, Sec. II.10; the Butcher
-tableau, error and interpolation coefficients are read from scipy), but the whole step loop
+tableau, error and interpolation coefficients are in tableaus.py), but the whole step loop
 runs in numba-compiled code calling the compiled right-hand side (reduced_dynamics.rhs_into):
 no Python work per step. Error norm: RMS of the 5th-order estimate scaled by
 atol + rtol·max(|y|, |y_new|), combined with the 3rd-order one as err5²/√(err5² + 0.01 err3²);
@@ -15,17 +15,17 @@ from __future__ import annotations
 
 import numpy as np
 from numba import njit
-from scipy.integrate._ivp import dop853_coefficients as tableau
+from lightsail_mbs.solvers.reduced import tableaus
 
 from lightsail_mbs.solvers.reduced.dynamics import rhs_into
 
-STAGES = tableau.N_STAGES                              # 12 stages per step
-A = np.ascontiguousarray(tableau.A)                    # (16, 16): 12 step stages + 3 dense-output stages
-B = np.ascontiguousarray(tableau.B)
-C = np.ascontiguousarray(tableau.C)
-E3 = np.ascontiguousarray(tableau.E3)
-E5 = np.ascontiguousarray(tableau.E5)
-D = np.ascontiguousarray(tableau.D)                    # (4, 16) interpolation coefficients
+STAGES = tableaus.DOP853_STAGES                        # 12 stages per step
+A = np.ascontiguousarray(tableaus.DOP853_A)            # (16, 16): 12 step stages + 3 dense-output stages
+B = np.ascontiguousarray(tableaus.DOP853_B)
+C = np.ascontiguousarray(tableaus.DOP853_C)
+E3 = np.ascontiguousarray(tableaus.DOP853_E3)
+E5 = np.ascontiguousarray(tableaus.DOP853_E5)
+D = np.ascontiguousarray(tableaus.DOP853_D)            # (4, 16) interpolation coefficients
 ERROR_EXPONENT = -1.0 / 8.0                             # −1/(error estimator order + 1)
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0
 

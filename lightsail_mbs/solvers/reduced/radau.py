@@ -3,7 +3,7 @@
 The method, simplified-Newton iteration, error estimate, step-size control (Gustafsson's
 predictive controller) and cubic dense output of scipy.integrate.Radau (Hairer & Wanner,
 *Solving ODEs II*, Sec. IV.8; the transformation matrices T, T⁻¹, the eigenvalues of A⁻¹ and
-the interpolation matrix P are read from scipy), with the whole step loop in numba-compiled
+the interpolation matrix P are in tableaus.py), with the whole step loop in numba-compiled
 code: the stage equations split into one real and one complex linear system of size 2·dof,
   (μ_real/h) I − J   and   (μ_complex/h) I − J,
 LU-factorised with partial pivoting by compiled loops (no BLAS: no thread start-up on these
@@ -16,19 +16,19 @@ from __future__ import annotations
 
 import numpy as np
 from numba import njit
-from scipy.integrate._ivp import radau as tableau
 
+from lightsail_mbs.solvers.reduced import tableaus
 from lightsail_mbs.solvers.reduced.dynamics import jacobian_into, rhs_into
 from lightsail_mbs.solvers.reduced.dop853 import FINISHED, NOT_FINITE, OK, STEP_TOO_SMALL, initial_step
 
-C = np.ascontiguousarray(tableau.C)
-E = np.ascontiguousarray(tableau.E)
-T = np.ascontiguousarray(tableau.T)
-TI = np.ascontiguousarray(tableau.TI)
-P = np.ascontiguousarray(tableau.P)
-MU_REAL = float(tableau.MU_REAL)
-MU_COMPLEX = complex(tableau.MU_COMPLEX)
-NEWTON_MAXITER = tableau.NEWTON_MAXITER
+C = np.ascontiguousarray(tableaus.RADAU_C)
+E = np.ascontiguousarray(tableaus.RADAU_E)
+T = np.ascontiguousarray(tableaus.RADAU_T)
+TI = np.ascontiguousarray(tableaus.RADAU_TI)
+P = np.ascontiguousarray(tableaus.RADAU_P)
+MU_REAL = float(tableaus.RADAU_MU_REAL)
+MU_COMPLEX = complex(tableaus.RADAU_MU_COMPLEX)
+NEWTON_MAXITER = tableaus.RADAU_NEWTON_MAXITER
 MIN_FACTOR, MAX_FACTOR = 0.2, 10.0
 
 # the integrator's scalar state (a float vector kept between calls)

@@ -7,7 +7,7 @@ time, not for the sail studies, which keep the O(n) path of reduced_dynamics), p
 * tip load (paper Eq. 43): P(t) ŷ at the centre of slice n, Q += P(t) ∂y_n/∂q;
 * cantilever (Appendix A): slice 1 clamped; x₁, y₁, θ₁ are removed from the equations (their rates
   and accelerations are zero), M_ff q̈_f = (Q − c)_f on the free coordinates f;
-* pinned (Appendix B, issue 5): hinge 0 (r₁ − b e₁) pinned at its initial position and hinge n
+* pinned (Appendix B): hinge 0 (r₁ − b e₁) pinned at its initial position and hinge n
   (r_n + b e_n) on a roller at its initial height; the follower end tension (Eq. 32) still pulls
   along the end slices (at the pin it only loads the support; at the roller its axial part is
   the string tension). Constraints g(q) = 0 with Jacobian G enter by Lagrange multipliers at
