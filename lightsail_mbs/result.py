@@ -1,17 +1,86 @@
-"""One Result type, whatever solver made it: arrays, summary, save/load (.npz + .json)."""
+"""One Result type, whatever solver made it: arrays, summary, provenance, save/load (.npz + .json).
+
+Provenance: every Result records what made it (:func:`provenance`): this package's version and
+``code_version``, the git commit when it runs from a checkout, the versions of Exudyn, numpy, scipy and
+numba, Python and the platform, and the time it was made. ``code_version`` is a hash of the source files
+that decide a run's numbers (:data:`RESULT_SOURCES`: the case and its physics, the solvers, the Result
+and the failure rule), so a change to any of them, and only that, makes stored results stale.
+"""
 from __future__ import annotations
 
+import functools
+import hashlib
 import json
+import platform
+import subprocess
 from dataclasses import dataclass, field
+from datetime import datetime, timezone
+from importlib import metadata
 from pathlib import Path
 
 import numpy as np
 
 from lightsail_mbs import analysis
+from lightsail_mbs.model import shapes
 from lightsail_mbs.model.parameters import RUN_FIELDS, SailParameters
 from lightsail_mbs.solvers.settings import RunSettings
 
 ARRAYS = ("time", "x", "y", "theta", "z", "vx", "vy", "omega", "z_rate", "amplitude")
+FORMAT = "lightsail-mbs result"        # the "format" entry of a saved run's summary
+FORMAT_VERSION = 2                     # 1: no format entry, run control inside "parameters"
+
+
+class RunFileError(ValueError):
+    """A file that should hold a saved run is missing, unreadable or something else; the message names it."""
+PACKAGE = Path(__file__).resolve().parent
+# the sources that decide the numbers of a run (globs relative to the package folder)
+RESULT_SOURCES = ("model/*.py", "solvers/*.py", "solvers/*/*.py", "result.py", "analysis/failure.py")
+LIBRARIES = ("exudyn", "numpy", "scipy", "numba")
+
+
+@functools.cache
+def code_version() -> str:
+    """SHA-256 (first 16 hex digits) of the source files that decide a run's numbers (RESULT_SOURCES)."""
+    digest = hashlib.sha256()
+    for pattern in RESULT_SOURCES:
+        for path in sorted(PACKAGE.glob(pattern)):
+            digest.update(path.relative_to(PACKAGE).as_posix().encode())
+            digest.update(path.read_bytes())
+    return digest.hexdigest()[:16]
+
+
+@functools.cache
+def _static_provenance() -> dict:
+    from lightsail_mbs import __version__
+
+    def version(name):
+        try:
+            return metadata.version(name)
+        except metadata.PackageNotFoundError:
+            return None
+
+    return {"package": "lightsail-mbs", "version": __version__, "code_version": code_version(), **_git(),
+            **{name: version(name) for name in LIBRARIES}, "python": platform.python_version(),
+            "platform": platform.platform()}
+
+
+def _git() -> dict:
+    """The commit (and whether the tree had uncommitted changes) when the package runs from a git checkout."""
+    top = next((d for d in (PACKAGE, *PACKAGE.parents) if (d / ".git").exists()), None)
+    if top is None:
+        return {"git_commit": None, "git_dirty": None}
+    try:
+        run = functools.partial(subprocess.run, cwd=top, capture_output=True, text=True, timeout=5, check=True)
+        commit = run(["git", "rev-parse", "HEAD"]).stdout.strip()
+        dirty = bool(run(["git", "status", "--porcelain", "--untracked-files=no"]).stdout.strip())
+    except (OSError, subprocess.SubprocessError):
+        return {"git_commit": None, "git_dirty": None}
+    return {"git_commit": commit, "git_dirty": dirty}
+
+
+def provenance() -> dict:
+    """What makes a Result now: versions, code_version, git commit, platform and the time (UTC)."""
+    return {**_static_provenance(), "created": datetime.now(timezone.utc).isoformat(timespec="seconds")}
 
 
 @dataclass
@@ -38,6 +107,8 @@ class Result:
     error: str | None = None          # a solver failure (divergence, no Newton convergence), recorded
     info: dict = field(default_factory=dict)  # solver settings and statistics (steps, tolerances, ...)
     settings: RunSettings = field(default_factory=RunSettings)   # the run control it was made with
+    provenance: dict = field(default_factory=dict)   # what made it (module function provenance)
+    warnings: list = field(default_factory=list)     # why the numbers may not mean what they seem
 
     @classmethod
     def from_trajectory(cls, params: SailParameters, solver: str, time, x, y, theta, vx, vy, omega,
@@ -51,10 +122,11 @@ class Result:
         arrays = {k: np.asarray(a, float).reshape(steps, -1) for k, a in zip(names, (x, y, theta, vx, vy, omega))}
         arrays["z"] = empty if z is None else np.asarray(z, float).reshape(steps, -1)
         arrays["z_rate"] = empty if z_rate is None else np.asarray(z_rate, float).reshape(steps, -1)
-        return cls(params, solver, time, **arrays,
-                   amplitude=np.atleast_1d(analysis.amplitude(arrays["x"], arrays["y"])),
+        amplitude = np.atleast_1d(analysis.amplitude(arrays["x"], arrays["y"]))
+        return cls(params, solver, time, **arrays, amplitude=amplitude,
                    wall_time=float(wall_time), error=error, info=dict(info or {}),
-                   settings=settings or RunSettings())
+                   settings=settings or RunSettings(), provenance=provenance(),
+                   warnings=shapes.defect_warnings(params, float(amplitude[0])))
 
     # ---- summary ---------------------------------------------------------------------------
     @property
@@ -90,9 +162,13 @@ class Result:
             "dissipated_energy": float(self.dissipated_energy[-1]),
             "wall_time": self.wall_time,
             "error": self.error,
+            "warnings": self.warnings,
             "info": self.info,
             "parameters": self.params.to_dict(),
             "settings": self.settings.to_dict(),
+            "provenance": self.provenance,
+            "format": FORMAT,
+            "format_version": FORMAT_VERSION,
         }
 
     # ---- persistence -----------------------------------------------------------------------
@@ -107,14 +183,35 @@ class Result:
 
     @classmethod
     def load(cls, path) -> "Result":
-        with np.load(Path(path), allow_pickle=False) as data:
-            summary = json.loads(str(data["summary_json"]))
-            arrays = {k: np.array(data[k]) for k in ARRAYS}
+        """Read a run saved by :meth:`save` (or by an earlier version of this package).
+
+        Raises RunFileError, naming the file, if it is missing or is not a saved run; ParameterError if
+        its parameters are not valid here.
+        """
+        path = Path(path)
+        if not path.is_file():
+            raise RunFileError(f"{path}: no such file (expected a saved run, .npz)")
+        try:
+            with np.load(path, allow_pickle=False) as data:
+                missing = [k for k in ("summary_json", *ARRAYS) if k not in data.files]
+                if missing:
+                    raise RunFileError(f"{path}: not a saved lightsail-mbs run (no {', '.join(missing)})")
+                summary = json.loads(str(data["summary_json"]))
+                arrays = {k: np.array(data[k]) for k in ARRAYS}
+        except RunFileError:
+            raise
+        except (OSError, ValueError, EOFError) as exc:       # not a zip, truncated, pickled objects, bad JSON
+            raise RunFileError(f"{path}: not a readable saved run ({type(exc).__name__}: {exc})") from None
+        version = summary.get("format_version", 1)
+        if summary.get("format", FORMAT) != FORMAT or not isinstance(version, int) or version > FORMAT_VERSION:
+            raise RunFileError(f"{path}: format {summary.get('format')!r} version {version!r} is not one this "
+                               f"version of lightsail-mbs reads (up to {FORMAT_VERSION})")
         parameters = summary["parameters"]
         settings = summary.get("settings") or {k: parameters[k] for k in RUN_FIELDS if k in parameters}
         return cls(params=SailParameters.from_dict(parameters), solver=summary["solver"],
                    wall_time=summary["wall_time"], error=summary["error"], info=summary["info"],
-                   settings=RunSettings.from_dict(settings), **arrays)
+                   settings=RunSettings.from_dict(settings), provenance=summary.get("provenance", {}),
+                   warnings=summary.get("warnings", []), **arrays)
 
 
 def _jsonable(value):

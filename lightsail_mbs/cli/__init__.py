@@ -1,18 +1,28 @@
-"""`lightsail-mbs` command line: parse, call the library, print. One module per subcommand."""
+"""`lightsail-mbs` command line: parse, call the library, print. One module per subcommand.
+
+Every command checks what it will read and write before it computes. A foreseeable failure (a bad
+parameter, a missing or foreign input file, an output path that cannot be written) ends the command
+with one line on stderr naming the problem and exit status 2; an unforeseen error prints one line and
+the file where its full traceback was written (exit status 1).
+"""
 from __future__ import annotations
 
 import argparse
 import importlib
 import sys
+import tempfile
+import traceback
+from datetime import datetime
 
 from lightsail_mbs.model.parameters import ParameterError
+from lightsail_mbs.result import RunFileError
 
 # subcommand modules of this package; each defines register(subparsers) and sets `func`
-COMMANDS = ["theory", "simulate", "render", "montecarlo", "reproduce", "crosscheck", "stability"]
+COMMANDS = ["theory", "simulate", "info", "render", "montecarlo", "reproduce", "crosscheck", "stability", "store"]
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="lightsail-mbs", description=__doc__)
+    parser = argparse.ArgumentParser(prog="lightsail-mbs", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True)
     for name in COMMANDS:
         importlib.import_module(f".{name}", __name__).register(sub)
@@ -24,12 +34,30 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     try:
         return int(args.func(args) or 0)
-    except ParameterError as exc:
-        print(f"lightsail-mbs: error: {exc}", file=sys.stderr)
-        return 2
+    except (ParameterError, RunFileError) as exc:
+        return _fail(str(exc))
+    except OSError as exc:
+        where = f"{exc.filename}: " if exc.filename else ""
+        return _fail(f"{where}{exc.strerror or exc}")
     except KeyboardInterrupt:
         print("lightsail-mbs: interrupted", file=sys.stderr)
         return 130
+    except Exception as exc:  # noqa: BLE001 - the last line of defence: one line, the traceback in a file
+        log = _write_traceback()
+        print(f"lightsail-mbs: internal error: {type(exc).__name__}: {exc} (traceback in {log})", file=sys.stderr)
+        return 1
+
+
+def _fail(message: str) -> int:
+    print(f"lightsail-mbs: error: {message}", file=sys.stderr)
+    return 2
+
+
+def _write_traceback() -> str:
+    stamp = datetime.now().strftime("%Y%m%d-%H%M%S")
+    with tempfile.NamedTemporaryFile("w", prefix=f"lightsail-mbs-{stamp}-", suffix=".log", delete=False) as log:
+        traceback.print_exc(file=log)
+    return log.name
 
 
 if __name__ == "__main__":

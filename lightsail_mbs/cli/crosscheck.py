@@ -1,6 +1,7 @@
 """`lightsail-mbs crosscheck`: both solvers on the cross-validation cases; Markdown report and plots."""
 from __future__ import annotations
 
+from lightsail_mbs.cli.options import writable_folder
 from lightsail_mbs.studies import crosscheck
 
 
@@ -16,6 +17,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    writable_folder(args.out, "--out")
     rows = crosscheck.run(args.cases, out_dir=args.out, progress=not args.quiet,
                          exudyn_step_scale=args.exudyn_step_scale)
     print(f"wrote {args.out}/crosscheck.md: {sum(r['passed'] for r in rows)}/{len(rows)} cases pass")

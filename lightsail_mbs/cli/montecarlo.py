@@ -6,7 +6,8 @@ import json
 
 from lightsail_mbs.studies import montecarlo
 from lightsail_mbs.solvers import SOLVERS
-from lightsail_mbs.cli.options import add_case_options, params_from_args, settings_from_args
+from lightsail_mbs.cli.options import add_case_options, params_from_args, settings_from_args, writable_folder
+from lightsail_mbs.model.parameters import ParameterError
 
 
 def register(sub) -> None:
@@ -30,7 +31,11 @@ def register(sub) -> None:
 def run(args) -> int:
     base = params_from_args(args).replace(defect_mode_count=args.defect_mode_count, defect_spectrum=args.defect_spectrum,
                                           defect_seed=0)
-    values = [float(v) for v in args.values.split(",") if v.strip()]
+    try:
+        values = [float(v) for v in args.values.split(",") if v.strip()]
+    except ValueError:
+        raise ParameterError(f"values={args.values!r} is invalid: allowed comma-separated numbers") from None
+    writable_folder(args.store, "--store")
     rows = montecarlo.run(base, args.vary, values, args.seeds, args.store, solver=args.solver,
                           settings=settings_from_args(args),
                           workers=args.workers, scheduler=args.scheduler)

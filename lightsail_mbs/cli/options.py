@@ -3,6 +3,10 @@ per field."""
 from __future__ import annotations
 
 import argparse
+import tempfile
+from pathlib import Path
+
+from lightsail_mbs.model.parameters import ParameterError
 
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.solvers.settings import RunSettings
@@ -82,3 +86,32 @@ def scenario_parser(doc: str, quick_help: str) -> argparse.ArgumentParser:
     parser.add_argument("--solver", choices=("reduced", "exudyn"), default="reduced")
     parser.add_argument("--quick", action="store_true", help=quick_help)
     return parser
+
+
+def writable_folder(folder, option: str) -> Path:
+    """Create the folder if needed and prove it writable with a temporary file, before any computation;
+    ParameterError naming the option otherwise."""
+    folder = Path(folder)
+    try:
+        if folder.exists() and not folder.is_dir():
+            raise NotADirectoryError(20, "not a folder")
+        folder.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=folder):
+            pass
+    except OSError as exc:
+        raise ParameterError(f"{option}={str(folder)!r} is invalid: cannot write there "
+                             f"({exc.strerror or exc})") from None
+    return folder
+
+
+def writable_file(path, option: str, suffix: str) -> Path:
+    """The output file path with its suffix, in a writable folder (writable_folder), not a folder itself."""
+    path = Path(path).with_suffix(suffix)
+    if path.is_dir():
+        raise ParameterError(f"{option}={str(path)!r} is invalid: a folder, allowed a file name")
+    try:
+        writable_folder(path.parent, option)
+    except ParameterError as exc:
+        raise ParameterError(f"{option}={str(path)!r} is invalid: cannot write to its folder "
+                             f"{str(exc).split('cannot write there ', 1)[-1]}") from None
+    return path

@@ -3,8 +3,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from lightsail_mbs.viz.frames import RENDERERS, make_movie, parse_size, render_comparison, render_frames
+from lightsail_mbs.cli.options import writable_folder
 from lightsail_mbs.result import Result
+from lightsail_mbs.viz.frames import RENDERERS, make_movie, parse_size, render_comparison, render_frames
 
 COLOR_CHOICES = {"curvature": "curvature", "moment": "moment", "none": None}
 
@@ -37,17 +38,17 @@ def register(sub) -> None:
 
 def run(args) -> int:
     result = Result.load(args.run)
+    other = Result.load(args.compare) if args.compare else None
+    size = parse_size(args.size or ("800x800" if args.compare else "800x400"))
+    writable_folder(args.out, "--out")
     options = dict(frames=args.frames, every_seconds=args.every_seconds, exaggeration=args.exaggeration,
                    renderer=args.renderer, color_by=COLOR_CHOICES[args.color_by], color_scale=args.color_scale,
                    arrows=args.arrows,
                    progress=not args.quiet)
-    if args.compare:
-        other = Result.load(args.compare)
+    if other is not None:
         labels = args.labels or (Path(args.run).stem, Path(args.compare).stem)
-        size = parse_size(args.size or "800x800")
         paths = render_comparison(result, other, args.out, labels=labels, size=size, **options)
     else:
-        size = parse_size(args.size or "800x400")
         paths = render_frames(result, args.out, size=size, **options)
     print(f"wrote {len(paths)} frames of {size[0]}x{size[1]} px to {args.out}/")
     kinds = {"mp4": ["mp4"], "gif": ["gif"], "both": ["mp4", "gif"], None: []}[args.movie]

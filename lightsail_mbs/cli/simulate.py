@@ -5,7 +5,7 @@ import json
 import sys
 
 from lightsail_mbs.solvers import SOLVERS, solve
-from lightsail_mbs.cli.options import add_case_options, params_from_args, settings_from_args
+from lightsail_mbs.cli.options import add_case_options, params_from_args, settings_from_args, writable_file
 
 
 def register(sub) -> None:
@@ -19,10 +19,11 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    params = params_from_args(args)
-    result = solve(params, args.solver, settings_from_args(args), progress=not args.quiet)
-    if args.out:
-        result.save(args.out)
+    params, settings = params_from_args(args), settings_from_args(args)
+    out = writable_file(args.out, "--out", ".npz") if args.out else None
+    result = solve(params, args.solver, settings, progress=not args.quiet)
+    if out:
+        result.save(out)
     summary = result.summary()
     if args.json:
         print(json.dumps(summary))
@@ -34,6 +35,8 @@ def run(args) -> int:
               f"wall {summary['wall_time']:.3g} s)")
         if summary["dissipated_energy"]:
             print(f"dissipated as heat: {summary['dissipated_energy']:.6g} J")
+    for note in summary["warnings"]:
+        print(f"warning: {note}", file=sys.stderr)
     if summary["error"]:
         print(f"solver error: {summary['error']}", file=sys.stderr)
         return 1

@@ -5,8 +5,9 @@ Each case is simulated past failure (soft torsion, 3 s: it fails at ≈ 2.1 s; r
 read back from STORE/<case>.npz if that file exists (whatever solver made it), cut where the amplitude
 first reaches until_ratio × its initial value, and rendered (viz.frames) into OUT/<case>.gif; the
 frames go to STORE/<case>_frames/. STORE defaults to OUT/store/animations.
-Quick: 12 frames at 300×150 (the same runs). Run: lightsail-mbs reproduce --scenario animations, or
-python scenarios/animations.py [--cases …] [--frames N] [--size WxH] [--fps F] [--until-ratio R].
+Quick: n = 10, 12 frames at 300×150 (STORE/<case>_quick.npz and _quick_frames/).
+Run: lightsail-mbs reproduce --scenario animations, or python scenarios/animations.py [--cases …]
+[--frames N] [--size WxH] [--fps F] [--until-ratio R].
 """
 from __future__ import annotations
 
@@ -37,13 +38,15 @@ def cut_at_ratio(result: Result, ratio: float) -> Result:
     return dataclasses.replace(result, **{k: getattr(result, k)[:end] for k in ARRAYS})
 
 
-def simulated(name: str, runs: Path, solver: str, progress: bool = True) -> Result:
-    """The run of movie `name`: RUNS/<name>.npz if it exists, else solved and saved there."""
-    path = Path(runs) / f"{name}.npz"
+def simulated(name: str, runs: Path, solver: str, progress: bool = True, quick: bool = False) -> Result:
+    """The run of movie `name`: RUNS/<name>.npz (quick: n = 10, <name>_quick.npz) if it exists, else
+    solved and saved there."""
+    path = Path(runs) / f"{name}_quick.npz" if quick else Path(runs) / f"{name}.npz"
     if path.exists():
         return Result.load(path)
     case, changes = CASES[name]
-    result = solve(paper_case(case), solver, paper_settings(case, **changes), progress=progress)
+    params = paper_case(case, **(dict(n=10) if quick else {}))
+    result = solve(params, solver, paper_settings(case, **changes), progress=progress)
     result.save(path)
     return result
 
@@ -52,7 +55,7 @@ def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, stor
         cases=None, frames: int | None = None, size: str | None = None, fps: float = FPS,
         until_ratio: float = UNTIL_RATIO) -> dict:
     """cases: movie names (default all of CASES); frames, size: default 60 at 600x300 (quick: 12 at
-    300x150); until_ratio: cut each run at this amplitude ratio. workers and scheduler are not used."""
+    300x150, n = 10); until_ratio: cut each run at this amplitude ratio. workers and scheduler are not used."""
     from lightsail_mbs.viz.frames import make_movie, render_frames
 
     out = Path(out)
@@ -62,8 +65,9 @@ def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, stor
     size = size or (QUICK_SIZE if quick else SIZE)
     movies = []
     for name in cases or CASES:
-        result = cut_at_ratio(simulated(name, runs, solver, progress), until_ratio)
-        images = render_frames(result, runs / f"{name}_frames", frames=min(frames, result.time.size), size=size,
+        result = cut_at_ratio(simulated(name, runs, solver, progress, quick), until_ratio)
+        stem = f"{name}_quick" if quick else name
+        images = render_frames(result, runs / f"{stem}_frames", frames=min(frames, result.time.size), size=size,
                                progress=progress)
         gif = make_movie(images, out / f"{name}.gif", fps=fps)
         summary = result.summary()

@@ -116,7 +116,8 @@ def plot(path, rows) -> Path:
         mine = [r for r in rows if r["kind"] == "profile" and r["E_Pa"] == E and r["reflectivity"] == 1.0]
         x = [min(r["beam_waist_m"], 10.0) for r in mine]
         y = [r["failure_time_s"] if r["failed"] else np.nan for r in mine]
-        ax[0, 0].loglog(x, y, "o-", label=f"E = {E:.2g} Pa (uniform beam: {'fails' if mine[0]['failed'] else 'stable'})")
+        uniform = "fails" if mine[0]["failed"] else "stable"
+        ax[0, 0].loglog(x, y, "o-", label=f"E = {E:.2g} Pa (uniform beam: {uniform})")
     ax[0, 0].set_xlabel("beam waist w (m; 10 = uniform)")
     ax[0, 0].set_ylabel("failure time (s)")
     ax[0, 0].legend(fontsize=7)

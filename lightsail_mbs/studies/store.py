@@ -4,15 +4,27 @@ A record is written atomically (temporary file, then ``os.replace``), so a file 
 whole record or does not exist: its presence marks the case as finished, whatever killed the sweep.
 Optional full Results go to ``results/<key>.npz`` (and its ``.json`` summary) and are written
 *before* the record, so a record never points at a missing Result.
+
+A record is served only while it is current: it carries the ``code_version`` of the code that made it
+(:func:`lightsail_mbs.result.code_version`, a hash of the sources that decide a run's numbers), and a
+record made by other code is *stale*; a record that does not parse, or lacks its key, status or code
+version, is *corrupt*; a record whose saved Result is missing or unreadable is *incomplete*. All three
+count as not finished: the sweep recomputes them. :meth:`CaseStore.audit` reports them without
+recomputing (``lightsail-mbs store DIR``).
 """
 from __future__ import annotations
 
 import json
 import os
 import tempfile
+import zipfile
 from pathlib import Path
 
 import numpy as np
+
+from lightsail_mbs.result import code_version
+
+REQUIRED = ("key", "status", "code_version")
 
 
 def to_json(value) -> str:
@@ -51,11 +63,24 @@ class CaseStore:
     def result_path(self, key: str) -> Path:
         return self.directory / "results" / f"{key}.npz"
 
+    def state(self, key: str, with_result: bool = False) -> str:
+        """"current", "missing", "corrupt", "stale" or (a current record without its asked-for saved
+        Result) "incomplete"."""
+        path = self.record_path(key)
+        if not path.exists():
+            return "missing"
+        record = self._read(path)
+        if record is None or record.get("key") != key:
+            return "corrupt"
+        if record["code_version"] != code_version():
+            return "stale"
+        if with_result and not self._result_readable(key):
+            return "incomplete"
+        return "current"
+
     def has(self, key: str, with_result: bool = False) -> bool:
-        """True when the case is finished (and, if asked, its full Result was saved)."""
-        if not self.record_path(key).exists():
-            return False
-        return not with_result or self.result_path(key).exists()
+        """True when the case is finished by the current code (and, if asked, its full Result is there)."""
+        return self.state(key, with_result) == "current"
 
     def load(self, key: str) -> dict:
         return json.loads(self.record_path(key).read_text())
@@ -64,12 +89,25 @@ class CaseStore:
         return sorted(p.stem for p in self.directory.glob("*.json"))
 
     def records(self) -> list[dict]:
-        """Every finished case in the store (e.g. to plot a map without rerunning anything)."""
-        return [self.load(key) for key in self.keys()]
+        """Every current record in the store (e.g. to plot a map without rerunning anything)."""
+        return [self.load(key) for key in self.keys() if self.has(key)]
+
+    def audit(self) -> dict:
+        """Counts and keys of the records by state (current, stale, corrupt, incomplete: a record with a
+        result_path whose Result is missing or unreadable)."""
+        found = {"current": [], "stale": [], "corrupt": [], "incomplete": []}
+        for key in self.keys():
+            state = self.state(key)
+            if state == "current" and "result_path" in (self._read(self.record_path(key)) or {}):
+                state = self.state(key, with_result=True)
+            found[state].append(key)
+        return found
 
     def write(self, key: str, record: dict) -> Path:
-        """Write the record atomically: a reader sees the old file, or the whole new one."""
+        """Write the record, stamped with the current code_version, atomically: a reader sees the old
+        file, or the whole new one."""
         path = self.record_path(key)
+        record = {**record, "code_version": code_version()}
         text = json.dumps(record, indent=1, sort_keys=True, default=_jsonable_or_repr) + "\n"
         fd, tmp = tempfile.mkstemp(dir=self.directory, prefix=f".{key}.", suffix=".tmp")
         try:
@@ -86,3 +124,22 @@ class CaseStore:
     def save_result(self, key: str, result) -> Path:
         """Save a full Result (arrays) next to the records; returns the .npz path."""
         return result.save(self.result_path(key))
+
+    @staticmethod
+    def _read(path: Path) -> dict | None:
+        """The record at path, or None if it does not parse or lacks a required entry."""
+        try:
+            record = json.loads(path.read_text())
+        except (OSError, ValueError):
+            return None
+        if not isinstance(record, dict) or any(name not in record for name in REQUIRED):
+            return None
+        return record
+
+    def _result_readable(self, key: str) -> bool:
+        """The saved Result opens as a zip archive with every member intact (CRC checked)."""
+        try:
+            with zipfile.ZipFile(self.result_path(key)) as archive:
+                return archive.testzip() is None
+        except (OSError, zipfile.BadZipFile):
+            return False
