@@ -1,117 +1,12 @@
-"""Beyond the uniform perfect mirror (issue 9): Gaussian beams and partial reflectivity/absorption.
+"""Gaussian beams, partial reflectors and off-centre beams on the paper's torsion sail.
 
-The paper's torsion sail (h = 1 µm, I₀ = 0.1 GW/m², a₀ = 10 µm, ν = 3/2, n = 30) at its stable modulus
-(E = 4.5e13 Pa, Fig. 6) and soft modulus (4.5e9 Pa, Fig. 7), 6 s or to failure, under
-* centred Gaussian beams of waist w = 2, 1, 0.5 m next to the uniform beam: the beam's curvature pushes the
-  middle harder than the edges, a load the flat-sail frame does not cancel (50 ms runs, 10 µs samples);
-* a perfect mirror (R = 1), a partial one (R = 0.9, α = 0.1) and a black absorber (R = 0, α = 1):
-  g₀ = (2R + α)Ī/(cρh) falls, so the defect grows more slowly;
-and, on a flat sail (a₀ = 0), beams of w = 1 m centred off the middle by 1–20 % of L: the torque turns
-the sail as a rigid plate; the time to turn by 1° is reported next to the estimate
-t = √(2 · 1° · J_sail / τ), τ = Σ f_j (x_j − L/2) (loads.radiation_forces at rest).
-Writes beam_optics.png, beam_optics_profile.csv and beam_optics_tilt.csv. Usage: python scenarios/beam_optics.py [--out DIR]
+Runs lightsail_mbs.paper.beam_optics (see its docstring): writes beam_optics.png, beam_optics_profile.csv
+and beam_optics_tilt.csv into --out. Usage: python scenarios/beam_optics.py [--out DIR]
 [--solver reduced|exudyn] [--quick]
 """
-from __future__ import annotations
-
-import math
-import sys
-from pathlib import Path
-
-import numpy as np
-
-from lightsail_mbs.model import loads, shapes
-from lightsail_mbs import paper_case
-from lightsail_mbs.paper.common import (new_figure, print_table, run_cases, save_figure, scenario_parser, write_csv)
-
-WAISTS = (math.inf, 2.0, 1.0, 0.5)                                  # m
-OPTICS = ((1.0, 0.0), (0.9, 0.1), (0.0, 1.0))                      # (R, α)
-OFFSETS = (0.01, 0.05, 0.2)                                         # (x_c − L/2)/L
-TURN = math.radians(1.0)
-
-
-def profile_cases(quick: bool) -> list:
-    changes = dict(n=10, t_final=1.0) if quick else {}
-    out = []
-    for case in ("torsion-stable", "torsion-soft"):
-        for w in WAISTS:        # a Gaussian beam cups the sail within milliseconds: sample every 10 µs
-            cupping = {} if math.isinf(w) else dict(t_final=0.05, output_interval=1e-5)
-            out.append(paper_case(case, beam_waist=w, **{**changes, **cupping}))
-        for r, a in OPTICS[1:]:
-            out.append(paper_case(case, reflectivity=r, absorptivity=a, **changes))
-    return out
-
-
-def tilt_cases(quick: bool) -> list:
-    base = paper_case("torsion-stable", amplitude=0.0, beam_waist=1.0, t_final=0.2, output_interval=1e-4,
-                      stop_at_failure=False, **(dict(n=10) if quick else {}))
-    return [base.replace(beam_center=base.length * (0.5 + d)) for d in OFFSETS]
-
-
-def turn_estimate(p) -> float:
-    """√(2 · 1° · J_sail / τ): the rigid flat sail's time to turn 1° under the initial torque."""
-    state = shapes.initial_state(p)
-    fx, fy = loads.radiation_forces(p, state.x, state.theta)
-    torque = float(np.sum((state.x - state.x.mean()) * fy - (state.y - state.y.mean()) * fx))
-    inertia = p.slice_mass * p.n * p.length ** 2 / 12.0
-    return math.sqrt(2.0 * TURN * inertia / abs(torque))
-
-
-def run(out, *, solver: str = "reduced", quick: bool = False, workers=None, progress: bool = True) -> dict:
-    out = Path(out)
-    profiles, tilts = profile_cases(quick), tilt_cases(quick)
-    done = run_cases(profiles + tilts, out / "store" / "beam_optics", solver=solver, workers=workers,
-                     label="beam and optics", progress=progress)
-    rows = []
-    for p, (record, result) in zip(profiles, done):
-        rows.append(dict(kind="profile", E_Pa=p.youngs_modulus, beam_waist_m=p.beam_waist, reflectivity=p.reflectivity,
-                         absorptivity=p.absorptivity, g0=p.nominal_acceleration, failed=record.get("failed"),
-                         failure_time_s=record.get("failure_time"), max_amplitude_ratio=record.get("max_amplitude_ratio"),
-                         error=record.get("error")))
-    for p, (record, result) in zip(tilts, done[len(profiles):]):
-        turn = None
-        if result is not None:
-            mean_angle = np.abs(result.theta.mean(axis=1))
-            beyond = np.nonzero(mean_angle >= TURN)[0]
-            turn = float(result.time[beyond[0]]) if beyond.size else None
-        rows.append(dict(kind="tilt", beam_center_m=p.beam_center, offset_over_L=p.beam_center / p.length - 0.5,
-                         turn_1deg_s=turn, turn_1deg_estimate_s=turn_estimate(p), error=record.get("error")))
-    for kind, title in (("profile", f"Beam profile and optics, torsion sail ({solver})"),
-                        ("tilt", "Off-centre beam (w = 1 m) on a flat sail: time to turn 1°")):
-        mine = [r for r in rows if r["kind"] == kind]
-        write_csv(out / f"beam_optics_{kind}.csv", mine)
-        print_table(title, mine)
-    plot(out / "beam_optics.png", rows)
-    return {"rows": rows}
-
-
-def plot(path, rows) -> None:
-    fig, ax = new_figure(1, 2, size=(10.0, 4.0))
-    for E in sorted({r["E_Pa"] for r in rows if r["kind"] == "profile"}):
-        mine = [r for r in rows if r["kind"] == "profile" and r["E_Pa"] == E and r["reflectivity"] == 1.0]
-        x = [min(r["beam_waist_m"], 10.0) for r in mine]
-        y = [r["failure_time_s"] if r["failed"] else np.nan for r in mine]
-        ax[0, 0].loglog(x, y, "o-", label=f"E = {E:.2g} Pa (uniform beam: {'fails' if mine[0]['failed'] else 'stable'})")
-    ax[0, 0].set_xlabel("beam waist w (m; 10 = uniform)")
-    ax[0, 0].set_ylabel("failure time (s)")
-    ax[0, 0].legend(fontsize=7)
-    tilt = [r for r in rows if r["kind"] == "tilt"]
-    ax[0, 1].loglog([r["offset_over_L"] for r in tilt], [r["turn_1deg_s"] or np.nan for r in tilt], "o-", label="run")
-    ax[0, 1].loglog([r["offset_over_L"] for r in tilt], [r["turn_1deg_estimate_s"] for r in tilt], "k:",
-                    label="rigid plate estimate")
-    ax[0, 1].set_xlabel("beam offset (x_c − L/2)/L")
-    ax[0, 1].set_ylabel("time to turn 1° (s)")
-    ax[0, 1].legend(fontsize=8)
-    fig.suptitle("Gaussian beam, partial reflector, off-centre beam (torsion sail)", fontsize=10)
-    save_figure(fig, path)
-
-
-def main(argv=None) -> int:
-    parser = scenario_parser(__doc__, "n = 10, 1 s runs (smoke test)")
-    args = parser.parse_args(argv)
-    run(args.out, solver=args.solver, quick=args.quick)
-    return 0
-
+from lightsail_mbs.cli.options import scenario_parser
+from lightsail_mbs.paper import beam_optics
 
 if __name__ == "__main__":
-    sys.exit(main())
+    args = scenario_parser(__doc__, "n = 10, 1 s runs (smoke test)").parse_args()
+    beam_optics.run(args.out, solver=args.solver, quick=args.quick)

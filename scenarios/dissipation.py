@@ -1,95 +1,13 @@
-"""Heat from material damping in the oscillating TnT sail (issue 9; the paper's "limitations": higher
-tension → higher frequency → more heat).
+"""Heat from material damping in the oscillating TnT sail against the tension.
 
-The paper's TnT sail (h = 1 µm, ν = 3/2, I₀ = 0.1 GW/m², a₀ = 10 µm, n = 30, extensible slices with
-E = 1e11 Pa) with its bending springs on (k_T = EI/l, so curvature dissipates too) and material damping
-c = β k on every spring (SailParameters.stiffness_damping; a loss factor η at ω is β = η/ω), at
-tensions from T_cr,max/100 (fails) to 10⁴ T_cr,max, each with and without damping. Per case: the
-oscillation frequency, the heat D(t_end) = ∫ P dt (analysis.dissipated_energy), the mean power
-D/t_end, that power over the laser power a sail of absorptivity 1e-6 would absorb, and whether and
-when the sail fails with and without damping.
-Writes dissipation.png and dissipation.csv. Usage: python scenarios/dissipation.py [--out DIR] [--beta S]
-[--solver reduced|exudyn] [--quick]
+Runs lightsail_mbs.paper.dissipation (see its docstring): writes dissipation.png and dissipation.csv into
+--out. Usage: python scenarios/dissipation.py [--out DIR] [--beta S] [--solver reduced|exudyn] [--quick]
 """
-from __future__ import annotations
-
-import sys
-from pathlib import Path
-
-import numpy as np
-
-from lightsail_mbs import paper_case
-from lightsail_mbs.model import theory
-from lightsail_mbs.paper.common import (new_figure, print_table, run_cases, save_figure, scenario_parser, write_csv)
-from lightsail_mbs.analysis.spectral import angle_frequency
-
-TENSION_RATIOS = (1e-2, 1e1, 1e2, 1e3, 1e4)     # T / T_cr,max
-REFERENCE_ABSORPTIVITY = 1e-6
-
-
-def cases(beta: float, quick: bool) -> list:
-    base = paper_case("tnt-stable", bending=True, **(dict(n=10, t_final=1.0) if quick else {}))
-    critical = theory.critical_tension_max(base)
-    return [base.replace(tension=r * critical, stiffness_damping=b) for r in TENSION_RATIOS for b in (0.0, beta)]
-
-
-def run(out, *, beta: float = 1e-4, solver: str = "reduced", quick: bool = False, workers=None,
-        progress: bool = True) -> list[dict]:
-    out = Path(out)
-    params = cases(beta, quick)
-    done = run_cases(params, out / "store" / "dissipation", solver=solver, workers=workers, label="dissipation",
-                     progress=progress)
-    rows = []
-    for p, (record, result) in zip(params, done):
-        row = dict(T_N=p.tension, T_over_T_cr=p.tension / theory.critical_tension_max(p), beta_s=p.stiffness_damping,
-                   failed=record.get("failed"), failure_time_s=record.get("failure_time"), error=record.get("error"))
-        if result is not None:
-            heat = float(result.dissipated_energy[-1])
-            power = heat / result.time[-1]
-            laser = REFERENCE_ABSORPTIVITY * p.intensity * p.length * p.width
-            row.update(frequency_Hz=None if result.failed else angle_frequency(result),
-                       max_amplitude_ratio=result.max_amplitude_ratio, heat_J=heat, mean_power_W=power,
-                       power_over_absorbed=power / laser)
-        rows.append(row)
-    write_csv(out / "dissipation.csv", rows)
-    print_table(f"Material damping β = {beta:g} s in the TnT sail (bending on), {params[0].t_final:g} s "
-                f"({solver}); absorbed reference: α = {REFERENCE_ABSORPTIVITY:g}", rows)
-    plot(out / "dissipation.png", rows, beta)
-    return rows
-
-
-def plot(path, rows, beta) -> None:
-    fig, ax = new_figure(1, 2, size=(10.0, 4.0))
-    damped = [r for r in rows if r["beta_s"] > 0 and r.get("frequency_Hz")]
-    f = np.array([r["frequency_Hz"] for r in damped])
-    power = np.array([r["mean_power_W"] for r in damped])
-    ax[0, 0].loglog(f, power, "o-", label=f"β = {beta:g} s")
-    if f.size:
-        ax[0, 0].loglog(f, power[-1] * (f / f[-1]) ** 2, "k:", lw=0.8, label="∝ f² (reference)")
-    for r in damped:
-        ax[0, 0].annotate(f"{r['T_over_T_cr']:.0e} T_cr", (r["frequency_Hz"], r["mean_power_W"]), fontsize=7)
-    ax[0, 0].set_xlabel("oscillation frequency (Hz)")
-    ax[0, 0].set_ylabel("mean dissipated power (W)")
-    ax[0, 0].legend(fontsize=8)
-    for b, style in ((0.0, "s--"), (beta, "o-")):
-        mine = [r for r in rows if r["beta_s"] == b and r.get("max_amplitude_ratio") is not None]
-        ax[0, 1].semilogx([r["T_over_T_cr"] for r in mine], [r["max_amplitude_ratio"] for r in mine], style,
-                          label=f"β = {b:g} s")
-    ax[0, 1].axhline(2.0, color="k", lw=0.8, ls=":")
-    ax[0, 1].set_xlabel("T / T_cr,max")
-    ax[0, 1].set_ylabel("max amplitude / a₀ (2: failure)")
-    ax[0, 1].legend(fontsize=8)
-    fig.suptitle("Heat from material damping in the oscillating TnT sail", fontsize=10)
-    save_figure(fig, path)
-
-
-def main(argv=None) -> int:
-    parser = scenario_parser(__doc__, "n = 10, 1 s runs (smoke test)")
-    parser.add_argument("--beta", type=float, default=1e-4, help="material damping β (s)")
-    args = parser.parse_args(argv)
-    run(args.out, beta=args.beta, solver=args.solver, quick=args.quick)
-    return 0
-
+from lightsail_mbs.cli.options import scenario_parser
+from lightsail_mbs.paper import dissipation
 
 if __name__ == "__main__":
-    sys.exit(main())
+    parser = scenario_parser(__doc__, "n = 10, 1 s runs (smoke test)")
+    parser.add_argument("--beta", type=float, default=dissipation.BETA, help="material damping β (s) [1e-4]")
+    args = parser.parse_args()
+    dissipation.run(args.out, beta=args.beta, solver=args.solver, quick=args.quick)

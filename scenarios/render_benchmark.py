@@ -1,4 +1,4 @@
-"""Per-frame cost of both renderers: 200 frames at 800×400 of a synthetic growing sine (issue 6).
+"""Per-frame cost of both renderers: 200 frames at 800×400 of a synthetic growing sine.
 
 Usage: python scenarios/render_benchmark.py [--frames 200] [--size 800x400] [--repeats 3]
 Prints the wall time of render_frames (scene building, drawing, PNG writing) per renderer; the
@@ -12,24 +12,26 @@ import time
 
 import numpy as np
 
-from lightsail_mbs import Result, SailParameters
-from lightsail_mbs.viz.frames import render_frames
+from lightsail_mbs import Result, RunSettings, SailParameters
 from lightsail_mbs.model.shapes import hinge_points
+from lightsail_mbs.viz.frames import render_frames
 
 
 def growing_sine(n: int = 30, steps: int = 1001, rate: float = 1.2, t_final: float = 1.0) -> Result:
     """Slices on w(x, t) = a₀ e^{rate·t} sin(2πνx/L), exact chords (shapes.hinge_points), at rest."""
-    p = SailParameters(model="torsion", n=n, t_final=t_final)
+    p = SailParameters(model="torsion", n=n)
     time_ = np.linspace(0.0, t_final, steps)
     x, y, theta = (np.empty((steps, n)) for _ in range(3))
     for k, t in enumerate(time_):
-        pts = hinge_points(p, lambda s, g=np.exp(rate * t): p.amplitude * g * np.sin(2 * np.pi * p.mode * s / p.length))
+        amplitude = p.defect_amplitude * np.exp(rate * t)
+        pts = hinge_points(p, lambda s, a=amplitude: a * np.sin(2 * np.pi * p.defect_mode * s / p.length))
         d = np.diff(pts, axis=0)
         theta[k] = np.arctan2(d[:, 1], d[:, 0])
         x[k] = pts[:-1, 0] + 0.5 * p.slice_length * np.cos(theta[k])
         y[k] = pts[:-1, 1] + 0.5 * p.slice_length * np.sin(theta[k])
     zero = np.zeros_like(x)
-    return Result.from_trajectory(p, "synthetic", time_, x, y, theta, zero, zero, zero)
+    return Result.from_trajectory(p, "synthetic", time_, x, y, theta, zero, zero, zero,
+                                  settings=RunSettings(t_final=t_final))
 
 
 def main(argv=None) -> None:
