@@ -5,16 +5,18 @@ Options (part of the case key): as_result (return a Result, not a dict), marker_
 execution, to count them), sleep (s; stable_sleep for stable cases), raise_modes / error_modes /
 crash_modes (modes ν that raise, return an error, kill the worker).
 Run as a script, it runs a small sweep (the interrupted-sweep test kills it part-way).
+Imported by the tests as ``tests.sweep_fake`` (tests/ is a package); as a script it needs only lightsail_mbs.
 """
 import os
 import sys
 import time
 import uuid
+from collections import Counter
 from pathlib import Path
 
 import numpy as np
 
-from lightsail_mbs import Result, SailParameters
+from lightsail_mbs import Result, RunSettings, SailParameters
 from lightsail_mbs.model import theory
 
 
@@ -27,14 +29,14 @@ def fake_case(case):
     failed = p.youngs_modulus < threshold
     sleep = options.get("sleep", 0.0)
     time.sleep(sleep if failed else options.get("stable_sleep", sleep))
-    if p.mode in options.get("raise_modes", ()):
+    if p.defect_mode in options.get("raise_modes", ()):
         raise RuntimeError("fake solver blew up")
-    if p.mode in options.get("crash_modes", ()):
+    if p.defect_mode in options.get("crash_modes", ()):
         os._exit(3)
     if options.get("as_result"):
         return fake_result(p, growth_rate=np.log(4.0) if failed else 0.0)
     return {"failed": bool(failed), "failure_time": 0.1 * p.youngs_modulus / threshold if failed else None,
-            "error": "fake divergence" if p.mode in options.get("error_modes", ()) else None,
+            "error": "fake divergence" if p.defect_mode in options.get("error_modes", ()) else None,
             "threshold": threshold}
 
 
@@ -42,9 +44,14 @@ def fake_result(p, growth_rate):
     """A Result whose sine shape grows as exp(growth_rate · t) over 1 s."""
     t = np.linspace(0.0, 1.0, 21)
     x = np.tile((np.arange(p.n) + 0.5) / p.n * p.length, (t.size, 1))
-    y = p.amplitude * np.exp(growth_rate * t)[:, None] * np.sin(2 * np.pi * p.mode * x / p.length)
+    y = p.defect_amplitude * np.exp(growth_rate * t)[:, None] * np.sin(2 * np.pi * p.defect_mode * x / p.length)
     zero = np.zeros_like(x)
-    return Result.from_trajectory(p, "fake", t, x, y, zero, zero, zero, zero)
+    return Result.from_trajectory(p, "fake", t, x, y, zero, zero, zero, zero, settings=RunSettings(t_final=1.0))
+
+
+def executions(marker_dir) -> Counter:
+    """How many times each case key was executed (one marker file per execution)."""
+    return Counter(name.split(".")[0] for name in os.listdir(marker_dir))
 
 
 def small_sweep(marker_dir, sleep=0.0, **options):

@@ -1,28 +1,41 @@
-"""Result: consistent shapes, summary keys, save/load round trip."""
+"""Result: consistent shapes, summary keys, the run settings it keeps, save/load round trip (and the
+files of the format before RunSettings)."""
 import json
 
 import numpy as np
 
-from lightsail_mbs import Result, SailParameters
+from lightsail_mbs import Result, RunSettings, SailParameters
+
+ONE_SECOND = RunSettings(t_final=1.0)
 
 
-def synthetic(model="tnt", n=12, steps=50):
-    p = SailParameters(model=model, n=n, tension=1e-3 if model == "tnt" else 0.0, t_final=1.0)
+def synthetic(model="tnt", n=12, steps=50, settings=ONE_SECOND):
+    p = SailParameters(model=model, n=n, tension=1e-3 if model == "tnt" else 0.0)
     t = np.linspace(0, 1, steps)
     x = np.tile((np.arange(n) + 0.5) / n, (steps, 1))
     y = 1e-5 * np.exp(t)[:, None] * np.sin(3 * np.pi * x)
     th = np.zeros((steps, n))
     z = np.zeros((steps, n - 1)) if p.extensible else None
-    return Result.from_trajectory(p, "test", t, x, y, th, 0 * x, 0 * y, th, z=z, z_rate=z, wall_time=0.5)
+    return Result.from_trajectory(p, "test", t, x, y, th, 0 * x, 0 * y, th, z=z, z_rate=z, wall_time=0.5,
+                                  settings=settings)
 
 
 def test_summary_and_failure():
     r = synthetic()
     s = r.summary()
-    for key in ("failed", "failure_time", "max_amplitude_ratio", "wall_time", "solver", "model", "n", "parameters"):
+    for key in ("failed", "failure_time", "max_amplitude_ratio", "wall_time", "solver", "model", "n", "parameters",
+                "settings"):
         assert key in s
     assert s["failed"] and abs(s["failure_time"] - np.log(2)) < 0.02
     assert s["max_amplitude_ratio"] > 2
+    assert s["settings"] == RunSettings(t_final=1.0).to_dict() and "t_final" not in s["parameters"]
+
+
+def test_failure_time_follows_the_failure_ratio_of_the_settings():
+    """The amplitude grows as e^t over 1 s: it reaches 2.5× at ln 2.5 and never 3× (e < 3)."""
+    assert abs(synthetic(settings=RunSettings(t_final=1.0, failure_ratio=2.5)).failure_time - np.log(2.5)) < 0.02
+    assert not synthetic(settings=RunSettings(t_final=1.0, failure_ratio=3.0)).failed
+    assert synthetic().settings == RunSettings(t_final=1.0)
 
 
 def test_save_load_roundtrip(tmp_path):
@@ -30,7 +43,7 @@ def test_save_load_roundtrip(tmp_path):
     path = r.save(tmp_path / "run")
     assert path.suffix == ".npz" and path.with_suffix(".json").exists()
     back = Result.load(path)
-    assert back.params == r.params and back.solver == "test"
+    assert back.params == r.params and back.solver == "test" and back.settings == r.settings
     for name in ("time", "x", "y", "theta", "z", "amplitude"):
         np.testing.assert_array_equal(getattr(back, name), getattr(r, name))
     assert back.x.shape == (50, 12) and back.z.shape == (50, 11) and back.amplitude.shape == (50,)
@@ -39,3 +52,22 @@ def test_save_load_roundtrip(tmp_path):
 
 def test_inextensible_chain_has_empty_z():
     assert synthetic(model="torsion").z.shape == (50, 0)
+
+
+def test_loads_the_files_of_the_format_before_run_settings(tmp_path):
+    """Older files kept the run in the parameters under the old field names; no 'settings' entry."""
+    r = synthetic(settings=RunSettings(t_final=1.0, output_interval=0.02, failure_ratio=3.0))
+    path = r.save(tmp_path / "new")
+    summary = json.loads(path.with_suffix(".json").read_text())
+    old = dict(summary["parameters"])
+    old["amplitude"], old["mode"], old["defect_modes"] = (old.pop("defect_amplitude"), old.pop("defect_mode"),
+                                                          old.pop("defect_mode_count"))
+    old.update(summary.pop("settings"))
+    summary["parameters"] = old
+    with np.load(path) as data:
+        arrays = {k: data[k] for k in data.files if k != "summary_json"}
+    np.savez_compressed(tmp_path / "old.npz", summary_json=np.array(json.dumps(summary)), **arrays)
+    back = Result.load(tmp_path / "old.npz")
+    assert back.params == r.params and back.settings == r.settings
+    np.testing.assert_array_equal(back.amplitude, r.amplitude)
+    assert back.failure_time == r.failure_time

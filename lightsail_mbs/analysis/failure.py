@@ -1,6 +1,6 @@
-"""Analysis of chain states and trajectories: amplitude, failure, energy.
+"""Amplitude and failure of chain states and trajectories: the one failure rule of every solver.
 
-Failure criterion (README): amplitude(t) is half the peak-to-peak spread of the slice
+Failure criterion: amplitude(t) is half the peak-to-peak spread of the slice
 centres' perpendicular offsets from their least-squares line, which removes rigid drift
 and rotation. The sail has failed when amplitude(t) ≥ ratio · amplitude(0) (the paper's
 "amplitude doubled" for ratio = 2).
@@ -8,7 +8,6 @@ and rotation. The sail has failed when amplitude(t) ≥ ratio · amplitude(0) (t
 from __future__ import annotations
 
 import numpy as np
-from scipy.integrate import cumulative_simpson
 
 
 def line_offsets(x: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -60,34 +59,3 @@ def hinge_heights(result) -> np.ndarray:
     left = result.y - half * np.sin(result.theta)
     right = result.y[:, -1:] + half * np.sin(result.theta[:, -1:])
     return np.concatenate([left, right], axis=1)
-
-
-def mechanical_energy(result) -> np.ndarray:
-    """Kinetic plus elastic energy of a Result over time (J), Eqs (12), (23), (29):
-
-    ½ m Σ(ẋ² + ẏ²) + ½ J Σ θ̇² + ½ k_T Σ(θ_j − θ_{j−1})² + ½ k_s Σ z_j².
-    Conserved in free vibration (zero intensity, no damping, no tension).
-    """
-    p = result.params
-    kinetic = 0.5 * p.slice_mass * (result.vx ** 2 + result.vy ** 2).sum(axis=1) \
-        + 0.5 * p.slice_inertia * (result.omega ** 2).sum(axis=1)
-    elastic = 0.5 * p.torsional_stiffness * (np.diff(result.theta, axis=1) ** 2).sum(axis=1)
-    if result.z.shape[1]:
-        elastic = elastic + 0.5 * p.axial_stiffness * (result.z ** 2).sum(axis=1)
-    return kinetic + elastic
-
-
-def dissipated_power(result) -> np.ndarray:
-    """Heat generated in the dampers over time (W): c_T Σ(θ̇_j − θ̇_{j−1})² + c_s Σ ż_j²,
-    with c_T, c_s the SailParameters dampers (explicit c plus material β k)."""
-    p = result.params
-    power = p.total_torsional_damping * (np.diff(result.omega, axis=1) ** 2).sum(axis=1)
-    if result.z_rate.shape[1]:
-        power = power + p.total_axial_damping * (result.z_rate ** 2).sum(axis=1)
-    return power
-
-
-def dissipated_energy(result) -> np.ndarray:
-    """D(t) = ∫₀ᵗ P dt (J) by the cumulative Simpson rule on the output samples (error ∝ (ω Δt)⁴ for a
-    mode at ω). In free vibration, mechanical_energy + D is constant."""
-    return cumulative_simpson(dissipated_power(result), x=result.time, initial=0.0)

@@ -1,6 +1,6 @@
 """Finite-amplitude stability of the defective sail: scaling, critical E or T, failure time.
 
-Linear theory sees nothing (lightsail_mbs.stability): the load's first-order change acts along the
+Linear theory sees nothing (lightsail_mbs.analysis.linear_stability): the load's first-order change acts along the
 sail. At second order it does two things to a sail of transverse deflection w(x, t) (per unit
 width, p = 2I₀/c, g₀ = p/(ρh), slopes small):
 
@@ -41,10 +41,16 @@ from lightsail_mbs import analysis
 from lightsail_mbs.model import shapes, theory
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
 
-# swept stiffness of each model and its analytic critical value
 BLOWUP_RATIO = 10.0     # scaled runs past failure end here (the sail has crumpled; slopes no longer small)
-STIFFNESS = {"torsion": ("youngs_modulus", theory.critical_modulus_max),
-             "tnt": ("tension", theory.critical_tension_max)}
+STIFFNESS = theory.STIFFNESS       # swept stiffness of each model and its analytic critical value
+
+
+def log_bisect(fails, lo: float, hi: float, factor: float) -> tuple[float, float]:
+    """Bisect in log space between a failing lo and a stable hi until hi/lo ≤ factor; returns (lo, hi)."""
+    while hi / lo > factor:
+        mid = math.sqrt(lo * hi)
+        lo, hi = (mid, hi) if fails(mid) else (lo, mid)
+    return lo, hi
 
 
 def wavenumber(p: SailParameters) -> float:
@@ -184,9 +190,7 @@ def critical_ratio(p: SailParameters, tau_final: float = 8.0, *, lo: float = 1.0
         lo, hi = hi, hi * 4.0
         if hi > 1e6:
             raise ParameterError("failure even at 1e6 × the analytic critical value within the run")
-    while hi / lo > factor:
-        mid = math.sqrt(lo * hi)
-        lo, hi = (mid, hi) if fails(mid) else (lo, mid)
+    lo, hi = log_bisect(fails, lo, hi, factor)
     return CriticalRatio(lo, hi, tau_final, runs)
 
 
@@ -266,9 +270,7 @@ class OneModeModel:
         """The smallest stiffness ratio whose one-mode orbit stays within |a| < failure_ratio·a₀."""
         if not self.fails(lo, failure_ratio) or self.fails(hi, failure_ratio):
             return float("nan")
-        while hi / lo > 1.001:
-            mid = math.sqrt(lo * hi)
-            lo, hi = (mid, hi) if self.fails(mid, failure_ratio) else (lo, mid)
+        lo, hi = log_bisect(lambda r: self.fails(r, failure_ratio), lo, hi, 1.001)
         return math.sqrt(lo * hi)
 
 

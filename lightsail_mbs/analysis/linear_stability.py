@@ -15,7 +15,19 @@ the free–free beam (torsion), the tensioned string (TnT) or the free mechanism
 all frequencies zero). Linear theory has no critical E or T: the instability of the runs is
 a finite-amplitude effect (see lightsail_mbs.critical).
 
-Two independent linearisations, both at the flat state:
+Eigenfrequencies of the chain about the flat state with its supports (the classic validations of
+Appendices A–B), from each solver's own equations, are here too:
+
+* exudyn: the assembled Exudyn system (supports included) and Exudyn's ``ComputeODE2Eigenvalues`` (mass
+  matrix and static-solver Jacobian at the flat state; with supports, Exudyn projects both on the null
+  space of the constraint Jacobian). Exudyn solves the symmetric problem K v = ω² M v, so this is meant
+  for conservative linearisations (intensity = 0).
+* reduced: the reduced solver's q̈(q, q̇) (ChainDynamics for free chains, BoundedChainDynamics with
+  supports) differentiated by central differences about the flat state at rest, A = ∂q̈/∂q, restricted
+  to the tangent space of the supports (orthonormal basis N: the free coordinates of the cantilever, the
+  null space of G for the pinned chain); ω² = −eig(Nᵀ A N).
+
+Two independent linearisations of the lit free sail, both at the flat state:
 * reduced solver: central-difference Jacobian of ẏ = (q̇, q̈(q, q̇)) (reduced_dynamics), all
   columns in one vectorised call;
 * Exudyn: M and the elastic/tension stiffness K from ``ComputeLinearizedSystem`` of the unlit
@@ -31,12 +43,18 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg as sl
+from scipy.linalg import null_space
 
 from lightsail_mbs.model import shapes
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
 
-RIGID_MODES = 3     # a free sail translates in x, y and rotates without restoring force
-FD_STEP = 1e-6      # central-difference step: rad for angles, m for positions and stretches
+# modes without restoring force by support: a free sail translates in x, y and rotates
+RIGID_MODES = {"free": 3, "cantilever": 0, "pinned": 0}
+FD_STEP = 1e-6      # central-difference step of the lit sail's Jacobian: rad for angles, m for positions
+# Central-difference step of the eigenfrequencies (rad for angles, × l for positions): the error
+# ∝ (ω_max/ω₁)² step² from the geometric nonlinearity plus round-off ∝ 1/step is ≈ 1e-11 on the
+# validation chains at 1e-8.
+MODE_STEP = 1e-8
 
 
 def flat(p: SailParameters) -> SailParameters:
@@ -98,6 +116,7 @@ def exudyn_linearization(p: SailParameters, *, exudyn_load: str = "central", ste
     import exudyn as exu
 
     from lightsail_mbs.solvers.exudyn import chain as exudyn_chain
+    from lightsail_mbs.solvers.exudyn.console import silenced
     from lightsail_mbs.solvers.exudyn.tree import generalized_force
 
     if exudyn_load not in ("central", "solver"):
@@ -107,14 +126,10 @@ def exudyn_linearization(p: SailParameters, *, exudyn_load: str = "central", ste
     if relative_epsilon is not None:
         settings.staticSolver.newton.numericalDifferentiation.relativeEpsilon = float(relative_epsilon)
         settings.staticSolver.newton.numericalDifferentiation.minimumCoordinateSize = 1.0
-    printing = exu.config.printToConsole
-    exu.config.printToConsole = False
-    try:
+    with silenced():
         system = exudyn_chain.build(p if exudyn_load == "solver" else unlit(p))
         mbs, layout = system[1], system[2]
         mass, stiffness, _ = mbs.ComputeLinearizedSystem(settings)
-    finally:
-        exu.config.printToConsole = printing
     if exudyn_load == "solver":
         return np.asarray(mass), np.asarray(stiffness)
     beam, tension_only = generalized_force(p, layout), generalized_force(unlit(p), layout)
@@ -137,9 +152,9 @@ class Spectrum:
     max_growth_rate: float
 
     def frequencies_hz(self) -> np.ndarray:
-        """ω/2π of the elastic modes: the free sail's RIGID_MODES smallest ω² (translations x, y and
-        the rotation, zero up to round-off) and any ω² ≤ 0 dropped."""
-        w2 = self.omega_squared[RIGID_MODES:]
+        """ω/2π of the elastic modes: the free sail's three smallest ω² (translations x, y and the
+        rotation, zero up to round-off) and any ω² ≤ 0 dropped."""
+        w2 = self.omega_squared[RIGID_MODES["free"]:]
         return np.sqrt(w2[w2 > 0]) / (2 * np.pi)
 
 
@@ -182,3 +197,54 @@ def load_shift(p: SailParameters, solver: str = "reduced", **options) -> dict:
             "relative_shift": float(np.abs(lit.omega_squared - dark.omega_squared).max() / scale),
             "growth_rate_lit": lit.max_growth_rate, "growth_rate_unlit": dark.max_growth_rate,
             "omega_squared_lit": lit.omega_squared, "omega_squared_unlit": dark.omega_squared}
+
+
+# ---- eigenfrequencies with supports (validations) ---------------------------------------------
+def exudyn_angular_frequencies(p: SailParameters) -> np.ndarray:
+    """ω (rad/s) from Exudyn's ComputeODE2Eigenvalues of the built system (flat state)."""
+    from lightsail_mbs.solvers.exudyn import chain as exudyn_chain
+    from lightsail_mbs.solvers.exudyn.console import silenced
+
+    with silenced():
+        _, mbs, *_ = exudyn_chain.build(flat(p))
+        values, _ = mbs.ComputeODE2Eigenvalues()
+    return np.sort(np.sqrt(np.abs(np.asarray(values, float))))
+
+
+def reduced_acceleration_jacobian(p: SailParameters):
+    """(A = ∂q̈/∂q at the flat state at rest, N: orthonormal basis of the supports' tangent space)."""
+    from lightsail_mbs.solvers.reduced.supports import dynamics_of
+    from lightsail_mbs.solvers.reduced.kinematics import centre_jacobian
+
+    p = flat(p)
+    dynamics, model = dynamics_of(p)
+    start = shapes.initial_state(p)
+    q0 = model.pack(start.x[0], start.y[0], start.theta, start.z)
+    dof = model.dof
+    scale = np.full(dof, p.slice_length)
+    scale[2:p.n + 2] = 1.0                                   # angles (rad)
+    step = MODE_STEP * scale
+    shifts = np.concatenate([np.diag(step), -np.diag(step)], axis=1)
+    states = np.concatenate([q0[:, None] + shifts, np.zeros((dof, 2 * dof))])
+    qdd = np.stack([dynamics.rhs(0.0, state)[dof:] for state in states.T], axis=1)
+    A = (qdd[:, :dof] - qdd[:, dof:]) / (2 * step)
+    if p.boundary == "pinned":
+        basis = null_space(dynamics.constraint_jacobian(q0, centre_jacobian(model, q0)))
+    elif p.boundary == "cantilever":
+        basis = np.eye(dof)[:, dynamics.free]
+    else:
+        basis = np.eye(dof)
+    return A, basis
+
+
+def reduced_angular_frequencies(p: SailParameters) -> np.ndarray:
+    """ω (rad/s) of the reduced solver's linearised right-hand side (module docstring)."""
+    A, N = reduced_acceleration_jacobian(p)
+    w2 = -np.linalg.eigvals(N.T @ A @ N).real
+    return np.sort(np.sqrt(np.clip(w2, 0.0, None)))
+
+
+def elastic(omega: np.ndarray, p: SailParameters) -> np.ndarray:
+    """The elastic ω of a solver's spectrum: without the 3 rigid-body modes (x, y, rotation) of a free
+    chain (their ω are round-off of the difference quotients, not exactly 0); supported chains have none."""
+    return np.asarray(omega, float)[RIGID_MODES[p.boundary]:]

@@ -4,7 +4,7 @@
   solver (``mbs.SolveStatic``, Newton on the constrained equilibrium) with P = P₀;
 * reduced: Newton on the reduced solver's accelerations at rest, q̈_f(q) = 0 on the free
   coordinates of the clamped chain (q̈ = M⁻¹Q at q̇ = 0, so this is Q_f(q) = 0), with the
-  linearised Jacobian of linearization.reduced_jacobian as a fixed (chord) Newton matrix; the
+  linearised Jacobian of linear_stability.reduced_acceleration_jacobian as a fixed (chord) Newton matrix; the
   tip load adds only ≈ P L²/EI relative load stiffness, so a few iterations reach round-off.
 
 Meant for the cantilever validation (paper Appendix A): the load is the constant P₀ (τ ignored).
@@ -38,27 +38,24 @@ def _exudyn_static(p: SailParameters) -> shapes.ChainState:
     import exudyn as exu
 
     from lightsail_mbs.solvers.exudyn import chain as exudyn_chain
+    from lightsail_mbs.solvers.exudyn.console import silenced
 
     settings = exu.SimulationSettings()
     settings.solution.file.write = False
     settings.linearSolver.solverType = exu.LinearSolverType.EXUdense
     settings.staticSolver.verboseMode = 0
     settings.staticSolver.newton.relativeTolerance = 1e-12
-    printing = exu.config.printToConsole
-    exu.config.printToConsole = False
-    try:
+    with silenced():
         _, mbs, layout, *_ = exudyn_chain.build(p)
         if not mbs.SolveStatic(settings):
             raise RuntimeError(f"Exudyn static solver did not converge for n={p.n}")
         q = np.array(mbs.systemData.GetODE2Coordinates())
-    finally:
-        exu.config.printToConsole = printing
     x, y, theta, z = layout.positions(q)
     return shapes.ChainState(x=x, y=y, theta=theta, z=z)
 
 
 def _reduced_static(p: SailParameters) -> shapes.ChainState:
-    from lightsail_mbs.analysis.linearization import reduced_jacobian
+    from lightsail_mbs.analysis.linear_stability import reduced_acceleration_jacobian
     from lightsail_mbs.solvers.reduced.supports import dynamics_of
     from lightsail_mbs.solvers.reduced.kinematics import centres
 
@@ -67,7 +64,7 @@ def _reduced_static(p: SailParameters) -> shapes.ChainState:
     dynamics, model = dynamics_of(p)
     start = shapes.initial_state(p)
     q = model.pack(start.x[0], start.y[0], start.theta, start.z)
-    A, N = reduced_jacobian(p)
+    A, N = reduced_acceleration_jacobian(p)
     chord = np.linalg.inv(N.T @ A @ N)
     rest = np.zeros(model.dof)
     first = None

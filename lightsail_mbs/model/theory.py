@@ -58,3 +58,9 @@ def summary(p: SailParameters) -> dict:
         "torsional_stiffness": p.torsional_stiffness,
         "axial_stiffness": p.axial_stiffness if p.model == "tnt" else None,
     }
+
+
+# The stiffness that holds each model's defect in check and its critical value: what a stability map,
+# a bisection or the finite-amplitude scaling sweeps. (The rigid model has none.)
+STIFFNESS = {"torsion": ("youngs_modulus", critical_modulus_max),
+             "tnt": ("tension", critical_tension_max)}

@@ -21,7 +21,7 @@ def angle_history_figures(out, name: str, cases: dict, figures: list[tuple[int, 
     of the stable runs by spectral.angle_frequency) and OUT/<name>_angles_<label>.csv; returns the rows.
     describe(params) -> the case's title text (e.g. its E and E_cr,max).
     """
-    from lightsail_mbs.analysis.spectral import angle_frequency
+    from lightsail_mbs.analysis.frequencies import angle_frequency
     out = Path(out)
     runs = dict(zip(cases, run_cases(list(cases.values()), Path(store or out / "store") / name, settings, solver=solver,
                                      workers=workers, scheduler=scheduler, label=name, progress=progress)))

@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import paper_case, paper_settings
-from lightsail_mbs.analysis.spectral import angle_frequency
+from lightsail_mbs.analysis.frequencies import angle_frequency
 from lightsail_mbs.model import theory
 from lightsail_mbs.studies.sweep import run_cases
 from lightsail_mbs.studies.tables import print_table, write_csv

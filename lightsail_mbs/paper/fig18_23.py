@@ -22,7 +22,7 @@ from lightsail_mbs import RunSettings, paper_case
 from lightsail_mbs.studies.sweep import run_cases
 from lightsail_mbs.studies.tables import print_table, write_csv
 from lightsail_mbs.viz.plots import new_figure, save_figure
-from lightsail_mbs.analysis.spectral import angle_frequency
+from lightsail_mbs.analysis.frequencies import angle_frequency
 
 FIGURES = (18, 19, 20, 21, 22, 23)
 T_STABLE, T_SOFT = 3.34e-3, 3.34e-8          # N

@@ -19,7 +19,6 @@ from lightsail_mbs.model.parameters import ParameterError, SailParameters, paper
 from lightsail_mbs.solvers import solve
 from lightsail_mbs.solvers.settings import RunSettings, paper_settings
 from lightsail_mbs.studies.tables import fmt
-from lightsail_mbs.viz.plots import crosscheck_figure
 
 WINDOW_RATIO = 1.5           # compare angles while both amplitudes are < 1.5 × initial
 ANGLE_LIMIT = 1e-6           # rad
@@ -152,6 +151,8 @@ def run(names: list[str] | None = None, out_dir: Path | str = "validation", prog
         row["exudyn_step"] = step
         rows.append(row)
         if write:
+            from lightsail_mbs.viz.plots import crosscheck_figure
+
             ie, ir = common_samples(exudyn.time, reduced.time, case.settings.sample_interval)
             crosscheck_figure(exudyn, reduced, ie, ir, f"{case.name}: {case.note}", ANGLE_LIMIT,
                               out_dir / f"crosscheck_{case.name}.png")

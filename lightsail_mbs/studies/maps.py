@@ -18,8 +18,7 @@ from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.studies.sweep import solve_case
 
 # the swept parameter of each model and its analytic critical value
-SWEPT = {"torsion": ("youngs_modulus", theory.critical_modulus_max),
-         "tnt": ("tension", theory.critical_tension_max)}
+SWEPT = theory.STIFFNESS
 
 
 @dataclass

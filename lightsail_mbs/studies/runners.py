@@ -20,7 +20,7 @@ from lightsail_mbs.result import Result
 
 
 def execute(case_function: Callable, case) -> tuple[dict, Result | None]:
-    """Run one case (a :class:`~lightsail_mbs.sweep.Case`) and build its record; never raises for a
+    """Run one case (a :class:`~lightsail_mbs.studies.sweep.Case`) and build its record; never raises for a
     failing case.
 
     ``case_function(case)`` returns a Result (its ``summary()`` is recorded) or a summary dict.
@@ -48,7 +48,7 @@ def execute(case_function: Callable, case) -> tuple[dict, Result | None]:
 def identity(case) -> dict:
     """What every record says about its case."""
     return {"key": case.key, "solver": case.solver, "options": case.options,
-            "parameters": case.params.to_dict()}
+            "parameters": case.params.to_dict(), "settings": case.settings.to_dict()}
 
 
 def lost_record(case, why: str) -> dict:

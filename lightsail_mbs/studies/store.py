@@ -103,9 +103,9 @@ class CaseStore:
             found[state].append(key)
         return found
 
-    def write(self, key: str, record: dict) -> Path:
-        """Write the record, stamped with the current code_version, atomically: a reader sees the old
-        file, or the whole new one."""
+    def write(self, key: str, record: dict) -> dict:
+        """Write the record, stamped with the current code_version, atomically (a reader sees the old
+        file, or the whole new one); returns the stamped record."""
         path = self.record_path(key)
         record = {**record, "code_version": code_version()}
         text = json.dumps(record, indent=1, sort_keys=True, default=_jsonable_or_repr) + "\n"
@@ -119,7 +119,7 @@ class CaseStore:
         except BaseException:
             Path(tmp).unlink(missing_ok=True)
             raise
-        return path
+        return record
 
     def save_result(self, key: str, result) -> Path:
         """Save a full Result (arrays) next to the records; returns the .npz path."""

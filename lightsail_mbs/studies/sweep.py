@@ -150,7 +150,7 @@ class Sweep:
             if result is not None:
                 path = self.store.save_result(case.key, result)
                 record["result_path"] = str(path.relative_to(self.store.directory))
-            self.store.write(case.key, record)
+            record = self.store.write(case.key, record)
             self.errors += record["status"] == "error"
             submissions = self._waiting.pop(case.key)
             finished += [(c, record) for c in submissions]

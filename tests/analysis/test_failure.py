@@ -1,0 +1,52 @@
+"""Amplitude and failure criterion (analysis.failure): invariant to rigid motion, interpolated failure time,
+troughs."""
+import numpy as np
+import pytest
+
+from lightsail_mbs import analysis
+
+
+def sine_state(amplitude=1e-5, n=30, mode=1.5):
+    x = (np.arange(n) + 0.5) / n
+    return x, amplitude * np.sin(2 * np.pi * mode * x)
+
+
+def test_amplitude_invariant_to_rigid_motion():
+    x, y = sine_state()
+    a = analysis.amplitude(x, y)
+    phi = 0.3
+    xr = np.cos(phi) * x - np.sin(phi) * y + 5.0
+    yr = np.sin(phi) * x + np.cos(phi) * y - 2.0
+    assert analysis.amplitude(xr, yr) == pytest.approx(a, rel=1e-9)
+
+
+def test_amplitude_of_a_straight_tilted_line_is_zero():
+    x = np.linspace(0, 1, 30)
+    assert analysis.amplitude(x, 0.1 * x + 3) < 1e-15
+
+
+def test_amplitude_scales_and_vectorises():
+    x, y = sine_state()
+    amps = analysis.amplitude(np.vstack([x, x, x]), np.vstack([y, 2 * y, 3 * y]))
+    np.testing.assert_allclose(amps / amps[0], [1, 2, 3], rtol=1e-9)
+
+
+def test_failure_time_interpolated():
+    t = np.linspace(0, 1, 11)
+    amp = np.exp(t)                     # doubles at ln 2
+    ft = analysis.failure_time(t, amp, 2.0)
+    assert abs(ft - np.log(2)) < 0.01
+    assert analysis.failure_time(t, np.ones_like(t), 2.0) is None
+
+
+def test_trough_detection():
+    x, y = sine_state(mode=1.5)
+    y = y.copy()
+    y[np.argmin(y)] -= 5e-5          # a deep trough
+    assert analysis.fails_at_trough(x, y)
+    assert not analysis.fails_at_trough(x, -y)
+
+
+def test_failure_time_at_another_ratio():
+    t = np.linspace(0, 2, 21)
+    assert abs(analysis.failure_time(t, np.exp(t), 3.0) - np.log(3)) < 0.01

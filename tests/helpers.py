@@ -1,0 +1,39 @@
+"""Helpers shared by several test modules: synthetic Results with known shapes, CSV and image reading."""
+import csv
+import math
+
+import numpy as np
+
+from lightsail_mbs import Result, RunSettings, SailParameters
+from lightsail_mbs.model.shapes import hinge_points
+
+
+def growing_sine(model="torsion", n=20, steps=41, rate=1.0, t_final=1.0, **changes) -> Result:
+    """A synthetic run: slices on w(x, t) = a₀ e^{rate·t} sin(2πνx/L) with exact chords, so the amplitude
+    ratio at time t is e^{rate·t} and the curvature at the hinges is known in closed form."""
+    p = SailParameters(model=model, n=n, **changes)
+    times = np.linspace(0.0, t_final, steps)
+    x, y, theta = (np.empty((steps, n)) for _ in range(3))
+    k = 2 * np.pi * p.defect_mode / p.length
+    for j, t in enumerate(times):
+        growth = math.exp(rate * t)
+        pts = hinge_points(p, lambda s, g=growth: p.defect_amplitude * g * np.sin(k * s))
+        d = np.diff(pts, axis=0)
+        theta[j] = np.arctan2(d[:, 1], d[:, 0])
+        x[j] = pts[:-1, 0] + 0.5 * p.slice_length * np.cos(theta[j])
+        y[j] = pts[:-1, 1] + 0.5 * p.slice_length * np.sin(theta[j])
+    zero = np.zeros_like(x)
+    z = np.zeros((steps, n - 1)) if p.extensible else None
+    return Result.from_trajectory(p, "synthetic", times, x, y, theta, zero, zero, zero, z=z, z_rate=z,
+                                  settings=RunSettings(t_final=t_final))
+
+
+def read_csv(path) -> list[dict]:
+    with open(path, newline="") as handle:
+        return list(csv.DictReader(handle))
+
+
+def read_image(path) -> np.ndarray:
+    """An image file as an (height, width, 3) RGB array."""
+    from PIL import Image
+    return np.asarray(Image.open(path).convert("RGB"))

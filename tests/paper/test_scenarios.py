@@ -1,0 +1,69 @@
+"""The studies beyond the paper as package pipelines (lightsail_mbs.paper.SCENARIOS), run quick: beam
+optics, material damping, the animations, the stability studies."""
+import numpy as np
+import pytest
+
+from lightsail_mbs.paper import scenario
+from tests.helpers import growing_sine
+
+
+def test_beam_optics_scenario(tmp_path):
+    """paper.beam_optics (quick): a narrower centred Gaussian cups the sail sooner; a darker sail
+    has a smaller g₀; an off-centre beam turns the flat sail 1° faster the farther off it is, within 20 %
+    of the rigid-plate estimate."""
+    rows = scenario("beam_optics").run(tmp_path, quick=True, workers=1, progress=False)["rows"]
+    assert {p.name for p in tmp_path.iterdir()} >= {"beam_optics.png", "beam_optics_profile.csv",
+                                                      "beam_optics_tilt.csv"}
+    stiff = [r for r in rows if r["kind"] == "profile" and r["E_Pa"] == 4.5e13]
+    gauss = sorted((r for r in stiff if r["reflectivity"] == 1 and np.isfinite(r["beam_waist_m"])),
+                   key=lambda r: r["beam_waist_m"])
+    assert all(r["failed"] for r in gauss)
+    assert all(a["failure_time_s"] < b["failure_time_s"] for a, b in zip(gauss, gauss[1:]))
+    g0 = [r["g0"] for r in stiff if np.isinf(r["beam_waist_m"])]
+    assert g0[0] > g0[1] > g0[2]            # R = 1; R = 0.9, α = 0.1; R = 0, α = 1
+    tilt = [r for r in rows if r["kind"] == "tilt"]
+    assert all(a["turn_1deg_s"] > b["turn_1deg_s"] for a, b in zip(tilt, tilt[1:]))
+    assert all(abs(r["turn_1deg_s"] / r["turn_1deg_estimate_s"] - 1) < 0.2 for r in tilt)
+
+
+def test_dissipation_scenario_heat_rises_with_tension(tmp_path):
+    """paper.dissipation (quick): only damped runs make heat, and in the stable regime the mean
+    power rises with the tension (through the frequency, P ∝ β ω² × energy)."""
+    rows = scenario("dissipation").run(tmp_path, quick=True, workers=1, progress=False)["rows"]
+    assert (tmp_path / "dissipation.png").exists() and (tmp_path / "dissipation.csv").exists()
+    assert all(r["heat_J"] == 0.0 for r in rows if r["beta_s"] == 0.0)
+    stable = [r for r in rows if r["beta_s"] > 0 and not r["failed"] and r["T_over_T_cr"] >= 10]
+    powers = [r["mean_power_W"] for r in sorted(stable, key=lambda r: r["T_N"])]
+    assert len(powers) >= 3 and all(b > a > 0 for a, b in zip(powers, powers[1:]))
+
+
+def test_animations_render_saved_runs(tmp_path):
+    """paper.animations: reads STORE/animations/<case>.npz when present, cuts at the amplitude ratio, writes
+    the GIF."""
+    import imageio.v2 as imageio
+
+    animations = scenario("animations")
+    growing_sine(rate=3.0).save(tmp_path / "runs" / "animations" / "soft_torsion.npz")
+    animations.run(tmp_path / "docs", store=tmp_path / "runs", cases=["soft_torsion"], frames=4, size="300x150",
+                   until_ratio=3, progress=False)
+    frames = imageio.mimread(tmp_path / "docs" / "soft_torsion.gif")
+    assert len(frames) == 4 and frames[0].shape[:2] == (150, 300)
+    cut = animations.cut_at_ratio(growing_sine(rate=3.0), 3.0)
+    assert cut.amplitude[-1] >= 3 * cut.amplitude[0] > cut.amplitude[-2]
+
+
+@pytest.mark.slow
+def test_stability_scenarios_quick(tmp_path):
+    """The three stability pipelines run (quick; the linear one in full) and the failure-time fit finds
+    t_f ∝ (g₀ a₀)^(−1/2)."""
+    modules = {name: scenario(name) for name in ("stability_linear", "stability_critical", "stability_failure_time")}
+    fits = modules["stability_failure_time"].run(tmp_path, quick=True)["fits"]
+    for fit in fits:
+        assert fit["g0_exponent"] == pytest.approx(-0.5, abs=0.01)
+        assert fit["a0_exponent"] == pytest.approx(-0.5, abs=0.01)
+    critical = modules["stability_critical"].run(tmp_path, quick=True)
+    assert all(f["a0_exponent"] == pytest.approx(1.0, abs=0.03) for f in critical["fits"])
+    rows = modules["stability_linear"].run(tmp_path)["rows"]
+    assert max(r["elastic_relative_shift"] for r in rows) < 1e-6
+    for png in ("stability_linear.png", "stability_critical.png", "stability_failure_time.png"):
+        assert (tmp_path / png).stat().st_size > 10_000
