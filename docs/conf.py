@@ -11,6 +11,7 @@ Set ``LIGHTSAIL_DOCS_SKIP_API=1`` to build the guides without the API reference 
 no autosummary stubs): the API page then holds a one-line placeholder.  The CLI page imports
 ``lightsail_mbs.cli`` either way.
 """
+
 from __future__ import annotations
 
 import os
@@ -18,7 +19,7 @@ import sys
 from pathlib import Path
 
 DOCS = Path(__file__).resolve().parent
-sys.path.insert(0, str(DOCS / "_ext"))          # local extensions (cli_reference)
+sys.path.insert(0, str(DOCS / "_ext"))  # local extensions (cli_reference)
 
 SKIP_API = os.environ.get("LIGHTSAIL_DOCS_SKIP_API", "") not in ("", "0")
 
@@ -44,11 +45,15 @@ extensions = [
     "cli_reference",
 ]
 
-source_suffix = {".md": "markdown", ".rst": "restructuredtext"}   # .rst: autosummary's generated stubs
+source_suffix = {".md": "markdown", ".rst": "restructuredtext"}  # .rst: autosummary's generated stubs
 root_doc = "index"
 exclude_patterns = [
-    "_build", ".venv", "Thumbs.db", ".DS_Store",
-    "NOTES.md", "README.front.md",          # notes for maintainers, not pages
+    "_build",
+    ".venv",
+    "Thumbs.db",
+    ".DS_Store",
+    "NOTES.md",
+    "README.front.md",  # notes for maintainers, not pages
 ]
 templates_path = ["_templates"]
 
@@ -68,7 +73,7 @@ napoleon_numpy_docstring = True
 napoleon_use_rtype = False
 
 if SKIP_API:
-    exclude_patterns.append("_api")          # stubs left by an earlier full build
+    exclude_patterns.append("_api")  # stubs left by an earlier full build
 
     def _placeholder_api(app, docname, source):
         """Replace the API page by one line, so the guides build without importing the package."""
@@ -77,6 +82,7 @@ if SKIP_API:
 
     def setup(app):
         app.connect("source-read", _placeholder_api)
+
 
 # -- output ----------------------------------------------------------------------------------------
 html_theme = "furo"

@@ -3,6 +3,7 @@
 Data flows one way: case (SailParameters) → initial shape → solver (exudyn | reduced, with RunSettings)
 → Result → analysis → studies, reports, figures, frames.
 """
+
 from lightsail_mbs.model.parameters import ParameterError, SailParameters, paper_case
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers import solve

@@ -6,6 +6,7 @@ numba, Python and the platform, and the time it was made. ``code_version`` is a 
 that decide a run's numbers (:data:`RESULT_SOURCES`: the case and its physics, the solvers, the Result
 and the failure rule), so a change to any of them, and only that, makes stored results stale.
 """
+
 from __future__ import annotations
 
 import functools
@@ -26,12 +27,14 @@ from lightsail_mbs.model.parameters import RUN_FIELDS, SailParameters
 from lightsail_mbs.solvers.settings import RunSettings
 
 ARRAYS = ("time", "x", "y", "theta", "z", "vx", "vy", "omega", "z_rate", "amplitude")
-FORMAT = "lightsail-mbs result"        # the "format" entry of a saved run's summary
-FORMAT_VERSION = 2                     # 1: no format entry, run control inside "parameters"
+FORMAT = "lightsail-mbs result"  # the "format" entry of a saved run's summary
+FORMAT_VERSION = 2  # 1: no format entry, run control inside "parameters"
 
 
 class RunFileError(ValueError):
     """A file that should hold a saved run is missing, unreadable or something else; the message names it."""
+
+
 PACKAGE = Path(__file__).resolve().parent
 # the sources that decide the numbers of a run (globs relative to the package folder)
 RESULT_SOURCES = ("model/*.py", "solvers/*.py", "solvers/*/*.py", "result.py", "analysis/failure.py")
@@ -59,9 +62,15 @@ def _static_provenance() -> dict:
         except metadata.PackageNotFoundError:
             return None
 
-    return {"package": "lightsail-mbs", "version": __version__, "code_version": code_version(), **_git(),
-            **{name: version(name) for name in LIBRARIES}, "python": platform.python_version(),
-            "platform": platform.platform()}
+    return {
+        "package": "lightsail-mbs",
+        "version": __version__,
+        "code_version": code_version(),
+        **_git(),
+        **{name: version(name) for name in LIBRARIES},
+        "python": platform.python_version(),
+        "platform": platform.platform(),
+    }
 
 
 def _git() -> dict:
@@ -104,16 +113,31 @@ class Result:
     z_rate: np.ndarray
     amplitude: np.ndarray
     wall_time: float = 0.0
-    error: str | None = None          # a solver failure (divergence, no Newton convergence), recorded
+    error: str | None = None  # a solver failure (divergence, no Newton convergence), recorded
     info: dict = field(default_factory=dict)  # solver settings and statistics (steps, tolerances, ...)
-    settings: RunSettings = field(default_factory=RunSettings)   # the run control it was made with
-    provenance: dict = field(default_factory=dict)   # what made it (module function provenance)
-    warnings: list = field(default_factory=list)     # why the numbers may not mean what they seem
+    settings: RunSettings = field(default_factory=RunSettings)  # the run control it was made with
+    provenance: dict = field(default_factory=dict)  # what made it (module function provenance)
+    warnings: list = field(default_factory=list)  # why the numbers may not mean what they seem
 
     @classmethod
-    def from_trajectory(cls, params: SailParameters, solver: str, time, x, y, theta, vx, vy, omega,
-                        z=None, z_rate=None, wall_time: float = 0.0, error: str | None = None,
-                        info: dict | None = None, settings: RunSettings | None = None) -> "Result":
+    def from_trajectory(
+        cls,
+        params: SailParameters,
+        solver: str,
+        time,
+        x,
+        y,
+        theta,
+        vx,
+        vy,
+        omega,
+        z=None,
+        z_rate=None,
+        wall_time: float = 0.0,
+        error: str | None = None,
+        info: dict | None = None,
+        settings: RunSettings | None = None,
+    ) -> Result:
         """Build a Result from raw solver output; the amplitude is computed here (analysis.amplitude)."""
         time = np.asarray(time, float)
         steps = time.shape[0]
@@ -123,10 +147,19 @@ class Result:
         arrays["z"] = empty if z is None else np.asarray(z, float).reshape(steps, -1)
         arrays["z_rate"] = empty if z_rate is None else np.asarray(z_rate, float).reshape(steps, -1)
         amplitude = np.atleast_1d(analysis.amplitude(arrays["x"], arrays["y"]))
-        return cls(params, solver, time, **arrays, amplitude=amplitude,
-                   wall_time=float(wall_time), error=error, info=dict(info or {}),
-                   settings=settings or RunSettings(), provenance=provenance(),
-                   warnings=shapes.defect_warnings(params, float(amplitude[0])))
+        return cls(
+            params,
+            solver,
+            time,
+            **arrays,
+            amplitude=amplitude,
+            wall_time=float(wall_time),
+            error=error,
+            info=dict(info or {}),
+            settings=settings or RunSettings(),
+            provenance=provenance(),
+            warnings=shapes.defect_warnings(params, float(amplitude[0])),
+        )
 
     # ---- summary ---------------------------------------------------------------------------
     @property
@@ -182,7 +215,7 @@ class Result:
         return path
 
     @classmethod
-    def load(cls, path) -> "Result":
+    def load(cls, path) -> Result:
         """Read a run saved by :meth:`save` (or by an earlier version of this package).
 
         Raises RunFileError, naming the file, if it is missing or is not a saved run; ParameterError if
@@ -200,18 +233,27 @@ class Result:
                 arrays = {k: np.array(data[k]) for k in ARRAYS}
         except RunFileError:
             raise
-        except (OSError, ValueError, EOFError) as exc:       # not a zip, truncated, pickled objects, bad JSON
+        except (OSError, ValueError, EOFError) as exc:  # not a zip, truncated, pickled objects, bad JSON
             raise RunFileError(f"{path}: not a readable saved run ({type(exc).__name__}: {exc})") from None
         version = summary.get("format_version", 1)
         if summary.get("format", FORMAT) != FORMAT or not isinstance(version, int) or version > FORMAT_VERSION:
-            raise RunFileError(f"{path}: format {summary.get('format')!r} version {version!r} is not one this "
-                               f"version of lightsail-mbs reads (up to {FORMAT_VERSION})")
+            raise RunFileError(
+                f"{path}: format {summary.get('format')!r} version {version!r} is not one this "
+                f"version of lightsail-mbs reads (up to {FORMAT_VERSION})"
+            )
         parameters = summary["parameters"]
         settings = summary.get("settings") or {k: parameters[k] for k in RUN_FIELDS if k in parameters}
-        return cls(params=SailParameters.from_dict(parameters), solver=summary["solver"],
-                   wall_time=summary["wall_time"], error=summary["error"], info=summary["info"],
-                   settings=RunSettings.from_dict(settings), provenance=summary.get("provenance", {}),
-                   warnings=summary.get("warnings", []), **arrays)
+        return cls(
+            params=SailParameters.from_dict(parameters),
+            solver=summary["solver"],
+            wall_time=summary["wall_time"],
+            error=summary["error"],
+            info=summary["info"],
+            settings=RunSettings.from_dict(settings),
+            provenance=summary.get("provenance", {}),
+            warnings=summary.get("warnings", []),
+            **arrays,
+        )
 
 
 def _jsonable(value):

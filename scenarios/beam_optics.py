@@ -4,6 +4,7 @@ Runs lightsail_mbs.paper.beam_optics (see its docstring): writes beam_optics.png
 and beam_optics_tilt.csv into --out. Usage: python scenarios/beam_optics.py [--out DIR]
 [--solver reduced|exudyn] [--quick]
 """
+
 from lightsail_mbs.cli.options import scenario_parser
 from lightsail_mbs.paper import beam_optics
 

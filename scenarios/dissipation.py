@@ -3,6 +3,7 @@
 Runs lightsail_mbs.paper.dissipation (see its docstring): writes dissipation.png and dissipation.csv into
 --out. Usage: python scenarios/dissipation.py [--out DIR] [--beta S] [--solver reduced|exudyn] [--quick]
 """
+
 from lightsail_mbs.cli.options import scenario_parser
 from lightsail_mbs.paper import dissipation
 

@@ -3,6 +3,7 @@
 Runs lightsail_mbs.paper.defects_montecarlo (see its docstring): writes montecarlo.png and montecarlo.csv
 into --out. Usage: python scenarios/montecarlo.py [--out DIR] [--seeds N] [--solver reduced|exudyn] [--quick]
 """
+
 from lightsail_mbs.cli.options import scenario_parser
 from lightsail_mbs.paper import defects_montecarlo
 

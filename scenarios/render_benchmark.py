@@ -4,6 +4,7 @@ Usage: python scenarios/render_benchmark.py [--frames 200] [--size 800x400] [--r
 Prints the wall time of render_frames (scene building, drawing, PNG writing) per renderer; the
 minimum over the repeats is the figure to quote (the machine is shared).
 """
+
 from __future__ import annotations
 
 import argparse
@@ -30,8 +31,9 @@ def growing_sine(n: int = 30, steps: int = 1001, rate: float = 1.2, t_final: flo
         x[k] = pts[:-1, 0] + 0.5 * p.slice_length * np.cos(theta[k])
         y[k] = pts[:-1, 1] + 0.5 * p.slice_length * np.sin(theta[k])
     zero = np.zeros_like(x)
-    return Result.from_trajectory(p, "synthetic", time_, x, y, theta, zero, zero, zero,
-                                  settings=RunSettings(t_final=t_final))
+    return Result.from_trajectory(
+        p, "synthetic", time_, x, y, theta, zero, zero, zero, settings=RunSettings(t_final=t_final)
+    )
 
 
 def main(argv=None) -> None:
@@ -49,8 +51,10 @@ def main(argv=None) -> None:
                 render_frames(result, out, frames=args.frames, size=args.size, renderer=renderer)
                 walls.append(time.perf_counter() - start)
         best = min(walls)
-        print(f"{renderer:10s} {args.frames} frames at {args.size}: {best:.2f} s "
-              f"({1000 * best / args.frames:.1f} ms/frame; all runs {', '.join(f'{w:.2f}' for w in walls)} s)")
+        print(
+            f"{renderer:10s} {args.frames} frames at {args.size}: {best:.2f} s "
+            f"({1000 * best / args.frames:.1f} ms/frame; all runs {', '.join(f'{w:.2f}' for w in walls)} s)"
+        )
 
 
 if __name__ == "__main__":

@@ -4,6 +4,7 @@ Runs lightsail_mbs.paper.stability_critical (see its docstring): writes stabilit
 stability_critical_*.csv into --out. --solver is the solver of the map bisection (store OUT/store).
 Usage: python scenarios/stability_critical.py [--out DIR] [--quick] [--store DIR] [--fig9 CSV] [--fig12 CSV]
 """
+
 from lightsail_mbs.cli.options import scenario_parser
 from lightsail_mbs.paper import stability_critical
 
@@ -13,5 +14,6 @@ if __name__ == "__main__":
     parser.add_argument("--fig9", default=None, help="fig9_boundaries.csv of `reproduce --figure 9` to compare with")
     parser.add_argument("--fig12", default=None, help="fig12_boundaries.csv of `reproduce --figure 12` to compare with")
     args = parser.parse_args()
-    stability_critical.run(args.out, solver=args.solver, quick=args.quick, store=args.store, fig9=args.fig9,
-                           fig12=args.fig12)
+    stability_critical.run(
+        args.out, solver=args.solver, quick=args.quick, store=args.store, fig9=args.fig9, fig12=args.fig12
+    )

@@ -4,6 +4,7 @@ Runs lightsail_mbs.paper.stability_failure_time (see its docstring): writes stab
 stability_failure_time_*.csv into --out. The scaled runs integrate the reduced equations (--solver is not
 used). Usage: python scenarios/stability_failure_time.py [--out DIR] [--quick]
 """
+
 from lightsail_mbs.cli.options import scenario_parser
 from lightsail_mbs.paper import stability_failure_time
 

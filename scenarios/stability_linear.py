@@ -4,6 +4,7 @@ Runs lightsail_mbs.paper.stability_linear (see its docstring): writes stability_
 stability_linear.csv and stability_linear_exudyn_fd.csv into --out. Both solvers are always linearised
 (--solver is not used). Usage: python scenarios/stability_linear.py [--out DIR] [--quick]
 """
+
 from lightsail_mbs.cli.options import scenario_parser
 from lightsail_mbs.paper import stability_linear
 

@@ -1,4 +1,5 @@
 """Fixtures shared across the test folders."""
+
 import pytest
 
 from tests.helpers import growing_sine

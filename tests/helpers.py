@@ -1,4 +1,5 @@
 """Helpers shared by several test modules: synthetic Results with known shapes, CSV and image reading."""
+
 import csv
 import math
 
@@ -24,8 +25,9 @@ def growing_sine(model="torsion", n=20, steps=41, rate=1.0, t_final=1.0, **chang
         y[j] = pts[:-1, 1] + 0.5 * p.slice_length * np.sin(theta[j])
     zero = np.zeros_like(x)
     z = np.zeros((steps, n - 1)) if p.extensible else None
-    return Result.from_trajectory(p, "synthetic", times, x, y, theta, zero, zero, zero, z=z, z_rate=z,
-                                  settings=RunSettings(t_final=t_final))
+    return Result.from_trajectory(
+        p, "synthetic", times, x, y, theta, zero, zero, zero, z=z, z_rate=z, settings=RunSettings(t_final=t_final)
+    )
 
 
 def read_csv(path) -> list[dict]:
@@ -36,4 +38,5 @@ def read_csv(path) -> list[dict]:
 def read_image(path) -> np.ndarray:
     """An image file as an (height, width, 3) RGB array."""
     from PIL import Image
+
     return np.asarray(Image.open(path).convert("RGB"))

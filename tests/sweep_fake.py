@@ -7,6 +7,7 @@ crash_modes (modes ν that raise, return an error, kill the worker).
 Run as a script, it runs a small sweep (the interrupted-sweep test kills it part-way).
 Imported by the tests as ``tests.sweep_fake`` (tests/ is a package); as a script it needs only lightsail_mbs.
 """
+
 import os
 import sys
 import time
@@ -35,9 +36,12 @@ def fake_case(case):
         os._exit(3)
     if options.get("as_result"):
         return fake_result(p, growth_rate=np.log(4.0) if failed else 0.0)
-    return {"failed": bool(failed), "failure_time": 0.1 * p.youngs_modulus / threshold if failed else None,
-            "error": "fake divergence" if p.defect_mode in options.get("error_modes", ()) else None,
-            "threshold": threshold}
+    return {
+        "failed": bool(failed),
+        "failure_time": 0.1 * p.youngs_modulus / threshold if failed else None,
+        "error": "fake divergence" if p.defect_mode in options.get("error_modes", ()) else None,
+        "threshold": threshold,
+    }
 
 
 def fake_result(p, growth_rate):
@@ -57,12 +61,20 @@ def executions(marker_dir) -> Counter:
 def small_sweep(marker_dir, sleep=0.0, **options):
     """12 torsion cases: 4 moduli × 3 thicknesses."""
     from lightsail_mbs.studies.sweep import Case
-    return [Case(SailParameters(thickness=h, youngs_modulus=e), "fake",
-                 dict(marker_dir=str(marker_dir), sleep=sleep, **options))
-            for h in (1e-7, 1e-6, 1e-5) for e in (1e9, 1e11, 1e13, 1e15)]
+
+    return [
+        Case(
+            SailParameters(thickness=h, youngs_modulus=e),
+            "fake",
+            dict(marker_dir=str(marker_dir), sleep=sleep, **options),
+        )
+        for h in (1e-7, 1e-6, 1e-5)
+        for e in (1e9, 1e11, 1e13, 1e15)
+    ]
 
 
 if __name__ == "__main__":
     from lightsail_mbs.studies.sweep import run_sweep
+
     store, markers, sleep = sys.argv[1], sys.argv[2], float(sys.argv[3])
     run_sweep(small_sweep(markers, sleep), store, workers=2, progress=False, case_function=fake_case)

@@ -1,5 +1,6 @@
 """Result: consistent shapes, summary keys, the run settings it keeps, save/load round trip (and the
 files of the format before RunSettings)."""
+
 import json
 
 import numpy as np
@@ -16,15 +17,25 @@ def synthetic(model="tnt", n=12, steps=50, settings=ONE_SECOND):
     y = 1e-5 * np.exp(t)[:, None] * np.sin(3 * np.pi * x)
     th = np.zeros((steps, n))
     z = np.zeros((steps, n - 1)) if p.extensible else None
-    return Result.from_trajectory(p, "test", t, x, y, th, 0 * x, 0 * y, th, z=z, z_rate=z, wall_time=0.5,
-                                  settings=settings)
+    return Result.from_trajectory(
+        p, "test", t, x, y, th, 0 * x, 0 * y, th, z=z, z_rate=z, wall_time=0.5, settings=settings
+    )
 
 
 def test_summary_and_failure():
     r = synthetic()
     s = r.summary()
-    for key in ("failed", "failure_time", "max_amplitude_ratio", "wall_time", "solver", "model", "n", "parameters",
-                "settings"):
+    for key in (
+        "failed",
+        "failure_time",
+        "max_amplitude_ratio",
+        "wall_time",
+        "solver",
+        "model",
+        "n",
+        "parameters",
+        "settings",
+    ):
         assert key in s
     assert s["failed"] and abs(s["failure_time"] - np.log(2)) < 0.02
     assert s["max_amplitude_ratio"] > 2
@@ -60,8 +71,11 @@ def test_loads_the_files_of_the_format_before_run_settings(tmp_path):
     path = r.save(tmp_path / "new")
     summary = json.loads(path.with_suffix(".json").read_text())
     old = dict(summary["parameters"])
-    old["amplitude"], old["mode"], old["defect_modes"] = (old.pop("defect_amplitude"), old.pop("defect_mode"),
-                                                          old.pop("defect_mode_count"))
+    old["amplitude"], old["mode"], old["defect_modes"] = (
+        old.pop("defect_amplitude"),
+        old.pop("defect_mode"),
+        old.pop("defect_mode_count"),
+    )
     old.update(summary.pop("settings"))
     summary["parameters"] = old
     with np.load(path) as data:

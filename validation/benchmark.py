@@ -7,6 +7,7 @@
 Timings on a shared machine are noisy: the minimum over repeats is reported, with the process CPU time
 next to the wall time.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -40,8 +41,14 @@ def measure(name: str, solver: str, repeats: int) -> dict:
     wall, result = best
     steps = result.info.get("steps", result.info.get("n_steps", "—"))
     ft = result.failure_time
-    return {"wall": wall, "cpu": cpu, "steps": steps, "failure": "—" if ft is None else f"{ft:.4f} s",
-            "t_end": float(result.time[-1]), "error": result.error}
+    return {
+        "wall": wall,
+        "cpu": cpu,
+        "steps": steps,
+        "failure": "—" if ft is None else f"{ft:.4f} s",
+        "t_end": float(result.time[-1]),
+        "error": result.error,
+    }
 
 
 def benchmark(solvers, cases, repeats) -> list[dict]:
@@ -50,9 +57,12 @@ def benchmark(solvers, cases, repeats) -> list[dict]:
         for case in cases:
             row = {"case": case, "solver": solver, **measure(CASES[case], solver, repeats)}
             rows.append(row)
-            print(f"{case:34s} {solver:8s} wall {row['wall']:7.3f} s  cpu {row['cpu']:7.3f} s  "
-                  f"steps {row['steps']!s:>7}  failure {row['failure']}"
-                  + (f"  ERROR {row['error']}" if row["error"] else ""), flush=True)
+            print(
+                f"{case:34s} {solver:8s} wall {row['wall']:7.3f} s  cpu {row['cpu']:7.3f} s  "
+                f"steps {row['steps']!s:>7}  failure {row['failure']}"
+                + (f"  ERROR {row['error']}" if row["error"] else ""),
+                flush=True,
+            )
     return rows
 
 
@@ -72,18 +82,32 @@ def convergence(cases=("torsion-soft", "tnt-soft", "rigid"), factors=(1.0, 0.5, 
             ft = result.failure_time
             reference = reference if reference is not None else ft
             change = None if ft is None or reference is None else (ft - reference) / reference
-            step = result.info.get("step_size", step)        # the step actually used (divides dt)
-            rows.append({"case": case, "step": step, "rel_tol": r_tol, "abs_tol": a_tol, "failure_time": ft,
-                         "change": change, "wall": result.wall_time})
-            print(f"{case}: h {step:.3g} s  relTol {r_tol:.3g}  absTol {a_tol:.3g} N  failure "
-                  f"{ft if ft is None else round(ft, 5)} s  change "
-                  f"{'—' if change is None else f'{change:+.3%}'}  wall {result.wall_time:.2f} s", flush=True)
+            step = result.info.get("step_size", step)  # the step actually used (divides dt)
+            rows.append(
+                {
+                    "case": case,
+                    "step": step,
+                    "rel_tol": r_tol,
+                    "abs_tol": a_tol,
+                    "failure_time": ft,
+                    "change": change,
+                    "wall": result.wall_time,
+                }
+            )
+            print(
+                f"{case}: h {step:.3g} s  relTol {r_tol:.3g}  absTol {a_tol:.3g} N  failure "
+                f"{ft if ft is None else round(ft, 5)} s  change "
+                f"{'—' if change is None else f'{change:+.3%}'}  wall {result.wall_time:.2f} s",
+                flush=True,
+            )
     return rows
 
 
 def markdown(rows) -> str:
-    lines = ["| case | solver | wall time (s, min) | CPU time (s, min) | steps | failure time |",
-             "|---|---|---:|---:|---:|---:|"]
+    lines = [
+        "| case | solver | wall time (s, min) | CPU time (s, min) | steps | failure time |",
+        "|---|---|---:|---:|---:|---:|",
+    ]
     for r in rows:
         fail = r["failure"] + (f" (error: {r['error']})" if r["error"] else "")
         lines.append(f"| {r['case']} | {r['solver']} | {r['wall']:.3f} | {r['cpu']:.3f} | {r['steps']} | {fail} |")
@@ -91,8 +115,7 @@ def markdown(rows) -> str:
 
 
 def convergence_markdown(rows) -> str:
-    lines = ["| case | step (s) | relTol | absTol (N) | failure time (s) | change |",
-             "|---|---:|---:|---:|---:|---:|"]
+    lines = ["| case | step (s) | relTol | absTol (N) | failure time (s) | change |", "|---|---:|---:|---:|---:|---:|"]
     for r in rows:
         ft = "—" if r["failure_time"] is None else f"{r['failure_time']:.5f}"
         ch = "—" if r["change"] is None else f"{r['change']:+.3%}"
@@ -106,8 +129,11 @@ def main(argv=None) -> int:
     ap.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES), metavar="CASE")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--markdown", type=Path, help="also write the table(s) as Markdown to this file")
-    ap.add_argument("--convergence", action="store_true",
-                    help="run the Exudyn step/tolerance convergence study instead of the benchmark")
+    ap.add_argument(
+        "--convergence",
+        action="store_true",
+        help="run the Exudyn step/tolerance convergence study instead of the benchmark",
+    )
     args = ap.parse_args(argv)
     if args.repeats < 1:
         ap.error("--repeats must be ≥ 1")

@@ -3,6 +3,7 @@
 Runs every case with Exudyn's chain and the reduced-Lagrangian chain and writes
 validation/crosscheck.md plus one plot per case (lightsail_mbs.studies.crosscheck does the work).
 """
+
 import os
 import sys
 from pathlib import Path

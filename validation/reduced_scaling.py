@@ -12,6 +12,7 @@ the fitted exponents p of CPU time ∝ n^p, per run and per right-hand-side call
 of the soft paper cases and the rigid case vs rtol). Each time is the minimum of `--repeats` runs
 (CPU time of this process, robust to other load); the compiled code is warmed up first.
 """
+
 import argparse
 import math
 import time
@@ -39,8 +40,10 @@ def highest_bending_frequency(p):
 
 def scaling(cases, repeats):
     for label, (make, settings, sizes) in cases.items():
-        print(f"\n### {label}\n\n| n | CPU time (s) | steps | RHS calls | µs per step | µs per RHS call "
-              f"| ω_max·t |\n|---|---|---|---|---|---|---|")
+        print(
+            f"\n### {label}\n\n| n | CPU time (s) | steps | RHS calls | µs per step | µs per RHS call "
+            f"| ω_max·t |\n|---|---|---|---|---|---|---|"
+        )
         walls, per_call, per_step = [], [], []
         for n in sizes:
             p = make(n)
@@ -48,24 +51,33 @@ def scaling(cases, repeats):
             walls.append(wall)
             per_call.append(wall / r.info["nfev"])
             per_step.append(wall / max(r.info["steps"], 1))
-            print(f"| {n} | {wall:.3g} | {r.info['steps']} | {r.info['nfev']} | {1e6 * per_step[-1]:.1f} "
-                  f"| {1e6 * per_call[-1]:.2f} | {highest_bending_frequency(p) * settings.t_final:.3g} |", flush=True)
+            print(
+                f"| {n} | {wall:.3g} | {r.info['steps']} | {r.info['nfev']} | {1e6 * per_step[-1]:.1f} "
+                f"| {1e6 * per_call[-1]:.2f} | {highest_bending_frequency(p) * settings.t_final:.3g} |",
+                flush=True,
+            )
         fit = [np.polyfit(np.log(sizes), np.log(v), 1)[0] for v in (walls, per_step, per_call)]
-        print(f"\nfitted exponents: CPU time ∝ n^{fit[0]:.2f}; per step ∝ n^{fit[1]:.2f}; "
-              f"per RHS call ∝ n^{fit[2]:.2f}")
+        print(
+            f"\nfitted exponents: CPU time ∝ n^{fit[0]:.2f}; per step ∝ n^{fit[1]:.2f}; per RHS call ∝ n^{fit[2]:.2f}"
+        )
 
 
 def tolerances():
     print("| case | rtol | failure time (s) | change vs loosest | steps |\n|---|---|---|---|---|")
-    for case, rtols in [("torsion-soft", (1e-6, 1e-7, 1e-8, 1e-9, 1e-10)),
-                        ("tnt-soft", (1e-6, 1e-7, 1e-8, 1e-9)),
-                        ("rigid", (1e-8, 1e-9, 1e-10, 1e-11))]:
+    for case, rtols in [
+        ("torsion-soft", (1e-6, 1e-7, 1e-8, 1e-9, 1e-10)),
+        ("tnt-soft", (1e-6, 1e-7, 1e-8, 1e-9)),
+        ("rigid", (1e-8, 1e-9, 1e-10, 1e-11)),
+    ]:
         reference = None
         for rtol in rtols:
             r = solve(paper_case(case), "reduced", paper_settings(case), rtol=rtol)
             reference = reference or r.failure_time
-            print(f"| {case} | {rtol:g} | {r.failure_time:.6f} | {(r.failure_time - reference) / reference:+.1e} "
-                  f"| {r.info['steps']} |", flush=True)
+            print(
+                f"| {case} | {rtol:g} | {r.failure_time:.6f} | {(r.failure_time - reference) / reference:+.1e} "
+                f"| {r.info['steps']} |",
+                flush=True,
+            )
 
 
 def main():
@@ -78,13 +90,18 @@ def main():
         tolerances()
         return
     short = RunSettings(t_final=0.01)
-    solve(paper_case("torsion-soft", n=5), "reduced", short)            # load the compiled code
-    cases = {"rigid, 4 ms": (lambda n: paper_case("rigid", n=n), RunSettings(t_final=0.004), SIZES),
-             "soft torsion, 0.5 s": (lambda n: paper_case("torsion-soft", n=n), RunSettings(t_final=0.5), SIZES)}
+    solve(paper_case("torsion-soft", n=5), "reduced", short)  # load the compiled code
+    cases = {
+        "rigid, 4 ms": (lambda n: paper_case("rigid", n=n), RunSettings(t_final=0.004), SIZES),
+        "soft torsion, 0.5 s": (lambda n: paper_case("torsion-soft", n=n), RunSettings(t_final=0.5), SIZES),
+    }
     if args.tnt:
         solve(paper_case("tnt-stable", n=5), "reduced", short)
         cases["extensible TnT T = 3.34e-3 N, 0.5 s (Radau)"] = (
-            lambda n: paper_case("tnt-stable", n=n), RunSettings(t_final=0.5), SIZES[:3])
+            lambda n: paper_case("tnt-stable", n=n),
+            RunSettings(t_final=0.5),
+            SIZES[:3],
+        )
     scaling(cases, args.repeats)
 
 

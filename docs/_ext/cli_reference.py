@@ -17,6 +17,7 @@ Use in a MyST page::
     ```{cli-reference}
     ```
 """
+
 from __future__ import annotations
 
 import argparse
@@ -47,7 +48,7 @@ def load_parser(spec: str) -> argparse.ArgumentParser:
 def fixed_terminal(width: int):
     """Make argparse format for a terminal *width* columns wide, without colour."""
     saved = {key: os.environ.get(key) for key in ("COLUMNS", "NO_COLOR", "PYTHON_COLORS")}
-    os.environ["COLUMNS"] = str(width + 2)      # HelpFormatter uses the terminal width minus 2
+    os.environ["COLUMNS"] = str(width + 2)  # HelpFormatter uses the terminal width minus 2
     os.environ["NO_COLOR"] = "1"
     os.environ["PYTHON_COLORS"] = "0"
     try:
@@ -84,12 +85,18 @@ class CliReference(SphinxDirective):
         config = self.env.config
         spec = self.options.get("parser", config.cli_reference_parser)
         width = self.options.get("width", config.cli_reference_width)
-        self.env.note_reread()          # the help texts live in the code: re-read this page every build
+        self.env.note_reread()  # the help texts live in the code: re-read this page every build
         try:
             parser = load_parser(spec)
         except Exception as exc:  # an import error must name itself in the build log, not crash it
-            logger.warning("cli-reference: cannot build the parser %s: %s", spec, exc,
-                           location=self.get_location(), type="cli", subtype="import")
+            logger.warning(
+                "cli-reference: cannot build the parser %s: %s",
+                spec,
+                exc,
+                location=self.get_location(),
+                type="cli",
+                subtype="import",
+            )
             return []
         with fixed_terminal(width):
             result: list[nodes.Node] = [self.help_block(parser)]
@@ -105,7 +112,7 @@ class CliReference(SphinxDirective):
 
     def sections(self, parser: argparse.ArgumentParser) -> list[nodes.section]:
         out = []
-        for name, summary, subparser in subcommands(parser):
+        for _name, summary, subparser in subcommands(parser):
             title = subparser.prog
             section = nodes.section(ids=[nodes.make_id("cli-" + title)], names=[nodes.fully_normalize_name(title)])
             section += nodes.title("", "", nodes.literal(title, title))
@@ -158,8 +165,7 @@ def check_commands(app, doctree: nodes.document) -> None:
     """Parse every documented ``lightsail-mbs`` command line; warn where the parser rejects one."""
     if not app.config.cli_check_commands:
         return
-    blocks = [node for node in doctree.findall(nodes.literal_block)
-              if node.get("language", "") in SHELL_LANGUAGES]
+    blocks = [node for node in doctree.findall(nodes.literal_block) if node.get("language", "") in SHELL_LANGUAGES]
     if not blocks:
         return
     parser = getattr(app, "_cli_reference_parser", None)
@@ -167,8 +173,13 @@ def check_commands(app, doctree: nodes.document) -> None:
         try:
             parser = load_parser(app.config.cli_reference_parser)
         except Exception as exc:
-            logger.warning("cli check: cannot build the parser %s: %s", app.config.cli_reference_parser, exc,
-                           type="cli", subtype="import")
+            logger.warning(
+                "cli check: cannot build the parser %s: %s",
+                app.config.cli_reference_parser,
+                exc,
+                type="cli",
+                subtype="import",
+            )
             app.config.cli_check_commands = False
             return
         app._cli_reference_parser = parser
@@ -182,10 +193,16 @@ def check_commands(app, doctree: nodes.document) -> None:
             except SystemExit as exc:
                 if exc.code not in (0, None):
                     message = stderr.getvalue().strip().splitlines()
-                    line = (block.line or 0) + 1 + offset      # block.line: the line of the opening fence
-                    logger.warning("documented command does not parse: %s %s — %s", program, shlex.join(argv),
-                                   message[-1] if message else f"exit {exc.code}",
-                                   location=(app.env.docname, line), type="cli", subtype="command")
+                    line = (block.line or 0) + 1 + offset  # block.line: the line of the opening fence
+                    logger.warning(
+                        "documented command does not parse: %s %s — %s",
+                        program,
+                        shlex.join(argv),
+                        message[-1] if message else f"exit {exc.code}",
+                        location=(app.env.docname, line),
+                        type="cli",
+                        subtype="command",
+                    )
 
 
 def setup(app):

@@ -4,9 +4,17 @@ stability, statics. Analysis reads a Result (or a chain state), never a solver's
 The failure rule and the energy functions are also reachable from the package itself
 (``analysis.amplitude``, ``analysis.failure_time``, ``analysis.mechanical_energy``, …).
 """
-from lightsail_mbs.analysis.energy import dissipated_energy, dissipated_power, mechanical_energy
-from lightsail_mbs.analysis.failure import (amplitude, failure_time, fails_at_trough, hinge_heights,
-                                            line_offsets)
 
-__all__ = ["amplitude", "dissipated_energy", "dissipated_power", "failure_time", "fails_at_trough",
-           "hinge_heights", "line_offsets", "mechanical_energy"]
+from lightsail_mbs.analysis.energy import dissipated_energy, dissipated_power, mechanical_energy
+from lightsail_mbs.analysis.failure import amplitude, fails_at_trough, failure_time, hinge_heights, line_offsets
+
+__all__ = [
+    "amplitude",
+    "dissipated_energy",
+    "dissipated_power",
+    "failure_time",
+    "fails_at_trough",
+    "hinge_heights",
+    "line_offsets",
+    "mechanical_energy",
+]

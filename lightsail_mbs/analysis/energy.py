@@ -1,4 +1,5 @@
 """Energy of a run: kinetic plus elastic energy (Eqs 12, 23, 29) and the heat of the dampers."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -11,11 +12,12 @@ def mechanical_energy(result) -> np.ndarray:
     Conserved in free vibration (zero intensity, no damping, no tension).
     """
     p = result.params
-    kinetic = 0.5 * p.slice_mass * (result.vx ** 2 + result.vy ** 2).sum(axis=1) \
-        + 0.5 * p.slice_inertia * (result.omega ** 2).sum(axis=1)
+    kinetic = 0.5 * p.slice_mass * (result.vx**2 + result.vy**2).sum(axis=1) + 0.5 * p.slice_inertia * (
+        result.omega**2
+    ).sum(axis=1)
     elastic = 0.5 * p.torsional_stiffness * (np.diff(result.theta, axis=1) ** 2).sum(axis=1)
     if result.z.shape[1]:
-        elastic = elastic + 0.5 * p.axial_stiffness * (result.z ** 2).sum(axis=1)
+        elastic = elastic + 0.5 * p.axial_stiffness * (result.z**2).sum(axis=1)
     return kinetic + elastic
 
 
@@ -25,7 +27,7 @@ def dissipated_power(result) -> np.ndarray:
     p = result.params
     power = p.total_torsional_damping * (np.diff(result.omega, axis=1) ** 2).sum(axis=1)
     if result.z_rate.shape[1]:
-        power = power + p.total_axial_damping * (result.z_rate ** 2).sum(axis=1)
+        power = power + p.total_axial_damping * (result.z_rate**2).sum(axis=1)
     return power
 
 

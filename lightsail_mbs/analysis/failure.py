@@ -5,6 +5,7 @@ centres' perpendicular offsets from their least-squares line, which removes rigi
 and rotation. The sail has failed when amplitude(t) ≥ ratio · amplitude(0) (the paper's
 "amplitude doubled" for ratio = 2).
 """
+
 from __future__ import annotations
 
 import numpy as np

@@ -29,6 +29,7 @@ This module measures the constants on the reduced solver in these units: short r
 bisected in the stiffness ratio (critical_ratio), paired runs for the divergence of neighbouring
 trajectories (divergence), and the scales (time_scale, stiffness_ratio).
 """
+
 from __future__ import annotations
 
 import math
@@ -41,8 +42,8 @@ from lightsail_mbs import analysis
 from lightsail_mbs.model import shapes, theory
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
 
-BLOWUP_RATIO = 10.0     # scaled runs past failure end here (the sail has crumpled; slopes no longer small)
-STIFFNESS = theory.STIFFNESS       # swept stiffness of each model and its analytic critical value
+BLOWUP_RATIO = 10.0  # scaled runs past failure end here (the sail has crumpled; slopes no longer small)
+STIFFNESS = theory.STIFFNESS  # swept stiffness of each model and its analytic critical value
 
 
 def log_bisect(fails, lo: float, hi: float, factor: float) -> tuple[float, float]:
@@ -83,7 +84,7 @@ def with_ratio(p: SailParameters, ratio: float) -> SailParameters:
     return p.replace(**{name: float(ratio) * critical(p)})
 
 
-FREE_FREE_BETA1_L = 4.730040745   # lowest free–free beam mode: cos βL cosh βL = 1
+FREE_FREE_BETA1_L = 4.730040745  # lowest free–free beam mode: cos βL cosh βL = 1
 
 
 def lowest_mode_buckling_ratio(p: SailParameters) -> float:
@@ -105,9 +106,16 @@ class ScaledRun:
     failure_tau: float | None
 
 
-def scaled_run(p: SailParameters, tau_final: float, *, samples_per_tau: int = 50, rtol: float = 1e-8,
-               theta_perturbation: np.ndarray | None = None, stop_at_failure: bool = True,
-               failure_ratio: float = 2.0) -> ScaledRun:
+def scaled_run(
+    p: SailParameters,
+    tau_final: float,
+    *,
+    samples_per_tau: int = 50,
+    rtol: float = 1e-8,
+    theta_perturbation: np.ndarray | None = None,
+    stop_at_failure: bool = True,
+    failure_ratio: float = 2.0,
+) -> ScaledRun:
     """Integrate the reduced model (scipy's DOP853, atol = rtol × sampling.state_scales) from rest in the
     defect shape (plus an optional small angle perturbation, rad per slice) up to τ = tau_final, or to
     failure (amplitude ≥ failure_ratio·a(0), located by an event, when stop_at_failure), or until the
@@ -129,25 +137,35 @@ def scaled_run(p: SailParameters, tau_final: float, *, samples_per_tau: int = 50
     dynamics = ChainDynamics(model)
 
     def amplitude_of(y):
-        x, yy = centres(model, y[:model.dof])
+        x, yy = centres(model, y[: model.dof])
         return analysis.amplitude(x, yy)
 
     def failed(t, y):
         return amplitude_of(y) - limit
+
     failed.terminal = stop_at_failure
     failed.direction = 1
 
     def left_small_slopes(t, y):
         return amplitude_of(y) - BLOWUP_RATIO * amp0
+
     left_small_slopes.terminal = True
 
     t_eval = tc * np.linspace(0.0, tau_final, int(round(tau_final * samples_per_tau)) + 1)
-    sol = solve_ivp(dynamics.rhs, (0.0, t_eval[-1]), y0, method="DOP853", t_eval=t_eval, rtol=rtol,
-                    atol=rtol * state_scales(model, p.defect_mode), events=[failed, left_small_slopes])
-    x, yy = centres(model, sol.y[:model.dof])
+    sol = solve_ivp(
+        dynamics.rhs,
+        (0.0, t_eval[-1]),
+        y0,
+        method="DOP853",
+        t_eval=t_eval,
+        rtol=rtol,
+        atol=rtol * state_scales(model, p.defect_mode),
+        events=[failed, left_small_slopes],
+    )
+    x, yy = centres(model, sol.y[: model.dof])
     amp = np.atleast_1d(analysis.amplitude(x.T, yy.T)) / amp0
     fail = sol.t_events[0]
-    return ScaledRun(sol.t / tc, amp, sol.y[2:model.dof].T, float(fail[0] / tc) if fail.size else None)
+    return ScaledRun(sol.t / tc, amp, sol.y[2 : model.dof].T, float(fail[0] / tc) if fail.size else None)
 
 
 def failure_tau(p: SailParameters, tau_final: float, **options) -> float | None:
@@ -170,8 +188,9 @@ class CriticalRatio:
         return math.sqrt(self.failed_ratio * self.stable_ratio)
 
 
-def critical_ratio(p: SailParameters, tau_final: float = 8.0, *, lo: float = 1.0, hi: float = 30.0,
-                   factor: float = 1.02, **options) -> CriticalRatio:
+def critical_ratio(
+    p: SailParameters, tau_final: float = 8.0, *, lo: float = 1.0, hi: float = 30.0, factor: float = 1.02, **options
+) -> CriticalRatio:
     """Bisect E/E_cr,max (or T/T_cr,max) in log space with runs of tau_final·t_c: the smallest
     stiffness ratio at which the amplitude does not double within the run (failed below)."""
     runs = 0
@@ -184,8 +203,10 @@ def critical_ratio(p: SailParameters, tau_final: float = 8.0, *, lo: float = 1.0
     while not fails(lo):
         lo /= 4.0
         if lo < 1e-6:
-            raise ParameterError(f"tau_final={tau_final:.3g} is too short: no failure within {tau_final:.3g} t_c even at "
-                                 "1e-6 × the analytic critical value (the softest sails need ≈ 1.6 t_c)")
+            raise ParameterError(
+                f"tau_final={tau_final:.3g} is too short: no failure within {tau_final:.3g} t_c even at "
+                "1e-6 × the analytic critical value (the softest sails need ≈ 1.6 t_c)"
+            )
     while fails(hi):
         lo, hi = hi, hi * 4.0
         if hi > 1e6:
@@ -194,18 +215,26 @@ def critical_ratio(p: SailParameters, tau_final: float = 8.0, *, lo: float = 1.0
     return CriticalRatio(lo, hi, tau_final, runs)
 
 
-def divergence(p: SailParameters, tau_final: float, *, size: float = 1e-9, seed: int = 0,
-               samples_per_tau: int = 20, rtol: float = 1e-10) -> tuple[np.ndarray, np.ndarray]:
+def divergence(
+    p: SailParameters,
+    tau_final: float,
+    *,
+    size: float = 1e-9,
+    seed: int = 0,
+    samples_per_tau: int = 20,
+    rtol: float = 1e-10,
+) -> tuple[np.ndarray, np.ndarray]:
     """Paired runs: (τ, ‖Δθ(τ)‖/‖Δθ(0)‖) between the defect run and one started with a random angle
     perturbation of RMS size × (defect slope 2πνa₀/L); both run past failure up to tau_final or
     until either leaves the small-slope regime (then the arrays end)."""
     rng = np.random.default_rng(seed)
     slope = wavenumber(p) * p.defect_amplitude
     kick = rng.standard_normal(p.n)
-    kick *= size * slope / np.sqrt(np.mean(kick ** 2))
+    kick *= size * slope / np.sqrt(np.mean(kick**2))
     a = scaled_run(p, tau_final, samples_per_tau=samples_per_tau, rtol=rtol, stop_at_failure=False)
-    b = scaled_run(p, tau_final, samples_per_tau=samples_per_tau, rtol=rtol, theta_perturbation=kick,
-                   stop_at_failure=False)
+    b = scaled_run(
+        p, tau_final, samples_per_tau=samples_per_tau, rtol=rtol, theta_perturbation=kick, stop_at_failure=False
+    )
     m = min(a.tau.size, b.tau.size)
     sep = np.linalg.norm(a.theta[:m] - b.theta[:m], axis=1) / np.linalg.norm(kick)
     return a.tau[:m], sep

@@ -13,13 +13,14 @@
   optimum). For a clean sinusoid sampled over many periods the error is set by round-off and by any
   other modes in the signal, far below the FFT bin width 1/duration.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 import numpy as np
 
-PADDING = 8   # zero-padding factor of the FFT (interpolates the spectrum 8 times finer than 1/duration)
+PADDING = 8  # zero-padding factor of the FFT (interpolates the spectrum 8 times finer than 1/duration)
 
 
 def power_spectrum(time: np.ndarray, signals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -55,7 +56,7 @@ def dominant_frequency(time: np.ndarray, signals: np.ndarray) -> float:
     k = int(usable[np.argmax(power[usable])])
     if k == 0 or k == freq.size - 1:
         return float(freq[k])
-    a, b, c = np.log(np.maximum(power[k - 1:k + 2], np.finfo(float).tiny))
+    a, b, c = np.log(np.maximum(power[k - 1 : k + 2], np.finfo(float).tiny))
     curvature = a - 2.0 * b + c
     shift = 0.5 * (a - c) / curvature if curvature < 0 else 0.0
     return float(freq[k] + shift * (freq[1] - freq[0]))
@@ -74,9 +75,9 @@ GAUSS_NEWTON_STEPS = 3
 class SineFit:
     """y ≈ offset + amplitude cos(2π frequency t + phase); rms of the residual."""
 
-    frequency: float       # Hz
+    frequency: float  # Hz
     amplitude: float
-    phase: float           # rad
+    phase: float  # rad
     offset: float
     residual_rms: float
 
@@ -103,29 +104,33 @@ def fit_sinusoid(time, signal, guess: float | None = None) -> SineFit:
     def cost(f):
         return float(np.sum(_linear_part(t, y, 2 * np.pi * f)[1] ** 2))
 
-    best = minimize_scalar(cost, bounds=(max(f0 - width, 0.5 * f0), f0 + width), method="bounded",
-                           options={"xatol": 1e-12 * f0, "maxiter": 500})
+    best = minimize_scalar(
+        cost,
+        bounds=(max(f0 - width, 0.5 * f0), f0 + width),
+        method="bounded",
+        options={"xatol": 1e-12 * f0, "maxiter": 500},
+    )
     omega = 2 * np.pi * float(best.x)
     for _ in range(GAUSS_NEWTON_STEPS):
         (c, a, b), residual = _linear_part(t, y, omega)
-        slope = t * (-a * np.sin(omega * t) + b * np.cos(omega * t))      # ∂y/∂ω
+        slope = t * (-a * np.sin(omega * t) + b * np.cos(omega * t))  # ∂y/∂ω
         basis = np.column_stack([np.ones_like(t), np.cos(omega * t), np.sin(omega * t), slope])
         step, *_ = np.linalg.lstsq(basis, residual, rcond=None)
         omega += step[3]
     f = float(omega / (2 * np.pi))
     (c, a, b), residual = _linear_part(t, y, omega)
     phase = float(np.angle(np.exp(1j * (np.arctan2(-b, a) - omega * t0))))
-    return SineFit(f, float(np.hypot(a, b)), phase, float(c), float(np.sqrt(np.mean(residual ** 2))))
+    return SineFit(f, float(np.hypot(a, b)), phase, float(c), float(np.sqrt(np.mean(residual**2))))
 
 
 @dataclass(frozen=True)
 class DampedSineFit:
     """y ≈ e^(−decay_rate t) amplitude cos(2π frequency t + phase), t from the first sample."""
 
-    frequency: float       # Hz
-    decay_rate: float      # σ, 1/s
+    frequency: float  # Hz
+    decay_rate: float  # σ, 1/s
     amplitude: float
-    phase: float           # rad
+    phase: float  # rad
     residual_rms: float
 
 
@@ -147,5 +152,10 @@ def fit_damped_sinusoid(time, signal) -> DampedSineFit:
     a0, b0 = start.amplitude * np.cos(start.phase), -start.amplitude * np.sin(start.phase)
     fit = least_squares(residual, [2 * np.pi * start.frequency, 0.0, a0, b0], xtol=1e-15, ftol=1e-15, gtol=1e-15)
     omega, sigma, a, b = fit.x
-    return DampedSineFit(float(omega / (2 * np.pi)), float(sigma), float(np.hypot(a, b)),
-                         float(np.arctan2(-b, a)), float(scale * np.sqrt(np.mean(fit.fun ** 2))))
+    return DampedSineFit(
+        float(omega / (2 * np.pi)),
+        float(sigma),
+        float(np.hypot(a, b)),
+        float(np.arctan2(-b, a)),
+        float(scale * np.sqrt(np.mean(fit.fun**2))),
+    )

@@ -37,6 +37,7 @@ Two independent linearisations of the lit free sail, both at the flat state:
   its load part cancels f₀-sized terms and is noisy to ≈ 1 % of the softest bending
   frequencies, whatever the difference step (scenario stability_linear.py shows it).
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -50,7 +51,7 @@ from lightsail_mbs.model.parameters import ParameterError, SailParameters
 
 # modes without restoring force by support: a free sail translates in x, y and rotates
 RIGID_MODES = {"free": 3, "cantilever": 0, "pinned": 0}
-FD_STEP = 1e-6      # central-difference step of the lit sail's Jacobian: rad for angles, m for positions
+FD_STEP = 1e-6  # central-difference step of the lit sail's Jacobian: rad for angles, m for positions
 # Central-difference step of the eigenfrequencies (rad for angles, × l for positions): the error
 # ∝ (ω_max/ω₁)² step² from the geometric nonlinearity plus round-off ∝ 1/step is ≈ 1e-11 on the
 # validation chains at 1e-8.
@@ -95,7 +96,7 @@ def _frame_force(p: SailParameters, layout, q: np.ndarray) -> np.ndarray:
     n = p.n
     theta = np.cumsum(q[layout.angle_index])
     seg = layout.segments(q)
-    below = n - 1 - np.arange(n)                       # slices j > i
+    below = n - 1 - np.arange(n)  # slices j > i
     d_theta = seg * np.cos(theta) * below + 0.5 * p.slice_length * np.cos(theta)
     grad = np.zeros(layout.size)
     grad[1] = n
@@ -105,8 +106,9 @@ def _frame_force(p: SailParameters, layout, q: np.ndarray) -> np.ndarray:
     return -p.slice_mass * p.nominal_acceleration * grad
 
 
-def exudyn_linearization(p: SailParameters, *, exudyn_load: str = "central", step: float = FD_STEP,
-                         relative_epsilon: float | None = None):
+def exudyn_linearization(
+    p: SailParameters, *, exudyn_load: str = "central", step: float = FD_STEP, relative_epsilon: float | None = None
+):
     """(M, K) of the Exudyn KinematicTree at the flat state: M q̈ + K q = 0 (K not symmetric with load).
 
     exudyn_load="central": K = K_exudyn(unlit) − ∂(Q_beam + Q_frame)/∂q by central differences of
@@ -154,7 +156,7 @@ class Spectrum:
     def frequencies_hz(self) -> np.ndarray:
         """ω/2π of the elastic modes: the free sail's three smallest ω² (translations x, y and the
         rotation, zero up to round-off) and any ω² ≤ 0 dropped."""
-        w2 = self.omega_squared[RIGID_MODES["free"]:]
+        w2 = self.omega_squared[RIGID_MODES["free"] :]
         return np.sqrt(w2[w2 > 0]) / (2 * np.pi)
 
 
@@ -192,11 +194,16 @@ def load_shift(p: SailParameters, solver: str = "reduced", **options) -> dict:
     the larger of max ω² and the load scale g₀k, and the growth rates of both."""
     lit, dark = linear_spectrum(p, solver, **options), linear_spectrum(unlit(p), solver, **options)
     scale = max(float(np.abs(dark.omega_squared).max()), load_rate_scale(p))
-    return {"solver": solver, "max_shift": float(np.abs(lit.omega_squared - dark.omega_squared).max()),
-            "scale": scale,
-            "relative_shift": float(np.abs(lit.omega_squared - dark.omega_squared).max() / scale),
-            "growth_rate_lit": lit.max_growth_rate, "growth_rate_unlit": dark.max_growth_rate,
-            "omega_squared_lit": lit.omega_squared, "omega_squared_unlit": dark.omega_squared}
+    return {
+        "solver": solver,
+        "max_shift": float(np.abs(lit.omega_squared - dark.omega_squared).max()),
+        "scale": scale,
+        "relative_shift": float(np.abs(lit.omega_squared - dark.omega_squared).max() / scale),
+        "growth_rate_lit": lit.max_growth_rate,
+        "growth_rate_unlit": dark.max_growth_rate,
+        "omega_squared_lit": lit.omega_squared,
+        "omega_squared_unlit": dark.omega_squared,
+    }
 
 
 # ---- eigenfrequencies with supports (validations) ---------------------------------------------
@@ -213,8 +220,8 @@ def exudyn_angular_frequencies(p: SailParameters) -> np.ndarray:
 
 def reduced_acceleration_jacobian(p: SailParameters):
     """(A = ∂q̈/∂q at the flat state at rest, N: orthonormal basis of the supports' tangent space)."""
-    from lightsail_mbs.solvers.reduced.supports import dynamics_of
     from lightsail_mbs.solvers.reduced.kinematics import centre_jacobian
+    from lightsail_mbs.solvers.reduced.supports import dynamics_of
 
     p = flat(p)
     dynamics, model = dynamics_of(p)
@@ -222,7 +229,7 @@ def reduced_acceleration_jacobian(p: SailParameters):
     q0 = model.pack(start.x[0], start.y[0], start.theta, start.z)
     dof = model.dof
     scale = np.full(dof, p.slice_length)
-    scale[2:p.n + 2] = 1.0                                   # angles (rad)
+    scale[2 : p.n + 2] = 1.0  # angles (rad)
     step = MODE_STEP * scale
     shifts = np.concatenate([np.diag(step), -np.diag(step)], axis=1)
     states = np.concatenate([q0[:, None] + shifts, np.zeros((dof, 2 * dof))])
@@ -247,4 +254,4 @@ def reduced_angular_frequencies(p: SailParameters) -> np.ndarray:
 def elastic(omega: np.ndarray, p: SailParameters) -> np.ndarray:
     """The elastic ω of a solver's spectrum: without the 3 rigid-body modes (x, y, rotation) of a free
     chain (their ω are round-off of the difference quotients, not exactly 0); supported chains have none."""
-    return np.asarray(omega, float)[RIGID_MODES[p.boundary]:]
+    return np.asarray(omega, float)[RIGID_MODES[p.boundary] :]

@@ -9,6 +9,7 @@
 
 Meant for the cantilever validation (paper Appendix A): the load is the constant P₀ (τ ignored).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -17,7 +18,7 @@ from lightsail_mbs.model import shapes
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
 
 NEWTON_ITERATIONS = 20
-NEWTON_TOLERANCE = 1e-14      # relative to the largest coordinate change of the first iterate
+NEWTON_TOLERANCE = 1e-14  # relative to the largest coordinate change of the first iterate
 
 
 def full_load(p: SailParameters) -> SailParameters:
@@ -56,8 +57,8 @@ def _exudyn_static(p: SailParameters) -> shapes.ChainState:
 
 def _reduced_static(p: SailParameters) -> shapes.ChainState:
     from lightsail_mbs.analysis.linear_stability import reduced_acceleration_jacobian
-    from lightsail_mbs.solvers.reduced.supports import dynamics_of
     from lightsail_mbs.solvers.reduced.kinematics import centres
+    from lightsail_mbs.solvers.reduced.supports import dynamics_of
 
     if p.boundary != "cantilever":
         raise ParameterError(f"boundary={p.boundary!r} is invalid for the reduced static solve: allowed 'cantilever'")
@@ -69,7 +70,7 @@ def _reduced_static(p: SailParameters) -> shapes.ChainState:
     rest = np.zeros(model.dof)
     first = None
     for _ in range(NEWTON_ITERATIONS):
-        step = -N @ (chord @ (N.T @ dynamics.rhs(0.0, np.concatenate([q, rest]))[model.dof:]))
+        step = -N @ (chord @ (N.T @ dynamics.rhs(0.0, np.concatenate([q, rest]))[model.dof :]))
         q = q + step
         size = np.max(np.abs(step))
         first = first or size

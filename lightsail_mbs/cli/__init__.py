@@ -5,6 +5,7 @@ parameter, a missing or foreign input file, an output path that cannot be writte
 with one line on stderr naming the problem and exit status 2; an unforeseen error prints one line and
 the file where its full traceback was written (exit status 1).
 """
+
 from __future__ import annotations
 
 import argparse

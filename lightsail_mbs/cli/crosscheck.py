@@ -1,4 +1,5 @@
 """`lightsail-mbs crosscheck`: both solvers on the cross-validation cases; Markdown report and plots."""
+
 from __future__ import annotations
 
 from lightsail_mbs.cli.options import writable_folder
@@ -7,18 +8,28 @@ from lightsail_mbs.studies import crosscheck
 
 def register(sub) -> None:
     p = sub.add_parser("crosscheck", help="run the Exudyn and reduced solvers side by side (the cross-check report)")
-    p.add_argument("--cases", nargs="+", metavar="CASE", choices=sorted(crosscheck.CASES),
-                   help=f"subset of cases [default: all: {', '.join(crosscheck.CASES)}]")
+    p.add_argument(
+        "--cases",
+        nargs="+",
+        metavar="CASE",
+        choices=sorted(crosscheck.CASES),
+        help=f"subset of cases [default: all: {', '.join(crosscheck.CASES)}]",
+    )
     p.add_argument("--out", default="validation", help="directory for crosscheck.md and the plots [validation]")
-    p.add_argument("--exudyn-step-scale", type=float, default=1.0,
-                   help="multiply Exudyn's default step by this factor ≤ 1 (convergence check) [1]")
+    p.add_argument(
+        "--exudyn-step-scale",
+        type=float,
+        default=1.0,
+        help="multiply Exudyn's default step by this factor ≤ 1 (convergence check) [1]",
+    )
     p.add_argument("--quiet", action="store_true", help="no progress on stderr/stdout")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
     writable_folder(args.out, "--out")
-    rows = crosscheck.run(args.cases, out_dir=args.out, progress=not args.quiet,
-                         exudyn_step_scale=args.exudyn_step_scale)
+    rows = crosscheck.run(
+        args.cases, out_dir=args.out, progress=not args.quiet, exudyn_step_scale=args.exudyn_step_scale
+    )
     print(f"wrote {args.out}/crosscheck.md: {sum(r['passed'] for r in rows)}/{len(rows)} cases pass")
     return 0 if all(r["passed"] for r in rows) else 1

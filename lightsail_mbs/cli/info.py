@@ -1,4 +1,5 @@
 """`lightsail-mbs info`: what a saved run is, what it found, and what made it."""
+
 from __future__ import annotations
 
 import json

@@ -1,24 +1,30 @@
 """`lightsail-mbs montecarlo`: failure probability over random multi-mode defects ."""
+
 from __future__ import annotations
 
 import dataclasses
 import json
 
-from lightsail_mbs.studies import montecarlo
-from lightsail_mbs.solvers import SOLVERS
 from lightsail_mbs.cli.options import add_case_options, params_from_args, settings_from_args, writable_folder
 from lightsail_mbs.model.parameters import ParameterError
+from lightsail_mbs.solvers import SOLVERS
+from lightsail_mbs.studies import montecarlo
 
 
 def register(sub) -> None:
     p = sub.add_parser("montecarlo", help="failure probability and failure times over N seeded multi-mode defects")
     add_case_options(p)
-    p.add_argument("--vary", choices=montecarlo.SWEEPABLE, default="youngs_modulus",
-                   help="the parameter swept [default youngs_modulus]")
+    p.add_argument(
+        "--vary",
+        choices=montecarlo.SWEEPABLE,
+        default="youngs_modulus",
+        help="the parameter swept [default youngs_modulus]",
+    )
     p.add_argument("--values", required=True, help="comma-separated values of the swept parameter (SI)")
     p.add_argument("--seeds", type=int, default=50, help="defects per value (seeds 0…N−1) [50]")
-    p.add_argument("--defect-mode-count", "--defect-modes", type=int, default=10,
-                   help="modes ν = 1/2 … K/2 in each defect [10]")
+    p.add_argument(
+        "--defect-mode-count", "--defect-modes", type=int, default=10, help="modes ν = 1/2 … K/2 in each defect [10]"
+    )
     p.add_argument("--defect-spectrum", type=float, default=1.0, help="mean amplitude ∝ ν^(−β) [1]")
     p.add_argument("--solver", choices=sorted(SOLVERS), default="exudyn")
     p.add_argument("--store", required=True, help="folder of the per-case store (resumable)")
@@ -29,16 +35,25 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    base = params_from_args(args).replace(defect_mode_count=args.defect_mode_count, defect_spectrum=args.defect_spectrum,
-                                          defect_seed=0)
+    base = params_from_args(args).replace(
+        defect_mode_count=args.defect_mode_count, defect_spectrum=args.defect_spectrum, defect_seed=0
+    )
     try:
         values = [float(v) for v in args.values.split(",") if v.strip()]
     except ValueError:
         raise ParameterError(f"values={args.values!r} is invalid: allowed comma-separated numbers") from None
     writable_folder(args.store, "--store")
-    rows = montecarlo.run(base, args.vary, values, args.seeds, args.store, solver=args.solver,
-                          settings=settings_from_args(args),
-                          workers=args.workers, scheduler=args.scheduler)
+    rows = montecarlo.run(
+        base,
+        args.vary,
+        values,
+        args.seeds,
+        args.store,
+        solver=args.solver,
+        settings=settings_from_args(args),
+        workers=args.workers,
+        scheduler=args.scheduler,
+    )
     if args.json:
         print(json.dumps([dataclasses.asdict(r) for r in rows]))
         return 0
@@ -47,6 +62,8 @@ def run(args) -> int:
     for r in rows:
         iqr = "–" if r.failure_time_q25 is None else f"{r.failure_time_q25:.3g}–{r.failure_time_q75:.3g}"
         med = "–" if r.failure_time_median is None else f"{r.failure_time_median:.3g}"
-        print(f"| {r.value:.3g} | {r.runs} | {r.failures} | {r.probability:.2f} | "
-              f"{r.probability_low:.2f}–{r.probability_high:.2f} | {med} | {iqr} | {r.errors} |")
+        print(
+            f"| {r.value:.3g} | {r.runs} | {r.failures} | {r.probability:.2f} | "
+            f"{r.probability_low:.2f}–{r.probability_high:.2f} | {med} | {iqr} | {r.errors} |"
+        )
     return 0

@@ -1,14 +1,13 @@
 """Shared command-line options: the case (SailParameters) and the run control (RunSettings), one option
 per field."""
+
 from __future__ import annotations
 
 import argparse
 import tempfile
 from pathlib import Path
 
-from lightsail_mbs.model.parameters import ParameterError
-
-from lightsail_mbs.model.parameters import SailParameters
+from lightsail_mbs.model.parameters import ParameterError, SailParameters
 from lightsail_mbs.solvers.settings import RunSettings
 
 # option name -> (SailParameters field, type, help)
@@ -30,8 +29,11 @@ CASE_OPTIONS = {
     "--absorptivity": ("absorptivity", float, "absorptivity α"),
     "--torsional-damping": ("torsional_damping", float, "torsional damping c_T (N·m·s/rad)"),
     "--axial-damping": ("axial_damping", float, "axial damping c_s (N·s/m)"),
-    "--stiffness-damping": ("stiffness_damping", float,
-                            "material damping β (s): c = β k on every spring; loss factor η at ω: β = η/ω"),
+    "--stiffness-damping": (
+        "stiffness_damping",
+        float,
+        "material damping β (s): c = β k on every spring; loss factor η at ω: β = η/ω",
+    ),
 }
 # option name -> (RunSettings field, type, help)
 RUN_OPTIONS = {
@@ -48,20 +50,41 @@ def add_case_options(parser: argparse.ArgumentParser, run: bool = True) -> None:
     defaults = SailParameters()
     g = parser.add_argument_group("case (defaults: the paper's torsion case)")
     for opt, (name, typ, text) in CASE_OPTIONS.items():
-        g.add_argument(opt, *ALIASES.get(opt, []), dest=name, type=typ, default=None,
-                       help=f"{text} [default {getattr(defaults, name)}]")
-    g.add_argument("--bending", dest="bending", action=argparse.BooleanOptionalAction, default=None,
-                   help="torsional springs k_T = EI/l on/off [default: on for torsion, off for tnt as in the paper]")
-    g.add_argument("--axial-springs", dest="axial_springs", action=argparse.BooleanOptionalAction, default=None,
-                   help="TnT: extensible slices with k_s = (n−1)EhW/L, or their rigid limit [default on]")
+        g.add_argument(
+            opt,
+            *ALIASES.get(opt, []),
+            dest=name,
+            type=typ,
+            default=None,
+            help=f"{text} [default {getattr(defaults, name)}]",
+        )
+    g.add_argument(
+        "--bending",
+        dest="bending",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="torsional springs k_T = EI/l on/off [default: on for torsion, off for tnt as in the paper]",
+    )
+    g.add_argument(
+        "--axial-springs",
+        dest="axial_springs",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="TnT: extensible slices with k_s = (n−1)EhW/L, or their rigid limit [default on]",
+    )
     if not run:
         return
     settings = RunSettings()
     g = parser.add_argument_group("run")
     for opt, (name, typ, text) in RUN_OPTIONS.items():
         g.add_argument(opt, dest=name, type=typ, default=None, help=f"{text} [default {getattr(settings, name)}]")
-    g.add_argument("--run-past-failure", dest="stop_at_failure", action="store_false", default=None,
-                   help="keep integrating after the amplitude has doubled")
+    g.add_argument(
+        "--run-past-failure",
+        dest="stop_at_failure",
+        action="store_false",
+        default=None,
+        help="keep integrating after the amplitude has doubled",
+    )
 
 
 def params_from_args(args: argparse.Namespace) -> SailParameters:
@@ -99,8 +122,9 @@ def writable_folder(folder, option: str) -> Path:
         with tempfile.TemporaryFile(dir=folder):
             pass
     except OSError as exc:
-        raise ParameterError(f"{option}={str(folder)!r} is invalid: cannot write there "
-                             f"({exc.strerror or exc})") from None
+        raise ParameterError(
+            f"{option}={str(folder)!r} is invalid: cannot write there ({exc.strerror or exc})"
+        ) from None
     return folder
 
 
@@ -112,6 +136,8 @@ def writable_file(path, option: str, suffix: str) -> Path:
     try:
         writable_folder(path.parent, option)
     except ParameterError as exc:
-        raise ParameterError(f"{option}={str(path)!r} is invalid: cannot write to its folder "
-                             f"{str(exc).split('cannot write there ', 1)[-1]}") from None
+        raise ParameterError(
+            f"{option}={str(path)!r} is invalid: cannot write to its folder "
+            f"{str(exc).split('cannot write there ', 1)[-1]}"
+        ) from None
     return path

@@ -1,4 +1,5 @@
 """`lightsail-mbs render`: a saved Result as numbered PNG frames (and an MP4/GIF), headless."""
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -19,15 +20,27 @@ def register(sub) -> None:
     which.add_argument("--every-seconds", type=float, help="one frame per this much simulated time (s)")
     p.add_argument("--size", default=None, help="WIDTHxHEIGHT in pixels [default 800x400; 800x800 with --compare]")
     p.add_argument("--exaggeration", type=float, help="deflection factor [default: automatic, printed on each frame]")
-    p.add_argument("--renderer", choices=RENDERERS, default="auto",
-                   help="exudyn (raytracer) or matplotlib (Agg); auto: the faster, exudyn [default auto]")
-    p.add_argument("--color-by", choices=sorted(COLOR_CHOICES), default="curvature",
-                   help="colour the slices by hinge curvature Δθ/l or bending moment k_T Δθ [default curvature]")
-    p.add_argument("--color-scale", choices=("frame", "run"), default="frame",
-                   help="colour range: each frame its own (where it concentrates) or one for the run (growth) "
-                        "[default frame]")
-    p.add_argument("--no-arrows", dest="arrows", action="store_false",
-                   help="omit the radiation-load and boundary-tension arrows")
+    p.add_argument(
+        "--renderer",
+        choices=RENDERERS,
+        default="auto",
+        help="exudyn (raytracer) or matplotlib (Agg); auto: the faster, exudyn [default auto]",
+    )
+    p.add_argument(
+        "--color-by",
+        choices=sorted(COLOR_CHOICES),
+        default="curvature",
+        help="colour the slices by hinge curvature Δθ/l or bending moment k_T Δθ [default curvature]",
+    )
+    p.add_argument(
+        "--color-scale",
+        choices=("frame", "run"),
+        default="frame",
+        help="colour range: each frame its own (where it concentrates) or one for the run (growth) [default frame]",
+    )
+    p.add_argument(
+        "--no-arrows", dest="arrows", action="store_false", help="omit the radiation-load and boundary-tension arrows"
+    )
     p.add_argument("--compare", metavar="RUN2", help="a second run drawn below the first at the same times")
     p.add_argument("--labels", nargs=2, metavar=("LABEL1", "LABEL2"), help="panel labels with --compare")
     p.add_argument("--movie", choices=("mp4", "gif", "both"), help="also encode the frames into OUT/RUN.mp4/.gif")
@@ -41,10 +54,16 @@ def run(args) -> int:
     other = Result.load(args.compare) if args.compare else None
     size = parse_size(args.size or ("800x800" if args.compare else "800x400"))
     writable_folder(args.out, "--out")
-    options = dict(frames=args.frames, every_seconds=args.every_seconds, exaggeration=args.exaggeration,
-                   renderer=args.renderer, color_by=COLOR_CHOICES[args.color_by], color_scale=args.color_scale,
-                   arrows=args.arrows,
-                   progress=not args.quiet)
+    options = dict(
+        frames=args.frames,
+        every_seconds=args.every_seconds,
+        exaggeration=args.exaggeration,
+        renderer=args.renderer,
+        color_by=COLOR_CHOICES[args.color_by],
+        color_scale=args.color_scale,
+        arrows=args.arrows,
+        progress=not args.quiet,
+    )
     if other is not None:
         labels = args.labels or (Path(args.run).stem, Path(args.compare).stem)
         paths = render_comparison(result, other, args.out, labels=labels, size=size, **options)

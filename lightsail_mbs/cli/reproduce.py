@@ -8,10 +8,10 @@ PNG/GIF and CSV files into --out and prints the numbers it plotted; this command
 each. Cases go through the resumable sweep store (--store, default OUT/store): a rerun recomputes
 nothing already finished.
 """
+
 from __future__ import annotations
 
 import time
-from pathlib import Path
 
 from lightsail_mbs.cli.options import writable_folder
 from lightsail_mbs.model.parameters import ParameterError
@@ -20,22 +20,40 @@ from lightsail_mbs.solvers import SOLVERS
 
 
 def register(sub) -> None:
-    p = sub.add_parser("reproduce", help="recompute the paper's figures or the studies beyond it "
-                                         "(PNG + CSV + printed tables)")
+    p = sub.add_parser(
+        "reproduce", help="recompute the paper's figures or the studies beyond it (PNG + CSV + printed tables)"
+    )
     which = p.add_mutually_exclusive_group(required=True)
-    which.add_argument("--figure", type=int, action="append", choices=sorted(PIPELINES),
-                       help="paper figure number (repeatable): " + ", ".join(map(str, sorted(PIPELINES))))
+    which.add_argument(
+        "--figure",
+        type=int,
+        action="append",
+        choices=sorted(PIPELINES),
+        help="paper figure number (repeatable): " + ", ".join(map(str, sorted(PIPELINES))),
+    )
     which.add_argument("--all", action="store_true", help="every paper figure (not the scenarios)")
-    which.add_argument("--scenario", action="append", choices=list(SCENARIOS), metavar="NAME",
-                       help="study beyond the paper (repeatable): " + ", ".join(SCENARIOS))
+    which.add_argument(
+        "--scenario",
+        action="append",
+        choices=list(SCENARIOS),
+        metavar="NAME",
+        help="study beyond the paper (repeatable): " + ", ".join(SCENARIOS),
+    )
     p.add_argument("--out", default="results", help="output folder of PNG and CSV files [results]")
     p.add_argument("--store", default=None, help="folder of the resumable case store [OUT/store]")
-    p.add_argument("--solver", choices=sorted(SOLVERS), default=None,
-                   help="[exudyn for the figures and the animations, reduced for the other scenarios]")
+    p.add_argument(
+        "--solver",
+        choices=sorted(SOLVERS),
+        default=None,
+        help="[exudyn for the figures and the animations, reduced for the other scenarios]",
+    )
     p.add_argument("--workers", type=int, default=None, help="local processes [all cores]")
     p.add_argument("--scheduler", default=None, help="Dask scheduler address, e.g. tcp://host:8786")
-    p.add_argument("--quick", action="store_true",
-                   help="smoke test: fewer slices, modes and thicknesses, shorter runs (not the published numbers)")
+    p.add_argument(
+        "--quick",
+        action="store_true",
+        help="smoke test: fewer slices, modes and thicknesses, shorter runs (not the published numbers)",
+    )
     p.add_argument("--quiet", action="store_true", help="no progress bars")
     p.set_defaults(func=run)
 
@@ -60,8 +78,15 @@ def run(args) -> int:
     for label, name in selected(args):
         module = pipeline(name)
         start = time.perf_counter()
-        module.run(out, workers=args.workers, scheduler=args.scheduler, quick=args.quick, store=args.store,
-                   progress=not args.quiet, **solver)
+        module.run(
+            out,
+            workers=args.workers,
+            scheduler=args.scheduler,
+            quick=args.quick,
+            store=args.store,
+            progress=not args.quiet,
+            **solver,
+        )
         wall = time.perf_counter() - start
         walls.append((label, name, wall))
         print(f"\n{label} ({name}): wall time {wall:.1f} s", flush=True)

@@ -1,11 +1,12 @@
 """`lightsail-mbs simulate`: run one case with one solver, save the Result, print its summary."""
+
 from __future__ import annotations
 
 import json
 import sys
 
-from lightsail_mbs.solvers import SOLVERS, solve
 from lightsail_mbs.cli.options import add_case_options, params_from_args, settings_from_args, writable_file
+from lightsail_mbs.solvers import SOLVERS, solve
 
 
 def register(sub) -> None:
@@ -29,10 +30,12 @@ def run(args) -> int:
         print(json.dumps(summary))
     else:
         ft = summary["failure_time"]
-        print(f"{summary['solver']} {summary['model']} n={summary['n']}: "
-              f"{'FAILED at t = %.6g s' % ft if summary['failed'] else 'not failed'} "
-              f"(max amplitude ratio {summary['max_amplitude_ratio']:.4g}, t_end {summary['t_end']:.6g} s, "
-              f"wall {summary['wall_time']:.3g} s)")
+        print(
+            f"{summary['solver']} {summary['model']} n={summary['n']}: "
+            f"{f'FAILED at t = {ft:.6g} s' if summary['failed'] else 'not failed'} "
+            f"(max amplitude ratio {summary['max_amplitude_ratio']:.4g}, t_end {summary['t_end']:.6g} s, "
+            f"wall {summary['wall_time']:.3g} s)"
+        )
         if summary["dissipated_energy"]:
             print(f"dissipated as heat: {summary['dissipated_energy']:.6g} J")
     for note in summary["warnings"]:

@@ -1,35 +1,50 @@
 """`lightsail-mbs stability`: critical E (torsion) or T (TnT) of a case from short scaled runs.
 
-The finite-amplitude scaling (lightsail_mbs.critical) makes the doubling of the defect depend on
+The finite-amplitude scaling (lightsail_mbs.analysis.finite_amplitude) makes the doubling of the defect depend on
 E/E_cr,max (or T/T_cr,max), ν, n and the run length in units of t_c = 1/(k√(g₀a₀)) only; below the
 first-passage threshold the amplitude doubles within ≈ 4 t_c. So the boundary is bisected in the
 stiffness ratio with runs of --tau-final·t_c (default 8) of the reduced solver instead of 6 s runs
-(the TnT chain in its inextensible limit); --run-time gives instead the boundary that a map with runs of
-that length finds (below ≈ 1.6 t_c nothing fails: an error says so). Optionally the flat state's linear spectrum is checked
-with and without the load (--linear).
+(the TnT chain in its inextensible limit); --run-time gives instead the boundary that a map with runs
+of that length finds (below ≈ 1.6 t_c nothing fails: an error says so). Optionally the flat state's
+linear spectrum is checked with and without the load (--linear).
 """
+
 from __future__ import annotations
 
 import json
 import time
 
-from lightsail_mbs.analysis import finite_amplitude as critical, linear_stability as stability
-from lightsail_mbs.model import theory
+from lightsail_mbs.analysis import finite_amplitude as critical
+from lightsail_mbs.analysis import linear_stability as stability
 from lightsail_mbs.cli.options import add_case_options, params_from_args
+from lightsail_mbs.model import theory
 
 
 def register(sub) -> None:
-    p = sub.add_parser("stability", help="critical E (torsion) or T (tnt) from short scaled runs; "
-                                         "flat-state linear spectrum with/without load")
+    p = sub.add_parser(
+        "stability",
+        help="critical E (torsion) or T (tnt) from short scaled runs; flat-state linear spectrum with/without load",
+    )
     add_case_options(p)
-    p.add_argument("--tau-final", type=float, default=8.0,
-                   help="run length of each bisection run in units of t_c = 1/(k sqrt(g0 a0)) [default 8]")
-    p.add_argument("--run-time", type=float, default=None,
-                   help="instead: runs of this many seconds (τ = run-time/t_c), the boundary a stability map "
-                        "with runs of that length finds (e.g. the paper's 6)")
+    p.add_argument(
+        "--tau-final",
+        type=float,
+        default=8.0,
+        help="run length of each bisection run in units of t_c = 1/(k sqrt(g0 a0)) [default 8]",
+    )
+    p.add_argument(
+        "--run-time",
+        type=float,
+        default=None,
+        help="instead: runs of this many seconds (τ = run-time/t_c), the boundary a stability map "
+        "with runs of that length finds (e.g. the paper's 6)",
+    )
     p.add_argument("--factor", type=float, default=1.05, help="bisect until hi/lo ≤ factor [default 1.05]")
-    p.add_argument("--linear", action="store_true", help="also compare the flat state's linear spectra "
-                                                         "with and without the load (reduced solver)")
+    p.add_argument(
+        "--linear",
+        action="store_true",
+        help="also compare the flat state's linear spectra with and without the load (reduced solver)",
+    )
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=run)
 
@@ -41,8 +56,11 @@ def run(args) -> int:
     start = time.perf_counter()
     tau_final = args.tau_final if args.run_time is None else args.run_time / critical.time_scale(p)
     found = critical.critical_ratio(p, tau_final, factor=args.factor)
-    name, analytic = ("critical_modulus", theory.critical_modulus_max(p)) if p.model == "torsion" else \
-        ("critical_tension", theory.critical_tension_max(p))
+    name, analytic = (
+        ("critical_modulus", theory.critical_modulus_max(p))
+        if p.model == "torsion"
+        else ("critical_tension", theory.critical_tension_max(p))
+    )
     out = {
         name: found.value * analytic,
         f"{name}_bracket": [found.failed_ratio * analytic, found.stable_ratio * analytic],

@@ -1,4 +1,5 @@
 """`lightsail-mbs store`: the state of a sweep's case store, without computing anything."""
+
 from __future__ import annotations
 
 import json

@@ -1,10 +1,11 @@
 """`lightsail-mbs theory`: the closed forms of Section II (Eqs 4, 7–10)."""
+
 from __future__ import annotations
 
 import json
 
-from lightsail_mbs.model import theory
 from lightsail_mbs.cli.options import add_case_options, params_from_args
+from lightsail_mbs.model import theory
 
 
 def register(sub) -> None:

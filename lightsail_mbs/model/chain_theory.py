@@ -40,6 +40,7 @@ by that over k_T; the tip deflection is the sum of those rotations times their a
 converging to the Euler–Bernoulli tip deflection P L³/(3EI) at FIRST order (error −3/n): the
 clamp sits at x = 0 but the first spring at x = l, and the load acts l/2 short of the tip.
 """
+
 from __future__ import annotations
 
 import math
@@ -56,7 +57,7 @@ from lightsail_mbs.model.parameters import SailParameters
 def cantilever_tip_deflection(load: float, length: float, bending_stiffness: float, n: int) -> float:
     """Static deflection (m) of the centre of slice n of the clamped chain under the load P there:
     (P L³/EI)(n − 1)(2n − 1)(2n − 3)/(12 n³) (module docstring; linear in P)."""
-    return load * length ** 3 / bending_stiffness * (n - 1) * (2 * n - 1) * (2 * n - 3) / (12.0 * n ** 3)
+    return load * length**3 / bending_stiffness * (n - 1) * (2 * n - 1) * (2 * n - 3) / (12.0 * n**3)
 
 
 def cantilever_deflection(load: float, length: float, bending_stiffness: float, n: int) -> np.ndarray:
@@ -64,35 +65,36 @@ def cantilever_deflection(load: float, length: float, bending_stiffness: float, 
     the centre of slice n): y_i = Σ_{j<i} P (x_P − j l)(x_i − j l)/k_T, k_T = EI/l."""
     l = length / n
     x_load = length - 0.5 * l
-    hinges = l * np.arange(1, n)                               # springs at hinges 1…n−1
+    hinges = l * np.arange(1, n)  # springs at hinges 1…n−1
     centres = l * (np.arange(1, n + 1) - 0.5)
-    turn = load * (x_load - hinges) * l / bending_stiffness    # Δθ_j = M_j / k_T
+    turn = load * (x_load - hinges) * l / bending_stiffness  # Δθ_j = M_j / k_T
     arms = np.clip(centres[:, None] - hinges[None, :], 0.0, None)
     return arms @ turn
 
 
-def euler_bernoulli_cantilever(load: float, length: float, bending_stiffness: float, x,
-                               load_position: float | None = None) -> np.ndarray:
+def euler_bernoulli_cantilever(
+    load: float, length: float, bending_stiffness: float, x, load_position: float | None = None
+) -> np.ndarray:
     """Euler–Bernoulli deflection (m) of a cantilever clamped at x = 0 under a transverse load P at
     a (default the tip L): P x²(3a − x)/(6EI) for x ≤ a, P a²(3x − a)/(6EI) beyond (paper Eq. 42,
     sign: deflection along the load)."""
     a = length if load_position is None else float(load_position)
     x = np.asarray(x, float)
-    inner = load * x ** 2 * (3 * a - x) / (6 * bending_stiffness)
-    outer = load * a ** 2 * (3 * x - a) / (6 * bending_stiffness)
+    inner = load * x**2 * (3 * a - x) / (6 * bending_stiffness)
+    outer = load * a**2 * (3 * x - a) / (6 * bending_stiffness)
     return np.where(x <= a, inner, outer)
 
 
 def cantilever_relative_error(n) -> np.ndarray:
     """y_tip(chain)/(P L³/3EI) − 1 = −3/n + 11/(4n²) − 3/(4n³) (first order in 1/n)."""
     n = np.asarray(n, float)
-    return -3.0 / n + 11.0 / (4 * n ** 2) - 3.0 / (4 * n ** 3)
+    return -3.0 / n + 11.0 / (4 * n**2) - 3.0 / (4 * n**3)
 
 
 def ramp_residual_amplitude(static: float, omega: float, time_constant: float) -> float:
     """Amplitude of the free vibration left by the ramp of Eq. (43) in an undamped oscillator
     ÿ + ω² y = ω² y_s (1 − e^(−t/τ)), y(0) = ẏ(0) = 0: y_s / (τ √(ω² + τ⁻²)) (≈ y_s/(ωτ))."""
-    return static / (time_constant * math.sqrt(omega ** 2 + time_constant ** -2))
+    return static / (time_constant * math.sqrt(omega**2 + time_constant**-2))
 
 
 def tip_ramp_vibration(p: SailParameters) -> tuple[np.ndarray, np.ndarray]:
@@ -101,12 +103,12 @@ def tip_ramp_vibration(p: SailParameters) -> tuple[np.ndarray, np.ndarray]:
     static tip deflection carried by mode k (mass-normalised modes φ_k: c_k = P φ_k(tip)² / ω_k²)."""
     M, K = chain_matrices(p)
     w2, modes = eigh(K, M)
-    alpha = 0.5                                   # the last slice has no spring after it: centre = mid-segment
+    alpha = 0.5  # the last slice has no spring after it: centre = mid-segment
     tip = np.zeros(K.shape[0])
     tip[-2:] = [1.0 - alpha, alpha]
     static = p.tip_load * (tip @ modes) ** 2 / w2
     tau = p.tip_load_time_constant
-    return np.sqrt(w2), static / (tau * np.sqrt(w2 + tau ** -2))
+    return np.sqrt(w2), static / (tau * np.sqrt(w2 + tau**-2))
 
 
 # ---- linearised chain ---------------------------------------------------------------------
@@ -134,15 +136,15 @@ def chain_matrices(p: SailParameters, *, tension: float | None = None, segments=
     alpha = 0.5 * l / s
     M = np.zeros((n + 1, n + 1))
     K = np.zeros((n + 1, n + 1))
-    for k in range(n):                                         # slice k+1 spans hinges k, k+1
+    for k in range(n):  # slice k+1 spans hinges k, k+1
         centre = np.array([1.0 - alpha[k], alpha[k]])
         turn = np.array([-1.0, 1.0]) / s[k]
-        M[k:k + 2, k:k + 2] += m * np.outer(centre, centre) + J * np.outer(turn, turn)
-        K[k:k + 2, k:k + 2] += tension * s[k] * np.outer(turn, turn)
+        M[k : k + 2, k : k + 2] += m * np.outer(centre, centre) + J * np.outer(turn, turn)
+        K[k : k + 2, k : k + 2] += tension * s[k] * np.outer(turn, turn)
     k_T = p.torsional_stiffness
-    for k in range(1, n):                                      # spring at hinge k: θ_{k+1} − θ_k
+    for k in range(1, n):  # spring at hinge k: θ_{k+1} − θ_k
         bend = np.zeros(n + 1)
-        bend[k - 1:k + 2] = [1.0 / s[k - 1], -1.0 / s[k - 1] - 1.0 / s[k], 1.0 / s[k]]
+        bend[k - 1 : k + 2] = [1.0 / s[k - 1], -1.0 / s[k - 1] - 1.0 / s[k], 1.0 / s[k]]
         K += k_T * np.outer(bend, bend)
     free = np.setdiff1d(np.arange(n + 1), BOUNDARY_FIXED[p.boundary](n))
     return M[np.ix_(free, free)], K[np.ix_(free, free)]
@@ -190,18 +192,31 @@ def string_frequency(tension: float, line_density: float, length: float, mode: i
 
 def free_free_beam_roots(count: int) -> np.ndarray:
     """β_k L of the Euler–Bernoulli free–free beam: roots of cos(βL) cosh(βL) = 1 (4.7300, 7.8532, …)."""
-    f = lambda b: math.cos(b) * math.cosh(b) - 1.0      # noqa: E731
-    return np.array([brentq(lambda b: f(b) / math.cosh(b), (k + 0.5) * math.pi - 0.49 * math.pi,
-                            (k + 0.5) * math.pi + 0.49 * math.pi, xtol=1e-14) for k in range(1, count + 1)])
+    f = lambda b: math.cos(b) * math.cosh(b) - 1.0  # noqa: E731
+    return np.array(
+        [
+            brentq(
+                lambda b: f(b) / math.cosh(b),
+                (k + 0.5) * math.pi - 0.49 * math.pi,
+                (k + 0.5) * math.pi + 0.49 * math.pi,
+                xtol=1e-14,
+            )
+            for k in range(1, count + 1)
+        ]
+    )
 
 
 def cantilever_beam_roots(count: int) -> np.ndarray:
     """β_k L of the Euler–Bernoulli cantilever: roots of cos(βL) cosh(βL) = −1 (1.8751, 4.6941, …)."""
-    f = lambda b: math.cos(b) + 1.0 / math.cosh(b)      # noqa: E731
-    return np.array([brentq(f, (k - 0.5) * math.pi - 0.49 * math.pi, (k - 0.5) * math.pi + 0.49 * math.pi,
-                            xtol=1e-14) for k in range(1, count + 1)])
+    f = lambda b: math.cos(b) + 1.0 / math.cosh(b)  # noqa: E731
+    return np.array(
+        [
+            brentq(f, (k - 0.5) * math.pi - 0.49 * math.pi, (k - 0.5) * math.pi + 0.49 * math.pi, xtol=1e-14)
+            for k in range(1, count + 1)
+        ]
+    )
 
 
 def beam_angular_frequencies(roots, bending_stiffness: float, line_density: float, length: float) -> np.ndarray:
     """ω_k = (β_k L)² √(EI / (μ L⁴)) (rad/s) of an Euler–Bernoulli beam with those roots."""
-    return np.asarray(roots, float) ** 2 * math.sqrt(bending_stiffness / (line_density * length ** 4))
+    return np.asarray(roots, float) ** 2 * math.sqrt(bending_stiffness / (line_density * length**4))

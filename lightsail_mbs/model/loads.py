@@ -18,6 +18,7 @@ Gaussian, I(x) = I₀ exp(−2(x − x_c)²/w²).
 In the frame accelerating with the flat sail at g₀ (parameters.nominal_acceleration) every
 slice also carries the d'Alembert body force −m g₀ ŷ.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -41,7 +42,7 @@ def radiation_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tup
     c = np.cos(theta)
     s = np.sin(theta)
     if p.uniform_beam and p.reflectivity == 1.0 and p.absorptivity == 0.0:
-        mag = p.flat_force * c * c            # Eq. (11) exactly
+        mag = p.flat_force * c * c  # Eq. (11) exactly
         return -mag * s, mag * c
     scale = intensity(p, x) * p.slice_length * p.width / SPEED_OF_LIGHT * c
     normal = 2.0 * p.reflectivity * c * scale

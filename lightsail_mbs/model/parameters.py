@@ -5,12 +5,12 @@ slice length l = L/n, slice mass m = ρ h W l, centroidal inertia J = m l²/12,
 bending stiffness k_T = E I / l with I = W h³/12 (Sec. III.B),
 axial stiffness k_s = (n − 1) E h W / L (Sec. III.C).
 """
+
 from __future__ import annotations
 
 import dataclasses
 import math
 from dataclasses import dataclass
-
 
 SPEED_OF_LIGHT = 299_792_458.0  # m/s
 MODELS = ("rigid", "torsion", "tnt")
@@ -55,68 +55,106 @@ class SailParameters:
     """
 
     model: str = "torsion"
-    n: int = 30                        # number of rigid slices
-    length: float = 1.0                # L, m
-    width: float = 1.0                 # W, m
-    thickness: float = 1e-6            # h, m
-    density: float = 1000.0            # ρ, kg/m³
-    youngs_modulus: float = 4.5e13     # E, Pa
-    tension: float = 0.0               # T, N (paper's per-width value × W); TnT only
-    intensity: float = 1e8             # I₀, W/m²
-    defect_amplitude: float = 1e-5     # a₀, m
-    defect_mode: float = 1.5           # ν: wavelengths of the sine defect over L (Eq. 1)
-    defect_seed: int | None = None     # None: the paper's sine; an int: random multi-mode defect (shapes.py)
-    defect_mode_count: int = 10        # multi-mode defect: modes ν_k = k/2, k = 1…K
-    defect_spectrum: float = 1.0       # multi-mode defect: mean amplitude ∝ ν_k^(−β)
-    beam_waist: float = math.inf       # w, m: Gaussian beam I₀ exp(−2(x − x_c)²/w²); inf = uniform (paper)
-    beam_center: float | None = None   # x_c, m; None: the sail's middle L/2
-    reflectivity: float = 1.0          # R, specular (paper: 1)
-    absorptivity: float = 0.0          # α; transmissivity 1 − R − α
-    bending: bool | None = None        # torsional springs on? None: on for torsion, off for tnt (paper)
-    axial_springs: bool = True         # TnT: extensible slices (k_s); False: rigid (inextensible) limit
-    torsional_damping: float = 0.0     # c_T, N·m·s/rad
-    axial_damping: float = 0.0         # c_s, N·s/m
-    stiffness_damping: float = 0.0     # β, s: material (Rayleigh) damping c = β k added to every spring
-    boundary: str = "free"             # end supports, one of BOUNDARIES
-    tip_load: float = 0.0              # P₀, N: transverse (+y) dead load at the centre of slice n (Eq. 43)
+    n: int = 30  # number of rigid slices
+    length: float = 1.0  # L, m
+    width: float = 1.0  # W, m
+    thickness: float = 1e-6  # h, m
+    density: float = 1000.0  # ρ, kg/m³
+    youngs_modulus: float = 4.5e13  # E, Pa
+    tension: float = 0.0  # T, N (paper's per-width value × W); TnT only
+    intensity: float = 1e8  # I₀, W/m²
+    defect_amplitude: float = 1e-5  # a₀, m
+    defect_mode: float = 1.5  # ν: wavelengths of the sine defect over L (Eq. 1)
+    defect_seed: int | None = None  # None: the paper's sine; an int: random multi-mode defect (shapes.py)
+    defect_mode_count: int = 10  # multi-mode defect: modes ν_k = k/2, k = 1…K
+    defect_spectrum: float = 1.0  # multi-mode defect: mean amplitude ∝ ν_k^(−β)
+    beam_waist: float = math.inf  # w, m: Gaussian beam I₀ exp(−2(x − x_c)²/w²); inf = uniform (paper)
+    beam_center: float | None = None  # x_c, m; None: the sail's middle L/2
+    reflectivity: float = 1.0  # R, specular (paper: 1)
+    absorptivity: float = 0.0  # α; transmissivity 1 − R − α
+    bending: bool | None = None  # torsional springs on? None: on for torsion, off for tnt (paper)
+    axial_springs: bool = True  # TnT: extensible slices (k_s); False: rigid (inextensible) limit
+    torsional_damping: float = 0.0  # c_T, N·m·s/rad
+    axial_damping: float = 0.0  # c_s, N·s/m
+    stiffness_damping: float = 0.0  # β, s: material (Rayleigh) damping c = β k added to every spring
+    boundary: str = "free"  # end supports, one of BOUNDARIES
+    tip_load: float = 0.0  # P₀, N: transverse (+y) dead load at the centre of slice n (Eq. 43)
     tip_load_time_constant: float = 0.0  # τ, s: P(t) = P₀(1 − e^(−t/τ)) (Eq. 43); 0: P₀ from t = 0
 
     def __post_init__(self):
         check("model", self.model, self.model in MODELS, f"one of {', '.join(MODELS)}")
-        check("n", self.n, isinstance(self.n, int) and not isinstance(self.n, bool) and 2 <= self.n <= 5000,
-               "an integer 2 ≤ n ≤ 5000")
+        check(
+            "n",
+            self.n,
+            isinstance(self.n, int) and not isinstance(self.n, bool) and 2 <= self.n <= 5000,
+            "an integer 2 ≤ n ≤ 5000",
+        )
         for name in ("length", "width", "thickness", "density"):
             v = finite(name, getattr(self, name))
             check(name, v, v > 0, "> 0")
-        for name in ("youngs_modulus", "tension", "intensity", "defect_amplitude",
-                     "torsional_damping", "axial_damping", "stiffness_damping"):
+        for name in (
+            "youngs_modulus",
+            "tension",
+            "intensity",
+            "defect_amplitude",
+            "torsional_damping",
+            "axial_damping",
+            "stiffness_damping",
+        ):
             v = finite(name, getattr(self, name))
             check(name, v, v >= 0, "≥ 0")
-        check("youngs_modulus", self.youngs_modulus,
-               self.youngs_modulus > 0 or not (self.model == "tnt" and self.axial_springs),
-               "> 0 for the tnt model with axial springs")
-        check("defect_seed", self.defect_seed, self.defect_seed is None
-               or (isinstance(self.defect_seed, int) and not isinstance(self.defect_seed, bool)
-                   and self.defect_seed >= 0), "None or an integer ≥ 0")
-        check("defect_mode_count", self.defect_mode_count,
-              isinstance(self.defect_mode_count, int) and 1 <= self.defect_mode_count <= 200, "an integer 1 ≤ K ≤ 200")
+        check(
+            "youngs_modulus",
+            self.youngs_modulus,
+            self.youngs_modulus > 0 or not (self.model == "tnt" and self.axial_springs),
+            "> 0 for the tnt model with axial springs",
+        )
+        check(
+            "defect_seed",
+            self.defect_seed,
+            self.defect_seed is None
+            or (isinstance(self.defect_seed, int) and not isinstance(self.defect_seed, bool) and self.defect_seed >= 0),
+            "None or an integer ≥ 0",
+        )
+        check(
+            "defect_mode_count",
+            self.defect_mode_count,
+            isinstance(self.defect_mode_count, int) and 1 <= self.defect_mode_count <= 200,
+            "an integer 1 ≤ K ≤ 200",
+        )
         finite("defect_spectrum", self.defect_spectrum)
-        check("beam_waist", self.beam_waist, not math.isnan(float(self.beam_waist)) and self.beam_waist > 0,
-               "> 0 (inf for a uniform beam)")
+        check(
+            "beam_waist",
+            self.beam_waist,
+            not math.isnan(float(self.beam_waist)) and self.beam_waist > 0,
+            "> 0 (inf for a uniform beam)",
+        )
         if self.beam_center is None:
             object.__setattr__(self, "beam_center", 0.5 * self.length)
         finite("beam_center", self.beam_center)
         for name in ("reflectivity", "absorptivity"):
             v = finite(name, getattr(self, name))
             check(name, v, 0 <= v <= 1, "0 ≤ value ≤ 1")
-        check("absorptivity", self.absorptivity, self.reflectivity + self.absorptivity <= 1,
-               f"≤ 1 − reflectivity = {1 - self.reflectivity:g} (R + α + transmissivity = 1)")
-        check("reflectivity", self.reflectivity, 2 * self.reflectivity + self.absorptivity > 0,
-               "> 0 or absorptivity > 0 (a transparent sail feels no load)")
+        check(
+            "absorptivity",
+            self.absorptivity,
+            self.reflectivity + self.absorptivity <= 1,
+            f"≤ 1 − reflectivity = {1 - self.reflectivity:g} (R + α + transmissivity = 1)",
+        )
+        check(
+            "reflectivity",
+            self.reflectivity,
+            2 * self.reflectivity + self.absorptivity > 0,
+            "> 0 or absorptivity > 0 (a transparent sail feels no load)",
+        )
         v = finite("defect_mode", self.defect_mode)
         check("defect_mode", v, v > 0, "> 0 (whole or half integers in the paper)")
-        check("tension", self.tension, self.tension == 0 or self.model == "tnt",
-               "0 unless model='tnt' (boundary tension exists only in the TnT model)")
+        check(
+            "tension",
+            self.tension,
+            self.tension == 0 or self.model == "tnt",
+            "0 unless model='tnt' (boundary tension exists only in the TnT model)",
+        )
         check("boundary", self.boundary, self.boundary in BOUNDARIES, f"one of {', '.join(BOUNDARIES)}")
         finite("tip_load", self.tip_load)
         v = finite("tip_load_time_constant", self.tip_load_time_constant)
@@ -124,10 +162,13 @@ class SailParameters:
         if self.bending is None:
             object.__setattr__(self, "bending", self.model == "torsion")
         check("bending", self.bending, isinstance(self.bending, bool), "True, False or None")
-        check("defect_amplitude", self.defect_amplitude,
-              self.defect_amplitude < self.length / (2 * math.pi * self.defect_mode),
-              f"< L/(2πν) = {self.length / (2 * math.pi * self.defect_mode):.3g} m (a sine steeper than 45° "
-              "is outside the model)")
+        check(
+            "defect_amplitude",
+            self.defect_amplitude,
+            self.defect_amplitude < self.length / (2 * math.pi * self.defect_mode),
+            f"< L/(2πν) = {self.length / (2 * math.pi * self.defect_mode):.3g} m (a sine steeper than 45° "
+            "is outside the model)",
+        )
 
     # ---- derived quantities (paper Sec. III) -------------------------------------------------
     @property
@@ -143,12 +184,12 @@ class SailParameters:
     @property
     def slice_inertia(self) -> float:
         """J = m l² / 12 about the slice centre."""
-        return self.slice_mass * self.slice_length ** 2 / 12.0
+        return self.slice_mass * self.slice_length**2 / 12.0
 
     @property
     def second_moment_of_area(self) -> float:
         """I = W h³ / 12."""
-        return self.width * self.thickness ** 3 / 12.0
+        return self.width * self.thickness**3 / 12.0
 
     @property
     def torsional_stiffness(self) -> float:
@@ -215,7 +256,7 @@ class SailParameters:
         momentum = 2.0 * self.reflectivity + self.absorptivity
         return momentum * self.mean_intensity / (SPEED_OF_LIGHT * self.density * self.thickness)
 
-    def replace(self, **changes) -> "SailParameters":
+    def replace(self, **changes) -> SailParameters:
         """A copy with some fields changed (validated again)."""
         if "model" in changes and "bending" not in changes:
             changes["bending"] = None
@@ -236,7 +277,7 @@ class SailParameters:
         return d
 
     @classmethod
-    def from_dict(cls, d: dict) -> "SailParameters":
+    def from_dict(cls, d: dict) -> SailParameters:
         """The case of a dict from to_dict; the names of older saved runs (LEGACY_NAMES) are read too
         and their run-control entries (RUN_FIELDS) skipped. An unknown key raises ParameterError."""
         names = {f.name for f in dataclasses.fields(cls)}

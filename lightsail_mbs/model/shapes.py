@@ -5,6 +5,7 @@ profile at chord distance c_k from hinge k, with c_k = l for rigid/torsion slice
 c_k = l + z_k (slice plus pre-stretched spring, z_k = T/k_s) for k < n−1 in the extensible
 TnT model (Eqs 30–31 with l_s = 0). Slices lie along the chords, at rest.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -52,8 +53,11 @@ def multimode_profile(p: SailParameters):
     """w(x) = Σ_k a_k sin(2πν_k x/L + φ_k): a seeded random multi-mode defect."""
     nu, a, phase = multimode_coefficients(p)
     k = 2.0 * np.pi * nu / p.length
-    return lambda x: float(np.dot(a, np.sin(k * x + phase))) if np.ndim(x) == 0 else \
-        (a[:, None] * np.sin(k[:, None] * np.asarray(x)[None, :] + phase[:, None])).sum(axis=0)
+    return lambda x: (
+        float(np.dot(a, np.sin(k * x + phase)))
+        if np.ndim(x) == 0
+        else (a[:, None] * np.sin(k[:, None] * np.asarray(x)[None, :] + phase[:, None])).sum(axis=0)
+    )
 
 
 def defect_profile(p: SailParameters):
@@ -79,7 +83,10 @@ def hinge_points(p: SailParameters, profile=None) -> np.ndarray:
     pts[0] = (0.0, w(0.0))
     for k, c in enumerate(chords):
         x0, y0 = pts[k]
-        gap = lambda x: np.hypot(x - x0, w(x) - y0) - c  # noqa: E731
+
+        def gap(x, x0=x0, y0=y0, c=c):
+            return np.hypot(x - x0, w(x) - y0) - c
+
         x1 = brentq(gap, x0, x0 + c * (1 + 1e-9), xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
         pts[k + 1] = (x1, w(x1))
     return pts
@@ -96,9 +103,9 @@ def initial_state(p: SailParameters, profile=None) -> ChainState:
     return ChainState(x=x, y=y, theta=theta, z=initial_spring_extension(p))
 
 
-MIN_SLICES_PER_HALF_WAVE = 4      # fewer slices per half wavelength do not draw the defect's shape
-MIN_CARRIED_FRACTION = 0.5        # a chain whose initial amplitude is below this fraction of a₀ misses the defect
-PRECISION_FLOOR = 1e-12           # a₀/L below this is within ~1e4 ulps of the coordinates' round-off
+MIN_SLICES_PER_HALF_WAVE = 4  # fewer slices per half wavelength do not draw the defect's shape
+MIN_CARRIED_FRACTION = 0.5  # a chain whose initial amplitude is below this fraction of a₀ misses the defect
+PRECISION_FLOOR = 1e-12  # a₀/L below this is within ~1e4 ulps of the coordinates' round-off
 
 
 def defect_warnings(p: SailParameters, initial_amplitude: float) -> list[str]:
@@ -112,12 +119,18 @@ def defect_warnings(p: SailParameters, initial_amplitude: float) -> list[str]:
     shortest = p.defect_mode if p.defect_seed is None else 0.5 * p.defect_mode_count
     per_half_wave = p.n / (2.0 * shortest)
     if per_half_wave < MIN_SLICES_PER_HALF_WAVE:
-        notes.append(f"n = {p.n} gives {per_half_wave:.3g} slices per half wavelength of the defect (ν = "
-                     f"{shortest:g}); at least {MIN_SLICES_PER_HALF_WAVE} are needed to resolve it")
+        notes.append(
+            f"n = {p.n} gives {per_half_wave:.3g} slices per half wavelength of the defect (ν = "
+            f"{shortest:g}); at least {MIN_SLICES_PER_HALF_WAVE} are needed to resolve it"
+        )
     if p.defect_seed is None and initial_amplitude < MIN_CARRIED_FRACTION * a0:
-        notes.append(f"the chain carries an initial amplitude of {initial_amplitude:.3g} m, {initial_amplitude / a0:.2g} "
-                     f"of the defect's a₀ = {a0:.3g} m: amplitude ratios measure round-off, not the defect")
+        notes.append(
+            f"the chain carries an initial amplitude of {initial_amplitude:.3g} m, {initial_amplitude / a0:.2g} "
+            f"of the defect's a₀ = {a0:.3g} m: amplitude ratios measure round-off, not the defect"
+        )
     if a0 < PRECISION_FLOOR * p.length:
-        notes.append(f"a₀/L = {a0 / p.length:.2g} is below {PRECISION_FLOOR:g}: double precision (2.2e-16 L) "
-                     "carries the defect with few digits")
+        notes.append(
+            f"a₀/L = {a0 / p.length:.2g} is below {PRECISION_FLOOR:g}: double precision (2.2e-16 L) "
+            "carries the defect with few digits"
+        )
     return notes

@@ -3,6 +3,7 @@
 All functions take a :class:`SailParameters` and return SI values. Tensions are
 returned in newtons: the paper's per-width value multiplied by the width W.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -22,7 +23,7 @@ def nominal_acceleration(p: SailParameters) -> float:
 
 def perturbed_acceleration(p: SailParameters) -> float:
     """Eq. (4) with its second-order term: g₀ [1 − 2π²ν²(a₀/L)²] (the printed 'n' is the mode ν)."""
-    return p.nominal_acceleration * (1.0 - 2.0 * np.pi ** 2 * p.defect_mode ** 2 * (p.defect_amplitude / p.length) ** 2)
+    return p.nominal_acceleration * (1.0 - 2.0 * np.pi**2 * p.defect_mode**2 * (p.defect_amplitude / p.length) ** 2)
 
 
 def critical_modulus(p: SailParameters, x0) -> np.ndarray:
@@ -32,7 +33,9 @@ def critical_modulus(p: SailParameters, x0) -> np.ndarray:
 
 def critical_modulus_max(p: SailParameters) -> float:
     """E_cr,max = (3/2)(2I₀/c) a₀ L² / (π² ν² h³), Eq. (8) (Pa)."""
-    return 1.5 * radiation_pressure(p) * p.defect_amplitude * p.length ** 2 / (np.pi ** 2 * p.defect_mode ** 2 * p.thickness ** 3)
+    return (
+        1.5 * radiation_pressure(p) * p.defect_amplitude * p.length**2 / (np.pi**2 * p.defect_mode**2 * p.thickness**3)
+    )
 
 
 def critical_tension(p: SailParameters, x0) -> np.ndarray:
@@ -62,5 +65,4 @@ def summary(p: SailParameters) -> dict:
 
 # The stiffness that holds each model's defect in check and its critical value: what a stability map,
 # a bisection or the finite-amplitude scaling sweeps. (The rigid model has none.)
-STIFFNESS = {"torsion": ("youngs_modulus", critical_modulus_max),
-             "tnt": ("tension", critical_tension_max)}
+STIFFNESS = {"torsion": ("youngs_modulus", critical_modulus_max), "tnt": ("tension", critical_tension_max)}

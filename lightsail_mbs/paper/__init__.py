@@ -15,13 +15,23 @@ is a smoke test, not the published numbers. ``lightsail-mbs reproduce --figure N
 ``lightsail-mbs reproduce --scenario NAME`` call them; ``scenarios/NAME.py`` are short scripts around
 the scenario pipelines with their own options.
 """
+
 from __future__ import annotations
 
 import importlib
 
 # paper figure number -> pipeline module of this package
-PIPELINES = {5: "fig5", 6: "fig6_8", 7: "fig6_8", 8: "fig6_8", 9: "fig9", 10: "fig10_11", 11: "fig10_11",
-             12: "fig12", **{k: "fig18_23" for k in range(18, 24)}}
+PIPELINES = {
+    5: "fig5",
+    6: "fig6_8",
+    7: "fig6_8",
+    8: "fig6_8",
+    9: "fig9",
+    10: "fig10_11",
+    11: "fig10_11",
+    12: "fig12",
+    **{k: "fig18_23" for k in range(18, 24)},
+}
 
 # scenario name (scenarios/<name>.py) -> pipeline module of this package
 SCENARIOS = {

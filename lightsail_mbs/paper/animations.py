@@ -9,6 +9,7 @@ Quick: n = 10, 12 frames at 300×150 (STORE/<case>_quick.npz and _quick_frames/)
 Run: lightsail-mbs reproduce --scenario animations, or python scenarios/animations.py [--cases …]
 [--frames N] [--size WxH] [--fps F] [--until-ratio R].
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -51,9 +52,21 @@ def simulated(name: str, runs: Path, solver: str, progress: bool = True, quick: 
     return result
 
 
-def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, store=None, progress=True,
-        cases=None, frames: int | None = None, size: str | None = None, fps: float = FPS,
-        until_ratio: float = UNTIL_RATIO) -> dict:
+def run(
+    out,
+    *,
+    solver="exudyn",
+    workers=None,
+    scheduler=None,
+    quick=False,
+    store=None,
+    progress=True,
+    cases=None,
+    frames: int | None = None,
+    size: str | None = None,
+    fps: float = FPS,
+    until_ratio: float = UNTIL_RATIO,
+) -> dict:
     """cases: movie names (default all of CASES); frames, size: default 60 at 600x300 (quick: 12 at
     300x150, n = 10); until_ratio: cut each run at this amplitude ratio. workers and scheduler are not used."""
     from lightsail_mbs.viz.frames import make_movie, render_frames
@@ -67,12 +80,23 @@ def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, stor
     for name in cases or CASES:
         result = cut_at_ratio(simulated(name, runs, solver, progress, quick), until_ratio)
         stem = f"{name}_quick" if quick else name
-        images = render_frames(result, runs / f"{stem}_frames", frames=min(frames, result.time.size), size=size,
-                               progress=progress)
+        images = render_frames(
+            result, runs / f"{stem}_frames", frames=min(frames, result.time.size), size=size, progress=progress
+        )
         gif = make_movie(images, out / f"{name}.gif", fps=fps)
         summary = result.summary()
-        movies.append(dict(case=name, model=summary["model"], failure_time_s=summary["failure_time"],
-                           frames=len(images), gif=str(gif), size_kB=gif.stat().st_size / 1e3))
-        print(f"{name}: {summary['model']}, failure at t = {summary['failure_time']} s; "
-              f"{len(images)} frames -> {gif} ({gif.stat().st_size / 1e3:.0f} kB)")
+        movies.append(
+            dict(
+                case=name,
+                model=summary["model"],
+                failure_time_s=summary["failure_time"],
+                frames=len(images),
+                gif=str(gif),
+                size_kB=gif.stat().st_size / 1e3,
+            )
+        )
+        print(
+            f"{name}: {summary['model']}, failure at t = {summary['failure_time']} s; "
+            f"{len(images)} frames -> {gif} ({gif.stat().st_size / 1e3:.0f} kB)"
+        )
     return {"movies": movies}

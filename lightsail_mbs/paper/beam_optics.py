@@ -14,6 +14,7 @@ Writes beam_optics.png, beam_optics_profile.csv and beam_optics_tilt.csv; the ru
 OUT/store/beam_optics. Quick: n = 10, 1 s runs (the Gaussian runs stay 50 ms).
 Run: lightsail-mbs reproduce --scenario beam_optics, or python scenarios/beam_optics.py.
 """
+
 from __future__ import annotations
 
 import math
@@ -29,11 +30,11 @@ from lightsail_mbs.studies.tables import print_table, write_csv
 from lightsail_mbs.viz.plots import new_figure, save_figure
 
 NAME = "beam_optics"
-WAISTS = (math.inf, 2.0, 1.0, 0.5)                                  # m
-OPTICS = ((1.0, 0.0), (0.9, 0.1), (0.0, 1.0))                      # (R, α)
-OFFSETS = (0.01, 0.05, 0.2)                                         # (x_c − L/2)/L
+WAISTS = (math.inf, 2.0, 1.0, 0.5)  # m
+OPTICS = ((1.0, 0.0), (0.9, 0.1), (0.0, 1.0))  # (R, α)
+OFFSETS = (0.01, 0.05, 0.2)  # (x_c − L/2)/L
 TURN = math.radians(1.0)
-CUPPING = dict(t_final=0.05, output_interval=1e-5)   # a Gaussian beam cups the sail within milliseconds
+CUPPING = dict(t_final=0.05, output_interval=1e-5)  # a Gaussian beam cups the sail within milliseconds
 TILT = RunSettings(t_final=0.2, output_interval=1e-4, stop_at_failure=False)
 
 
@@ -45,8 +46,9 @@ def profile_cases(quick: bool = False) -> list[tuple]:
     for case in ("torsion-stable", "torsion-soft"):
         settings = paper_settings(case, **(dict(t_final=1.0) if quick else {}))
         for w in WAISTS:
-            out.append((paper_case(case, beam_waist=w, **changes),
-                        settings if math.isinf(w) else settings.replace(**CUPPING)))
+            out.append(
+                (paper_case(case, beam_waist=w, **changes), settings if math.isinf(w) else settings.replace(**CUPPING))
+            )
         for r, a in OPTICS[1:]:
             out.append((paper_case(case, reflectivity=r, absorptivity=a, **changes), settings))
     return out
@@ -63,15 +65,23 @@ def turn_estimate(p) -> float:
     state = shapes.initial_state(p)
     fx, fy = loads.radiation_forces(p, state.x, state.theta)
     torque = float(np.sum((state.x - state.x.mean()) * fy - (state.y - state.y.mean()) * fx))
-    inertia = p.slice_mass * p.n * p.length ** 2 / 12.0
+    inertia = p.slice_mass * p.n * p.length**2 / 12.0
     return math.sqrt(2.0 * TURN * inertia / abs(torque))
 
 
 def profile_row(p, record: dict) -> dict:
-    return dict(kind="profile", E_Pa=p.youngs_modulus, beam_waist_m=p.beam_waist, reflectivity=p.reflectivity,
-                absorptivity=p.absorptivity, g0=p.nominal_acceleration, failed=record.get("failed"),
-                failure_time_s=record.get("failure_time"), max_amplitude_ratio=record.get("max_amplitude_ratio"),
-                error=record.get("error"))
+    return dict(
+        kind="profile",
+        E_Pa=p.youngs_modulus,
+        beam_waist_m=p.beam_waist,
+        reflectivity=p.reflectivity,
+        absorptivity=p.absorptivity,
+        g0=p.nominal_acceleration,
+        failed=record.get("failed"),
+        failure_time_s=record.get("failure_time"),
+        max_amplitude_ratio=record.get("max_amplitude_ratio"),
+        error=record.get("error"),
+    )
 
 
 def tilt_row(p, record: dict, result) -> dict:
@@ -81,27 +91,49 @@ def tilt_row(p, record: dict, result) -> dict:
         mean_angle = np.abs(result.theta.mean(axis=1))
         beyond = np.nonzero(mean_angle >= TURN)[0]
         turn = float(result.time[beyond[0]]) if beyond.size else None
-    return dict(kind="tilt", beam_center_m=p.beam_center, offset_over_L=p.beam_center / p.length - 0.5,
-                turn_1deg_s=turn, turn_1deg_estimate_s=turn_estimate(p), error=record.get("error"))
+    return dict(
+        kind="tilt",
+        beam_center_m=p.beam_center,
+        offset_over_L=p.beam_center / p.length - 0.5,
+        turn_1deg_s=turn,
+        turn_1deg_estimate_s=turn_estimate(p),
+        error=record.get("error"),
+    )
 
 
 def compute(*, solver="reduced", quick=False, store_dir, workers=None, scheduler=None, progress=True) -> list[dict]:
     """Run (or find in the store) every case; one row per case, kind 'profile' or 'tilt'."""
     profiles, tilts = profile_cases(quick), tilt_cases(quick)
     cases = profiles + tilts
-    done = run_cases([p for p, _ in cases], store_dir, [s for _, s in cases], solver=solver, workers=workers,
-                     scheduler=scheduler, label="beam and optics", progress=progress)
+    done = run_cases(
+        [p for p, _ in cases],
+        store_dir,
+        [s for _, s in cases],
+        solver=solver,
+        workers=workers,
+        scheduler=scheduler,
+        label="beam and optics",
+        progress=progress,
+    )
     rows = [profile_row(p, record) for (p, _), (record, _) in zip(profiles, done)]
-    rows += [tilt_row(p, record, result) for (p, _), (record, result) in zip(tilts, done[len(profiles):])]
+    rows += [tilt_row(p, record, result) for (p, _), (record, result) in zip(tilts, done[len(profiles) :])]
     return rows
 
 
 def run(out, *, solver="reduced", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
     out = Path(out)
-    rows = compute(solver=solver, quick=quick, store_dir=Path(store or out / "store") / NAME, workers=workers,
-                   scheduler=scheduler, progress=progress)
-    for kind, title in (("profile", f"Beam profile and optics, torsion sail ({solver})"),
-                        ("tilt", "Off-centre beam (w = 1 m) on a flat sail: time to turn 1°")):
+    rows = compute(
+        solver=solver,
+        quick=quick,
+        store_dir=Path(store or out / "store") / NAME,
+        workers=workers,
+        scheduler=scheduler,
+        progress=progress,
+    )
+    for kind, title in (
+        ("profile", f"Beam profile and optics, torsion sail ({solver})"),
+        ("tilt", "Off-centre beam (w = 1 m) on a flat sail: time to turn 1°"),
+    ):
         mine = [r for r in rows if r["kind"] == kind]
         write_csv(out / f"beam_optics_{kind}.csv", mine)
         print_table(title, mine)
@@ -123,8 +155,12 @@ def plot(path, rows) -> Path:
     ax[0, 0].legend(fontsize=7)
     tilt = [r for r in rows if r["kind"] == "tilt"]
     ax[0, 1].loglog([r["offset_over_L"] for r in tilt], [r["turn_1deg_s"] or np.nan for r in tilt], "o-", label="run")
-    ax[0, 1].loglog([r["offset_over_L"] for r in tilt], [r["turn_1deg_estimate_s"] for r in tilt], "k:",
-                    label="rigid plate estimate")
+    ax[0, 1].loglog(
+        [r["offset_over_L"] for r in tilt],
+        [r["turn_1deg_estimate_s"] for r in tilt],
+        "k:",
+        label="rigid plate estimate",
+    )
     ax[0, 1].set_xlabel("beam offset (x_c − L/2)/L")
     ax[0, 1].set_ylabel("time to turn 1° (s)")
     ax[0, 1].legend(fontsize=8)

@@ -10,6 +10,7 @@ Writes montecarlo.png and montecarlo.csv; the runs go to the store OUT/store/mon
 Quick: n = 10, 2 s runs. Run: lightsail-mbs reproduce --scenario montecarlo, or
 python scenarios/montecarlo.py [--seeds N].
 """
+
 from __future__ import annotations
 
 from dataclasses import asdict
@@ -24,35 +25,58 @@ from lightsail_mbs.studies.tables import print_table, write_csv
 from lightsail_mbs.viz.plots import new_figure, save_figure
 
 NAME = "montecarlo"
-MODULUS_RATIOS = (0.1, 1.0, 10.0, 100.0)     # E / E_cr,max (ν = 3/2 sine)
+MODULUS_RATIOS = (0.1, 1.0, 10.0, 100.0)  # E / E_cr,max (ν = 3/2 sine)
 SEEDS = 50
 
 
 def base_case(quick: bool = False) -> tuple[SailParameters, RunSettings]:
-    return (SailParameters(model="torsion", n=10 if quick else 30),
-            RunSettings(t_final=2.0 if quick else 6.0))
+    return (SailParameters(model="torsion", n=10 if quick else 30), RunSettings(t_final=2.0 if quick else 6.0))
 
 
-def compute(*, seeds=SEEDS, solver="reduced", quick=False, store_dir, workers=None, scheduler=None,
-            progress=True) -> list[dict]:
+def compute(
+    *, seeds=SEEDS, solver="reduced", quick=False, store_dir, workers=None, scheduler=None, progress=True
+) -> list[dict]:
     """Run (or resume) the sweep; one row per E."""
     base, settings = base_case(quick)
     critical = theory.critical_modulus_max(base)
-    found = montecarlo.run(base, "youngs_modulus", [r * critical for r in MODULUS_RATIOS], seeds, store_dir,
-                           solver=solver, settings=settings, workers=workers, scheduler=scheduler, progress=progress)
-    return [dict(E_Pa=r.value, E_over_E_cr=r.value / critical, **{k: v for k, v in asdict(r).items() if k != "value"})
-            for r in found]
+    found = montecarlo.run(
+        base,
+        "youngs_modulus",
+        [r * critical for r in MODULUS_RATIOS],
+        seeds,
+        store_dir,
+        solver=solver,
+        settings=settings,
+        workers=workers,
+        scheduler=scheduler,
+        progress=progress,
+    )
+    return [
+        dict(E_Pa=r.value, E_over_E_cr=r.value / critical, **{k: v for k, v in asdict(r).items() if k != "value"})
+        for r in found
+    ]
 
 
-def run(out, *, solver="reduced", workers=None, scheduler=None, quick=False, store=None, progress=True,
-        seeds: int = SEEDS) -> dict:
+def run(
+    out, *, solver="reduced", workers=None, scheduler=None, quick=False, store=None, progress=True, seeds: int = SEEDS
+) -> dict:
     out = Path(out)
-    rows = compute(seeds=seeds, solver=solver, quick=quick, store_dir=Path(store or out / "store") / NAME,
-                   workers=workers, scheduler=scheduler, progress=progress)
+    rows = compute(
+        seeds=seeds,
+        solver=solver,
+        quick=quick,
+        store_dir=Path(store or out / "store") / NAME,
+        workers=workers,
+        scheduler=scheduler,
+        progress=progress,
+    )
     base, settings = base_case(quick)
     write_csv(out / "montecarlo.csv", rows)
-    print_table(f"Monte Carlo: {seeds} random multi-mode defects per E, torsion n = {base.n}, "
-                f"{settings.t_final:g} s ({solver})", rows)
+    print_table(
+        f"Monte Carlo: {seeds} random multi-mode defects per E, torsion n = {base.n}, "
+        f"{settings.t_final:g} s ({solver})",
+        rows,
+    )
     plot(out / "montecarlo.png", rows, seeds)
     return {"rows": rows}
 
@@ -62,16 +86,27 @@ def plot(path, rows, seeds) -> Path:
     fig, ax = new_figure(1, 2, size=(10.0, 4.0))
     x = np.array([r["E_over_E_cr"] for r in rows])
     p = np.array([r["probability"] for r in rows])
-    err = np.array([[r["probability"] - r["probability_low"] for r in rows],
-                    [r["probability_high"] - r["probability"] for r in rows]])
+    err = np.array(
+        [
+            [r["probability"] - r["probability_low"] for r in rows],
+            [r["probability_high"] - r["probability"] for r in rows],
+        ]
+    )
     ax[0, 0].errorbar(x, p, yerr=err, fmt="o-", capsize=3)
     ax[0, 0].set_xscale("log")
     ax[0, 0].set_xlabel("E / E_cr,max (ν = 3/2 sine)")
     ax[0, 0].set_ylabel(f"P(fail), 95 % Wilson interval ({seeds} seeds)")
     timed = [r for r in rows if r["failure_time_median"] is not None]
-    ax[0, 1].errorbar([r["E_over_E_cr"] for r in timed], [r["failure_time_median"] for r in timed],
-                      yerr=[[r["failure_time_median"] - r["failure_time_q25"] for r in timed],
-                            [r["failure_time_q75"] - r["failure_time_median"] for r in timed]], fmt="s-", capsize=3)
+    ax[0, 1].errorbar(
+        [r["E_over_E_cr"] for r in timed],
+        [r["failure_time_median"] for r in timed],
+        yerr=[
+            [r["failure_time_median"] - r["failure_time_q25"] for r in timed],
+            [r["failure_time_q75"] - r["failure_time_median"] for r in timed],
+        ],
+        fmt="s-",
+        capsize=3,
+    )
     ax[0, 1].set_xscale("log")
     ax[0, 1].set_xlabel("E / E_cr,max (ν = 3/2 sine)")
     ax[0, 1].set_ylabel("failure time: median and quartiles (s)")

@@ -13,6 +13,7 @@ Writes dissipation.png and dissipation.csv; the runs go to the store OUT/store/d
 Quick: n = 10, 1 s runs. Run: lightsail-mbs reproduce --scenario dissipation, or
 python scenarios/dissipation.py [--beta S].
 """
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -27,9 +28,9 @@ from lightsail_mbs.studies.tables import print_table, write_csv
 from lightsail_mbs.viz.plots import new_figure, save_figure
 
 NAME = "dissipation"
-TENSION_RATIOS = (1e-2, 1e1, 1e2, 1e3, 1e4)     # T / T_cr,max
+TENSION_RATIOS = (1e-2, 1e1, 1e2, 1e3, 1e4)  # T / T_cr,max
 REFERENCE_ABSORPTIVITY = 1e-6
-BETA = 1e-4                                      # s
+BETA = 1e-4  # s
 
 
 def cases(beta: float = BETA, quick: bool = False) -> list:
@@ -44,35 +45,65 @@ def settings(quick: bool = False):
 
 
 def row(p, record: dict, result) -> dict:
-    out = dict(T_N=p.tension, T_over_T_cr=p.tension / theory.critical_tension_max(p), beta_s=p.stiffness_damping,
-               failed=record.get("failed"), failure_time_s=record.get("failure_time"), error=record.get("error"))
+    out = dict(
+        T_N=p.tension,
+        T_over_T_cr=p.tension / theory.critical_tension_max(p),
+        beta_s=p.stiffness_damping,
+        failed=record.get("failed"),
+        failure_time_s=record.get("failure_time"),
+        error=record.get("error"),
+    )
     if result is not None:
         heat = float(result.dissipated_energy[-1])
         power = heat / result.time[-1]
         laser = REFERENCE_ABSORPTIVITY * p.intensity * p.length * p.width
-        out.update(frequency_Hz=None if result.failed else angle_frequency(result),
-                   max_amplitude_ratio=result.max_amplitude_ratio, heat_J=heat, mean_power_W=power,
-                   power_over_absorbed=power / laser)
+        out.update(
+            frequency_Hz=None if result.failed else angle_frequency(result),
+            max_amplitude_ratio=result.max_amplitude_ratio,
+            heat_J=heat,
+            mean_power_W=power,
+            power_over_absorbed=power / laser,
+        )
     return out
 
 
-def compute(*, beta=BETA, solver="reduced", quick=False, store_dir, workers=None, scheduler=None,
-            progress=True) -> list[dict]:
+def compute(
+    *, beta=BETA, solver="reduced", quick=False, store_dir, workers=None, scheduler=None, progress=True
+) -> list[dict]:
     """Run (or find in the store) every case; one row per case."""
     params = cases(beta, quick)
-    done = run_cases(params, store_dir, settings(quick), solver=solver, workers=workers, scheduler=scheduler,
-                     label="dissipation", progress=progress)
+    done = run_cases(
+        params,
+        store_dir,
+        settings(quick),
+        solver=solver,
+        workers=workers,
+        scheduler=scheduler,
+        label="dissipation",
+        progress=progress,
+    )
     return [row(p, record, result) for p, (record, result) in zip(params, done)]
 
 
-def run(out, *, solver="reduced", workers=None, scheduler=None, quick=False, store=None, progress=True,
-        beta: float = BETA) -> dict:
+def run(
+    out, *, solver="reduced", workers=None, scheduler=None, quick=False, store=None, progress=True, beta: float = BETA
+) -> dict:
     out = Path(out)
-    rows = compute(beta=beta, solver=solver, quick=quick, store_dir=Path(store or out / "store") / NAME,
-                   workers=workers, scheduler=scheduler, progress=progress)
+    rows = compute(
+        beta=beta,
+        solver=solver,
+        quick=quick,
+        store_dir=Path(store or out / "store") / NAME,
+        workers=workers,
+        scheduler=scheduler,
+        progress=progress,
+    )
     write_csv(out / "dissipation.csv", rows)
-    print_table(f"Material damping β = {beta:g} s in the TnT sail (bending on), {settings(quick).t_final:g} s "
-                f"({solver}); absorbed reference: α = {REFERENCE_ABSORPTIVITY:g}", rows)
+    print_table(
+        f"Material damping β = {beta:g} s in the TnT sail (bending on), {settings(quick).t_final:g} s "
+        f"({solver}); absorbed reference: α = {REFERENCE_ABSORPTIVITY:g}",
+        rows,
+    )
     plot(out / "dissipation.png", rows, beta)
     return {"rows": rows}
 
@@ -94,8 +125,9 @@ def plot(path, rows, beta) -> Path:
     ax[0, 0].legend(fontsize=8)
     for b, style in ((0.0, "s--"), (beta, "o-")):
         mine = [r for r in rows if r["beta_s"] == b and r.get("max_amplitude_ratio") is not None]
-        ax[0, 1].semilogx([r["T_over_T_cr"] for r in mine], [r["max_amplitude_ratio"] for r in mine], style,
-                          label=f"β = {b:g} s")
+        ax[0, 1].semilogx(
+            [r["T_over_T_cr"] for r in mine], [r["max_amplitude_ratio"] for r in mine], style, label=f"β = {b:g} s"
+        )
     ax[0, 1].axhline(2.0, color="k", lw=0.8, ls=":")
     ax[0, 1].set_xlabel("T / T_cr,max")
     ax[0, 1].set_ylabel("max amplitude / a₀ (2: failure)")

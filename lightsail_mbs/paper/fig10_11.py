@@ -9,6 +9,7 @@ reduced solver: over 1 s the stable case's angles agree within 5e-9 rad (θ ~ 1e
 Writes fig10.png, fig11.png, fig10_11_angles_{stable,soft}.csv and fig10_11_summary.csv.
 Run: lightsail-mbs reproduce --figure 10 --out DIR [--quick].
 """
+
 from __future__ import annotations
 
 from lightsail_mbs import RunSettings, paper_case
@@ -20,17 +21,32 @@ FIGURES = (10, 11)
 
 
 def describe(p) -> str:
-    return (f"TnT, h = {p.thickness * 1e6:g} µm, ν = {p.defect_mode:g}, T = {p.tension:.3g} N "
-            f"(T_cr,max = {theory.critical_tension_max(p):.3g} N)")
+    return (
+        f"TnT, h = {p.thickness * 1e6:g} µm, ν = {p.defect_mode:g}, T = {p.tension:.3g} N "
+        f"(T_cr,max = {theory.critical_tension_max(p):.3g} N)"
+    )
 
 
 def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
     changes = dict(n=10) if quick else {}
     settings = RunSettings(t_final=1.0 if quick else 6.0)
-    cases = {"stable": paper_case("tnt-stable", axial_springs=False, **changes),
-             "soft": paper_case("tnt-soft", axial_springs=False, **changes)}
-    rows = angle_history_figures(out, "fig10_11", cases, [(10, "stable", None), (11, "soft", None)], describe,
-                                 settings=settings, solver=solver, workers=workers, scheduler=scheduler, store=store, progress=progress)
+    cases = {
+        "stable": paper_case("tnt-stable", axial_springs=False, **changes),
+        "soft": paper_case("tnt-soft", axial_springs=False, **changes),
+    }
+    rows = angle_history_figures(
+        out,
+        "fig10_11",
+        cases,
+        [(10, "stable", None), (11, "soft", None)],
+        describe,
+        settings=settings,
+        solver=solver,
+        workers=workers,
+        scheduler=scheduler,
+        store=store,
+        progress=progress,
+    )
     for row, p in zip(rows, cases.values()):
         row.update(T_N=p.tension, T_cr_max_N=theory.critical_tension_max(p))
     print_table(f"Figs 10–11 — TnT sail, h = 1 µm, ν = 3/2, {settings.t_final:g} s", rows)

@@ -5,6 +5,7 @@ compared with T_cr,max (Eq. 10, independent of h and ν); every boundary is bise
 runs to show how it depends on the run time. Writes fig12.png, fig12_boundaries.csv, fig12_points.csv.
 Run: lightsail-mbs reproduce --figure 12 --out DIR [--quick].
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -14,7 +15,7 @@ from lightsail_mbs.paper.common import stability_map_figure
 from lightsail_mbs.studies.tables import print_table
 
 FIGURES = (12,)
-THICKNESSES = np.logspace(-8, -5, 7)      # m: 0.01 … 10 µm, half decades
+THICKNESSES = np.logspace(-8, -5, 7)  # m: 0.01 … 10 µm, half decades
 MODES = (1.0, 1.5, 2.0)
 
 
@@ -24,10 +25,36 @@ def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, stor
     thicknesses = THICKNESSES
     if quick:
         base, settings, thicknesses = base.replace(n=10), RunSettings(t_final=1.0), np.logspace(-7, -5, 3)
-    rows = stability_map_figure(out, "fig12", 12, base, thicknesses, MODES, settings=settings, solver=solver, workers=workers,
-                                scheduler=scheduler, store=store, progress=progress, recheck_all=True)
-    print_table(f"Fig. 12 — TnT map, {settings.t_final:g} s: boundary T vs T_cr,max (Eq. 10)",
-                [{"h_um": r["thickness_m"] * 1e6, "mode": r["mode"], "T_cr_max_N": r["analytic"],
-                  "T_stable_N": r["stable_value"], "T_failed_N": r["unstable_value"], "ratio": r["ratio"],
-                  "runs": r["evaluations"], "status": r["status"], "ratio_2t": r["ratio_2t"]} for r in rows])
+    rows = stability_map_figure(
+        out,
+        "fig12",
+        12,
+        base,
+        thicknesses,
+        MODES,
+        settings=settings,
+        solver=solver,
+        workers=workers,
+        scheduler=scheduler,
+        store=store,
+        progress=progress,
+        recheck_all=True,
+    )
+    print_table(
+        f"Fig. 12 — TnT map, {settings.t_final:g} s: boundary T vs T_cr,max (Eq. 10)",
+        [
+            {
+                "h_um": r["thickness_m"] * 1e6,
+                "mode": r["mode"],
+                "T_cr_max_N": r["analytic"],
+                "T_stable_N": r["stable_value"],
+                "T_failed_N": r["unstable_value"],
+                "ratio": r["ratio"],
+                "runs": r["evaluations"],
+                "status": r["status"],
+                "ratio_2t": r["ratio_2t"],
+            }
+            for r in rows
+        ],
+    )
     return {"rows": rows}

@@ -12,6 +12,7 @@ against the varied parameter, with its log-log slope. Writes fig18.png … fig23
 fig18_23_runs.csv (one row per run and figure), fig18_23_series.csv (the plotted time series) and
 fig18_23_trends.csv (the trend numbers). Run: lightsail-mbs reproduce --figure 18 --out DIR [--quick].
 """
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -19,13 +20,13 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import RunSettings, paper_case
+from lightsail_mbs.analysis.frequencies import angle_frequency
 from lightsail_mbs.studies.sweep import run_cases
 from lightsail_mbs.studies.tables import print_table, write_csv
 from lightsail_mbs.viz.plots import new_figure, save_figure
-from lightsail_mbs.analysis.frequencies import angle_frequency
 
 FIGURES = (18, 19, 20, 21, 22, 23)
-T_STABLE, T_SOFT = 3.34e-3, 3.34e-8          # N
+T_STABLE, T_SOFT = 3.34e-3, 3.34e-8  # N
 H, NU = 1e-6, 1.5
 # figure -> (varied field, its values, fixed fields, regime)
 STUDIES = {
@@ -36,9 +37,9 @@ STUDIES = {
     22: ("mode", [1.0, 1.5, 2.0], dict(tension=T_SOFT, thickness=H), "unstable"),
     23: ("thickness", [1e-8, 1e-7, 1e-6, 1e-5], dict(tension=T_SOFT, defect_mode=NU), "unstable"),
 }
-STABLE_WINDOW = 2.0                          # s of the stable time series shown (all of it is in the CSV)
+STABLE_WINDOW = 2.0  # s of the stable time series shown (all of it is in the CSV)
 UNIT = {"tension": ("T", "N", 1.0), "thickness": ("h", "µm", 1e6), "mode": ("ν", "", 1.0)}
-FIELD = {"mode": "defect_mode"}               # varied name (CSV, plots) -> SailParameters field
+FIELD = {"mode": "defect_mode"}  # varied name (CSV, plots) -> SailParameters field
 
 
 def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
@@ -46,36 +47,82 @@ def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, stor
     base = paper_case("tnt-stable", axial_springs=False)
     base = base.replace(n=10) if quick else base
     settings = RunSettings(t_final=3.0 if quick else 6.0)
-    params = {(fig, v): base.replace(**fixed, **{FIELD.get(field, field): v})
-              for fig, (field, values, fixed, _) in STUDIES.items() for v in values}
-    done = dict(zip(params, run_cases(list(params.values()), Path(store or out / "store") / "fig18_23", settings,
-                                      solver=solver, workers=workers, scheduler=scheduler, label="figs 18-23",
-                                      progress=progress)))
+    params = {
+        (fig, v): base.replace(**fixed, **{FIELD.get(field, field): v})
+        for fig, (field, values, fixed, _) in STUDIES.items()
+        for v in values
+    }
+    done = dict(
+        zip(
+            params,
+            run_cases(
+                list(params.values()),
+                Path(store or out / "store") / "fig18_23",
+                settings,
+                solver=solver,
+                workers=workers,
+                scheduler=scheduler,
+                label="figs 18-23",
+                progress=progress,
+            ),
+        )
+    )
     rows, series, trends = [], [], []
-    for fig, (field, values, fixed, regime) in STUDIES.items():
+    for fig, (field, values, _fixed, regime) in STUDIES.items():
         measured = []
         for v in values:
             record, result = done[(fig, v)]
             ok = result is not None and not record["error"]
             freq = angle_frequency(result) if ok and regime == "stable" and not record.get("failed") else None
             measured.append(freq if regime == "stable" else record.get("failure_time"))
-            rows.append({"figure": fig, "regime": regime, "tension_N": params[(fig, v)].tension,
-                         "thickness_m": params[(fig, v)].thickness, "mode": params[(fig, v)].defect_mode,
-                         "failed": record.get("failed"), "failure_time_s": record.get("failure_time"), "frequency_Hz": freq,
-                         "max_amplitude_ratio": record.get("max_amplitude_ratio"), "t_end_s": record.get("t_end"),
-                         "error": record["error"] or ""})
+            rows.append(
+                {
+                    "figure": fig,
+                    "regime": regime,
+                    "tension_N": params[(fig, v)].tension,
+                    "thickness_m": params[(fig, v)].thickness,
+                    "mode": params[(fig, v)].defect_mode,
+                    "failed": record.get("failed"),
+                    "failure_time_s": record.get("failure_time"),
+                    "frequency_Hz": freq,
+                    "max_amplitude_ratio": record.get("max_amplitude_ratio"),
+                    "t_end_s": record.get("t_end"),
+                    "error": record["error"] or "",
+                }
+            )
             if result is not None:
                 signal = _signal(result, regime)
-                series += [{"figure": fig, "varied": field, "value_of_varied": v, "time_s": t, "signal": s} for t, s in zip(result.time, signal)]
+                series += [
+                    {"figure": fig, "varied": field, "value_of_varied": v, "time_s": t, "signal": s}
+                    for t, s in zip(result.time, signal)
+                ]
         trends.append(_trend(fig, field, values, measured, regime))
-        _plot(out / f"fig{fig}.png", fig, field, values, [done[(fig, v)][1] for v in values], measured, regime,
-              trends[-1])
+        _plot(
+            out / f"fig{fig}.png", fig, field, values, [done[(fig, v)][1] for v in values], measured, regime, trends[-1]
+        )
     write_csv(out / "fig18_23_runs.csv", rows)
     write_csv(out / "fig18_23_series.csv", series)
     write_csv(out / "fig18_23_trends.csv", trends)
-    print_table(f"Figs 18–23 — TnT trends ({settings.t_final:g} s runs, n = {base.n})",
-                [{k: r[k] for k in ("figure", "regime", "tension_N", "thickness_m", "mode", "failed",
-                                    "failure_time_s", "frequency_Hz", "error")} for r in rows])
+    print_table(
+        f"Figs 18–23 — TnT trends ({settings.t_final:g} s runs, n = {base.n})",
+        [
+            {
+                k: r[k]
+                for k in (
+                    "figure",
+                    "regime",
+                    "tension_N",
+                    "thickness_m",
+                    "mode",
+                    "failed",
+                    "failure_time_s",
+                    "frequency_Hz",
+                    "error",
+                )
+            }
+            for r in rows
+        ],
+    )
     print_table("Figs 18–23 — trend numbers (slope: d ln y / d ln x over the finite values)", trends)
     return {"rows": rows, "trends": {t["figure"]: t for t in trends}}
 
@@ -95,13 +142,22 @@ def _trend(fig, field, values, measured, regime) -> dict:
     slope = float(np.polyfit(np.log(x[finite]), np.log(y[finite]), 1)[0]) if finite.sum() >= 2 else None
     spread = float(y[finite].max() / y[finite].min()) if finite.sum() >= 2 else None
     steps = np.diff(y[finite])
-    direction = ("increasing" if np.all(steps > 0) else "decreasing" if np.all(steps < 0) else "mixed") \
-        if finite.sum() >= 2 else ""
-    return {"figure": fig, "varied": field, "measured": "frequency_Hz" if regime == "stable" else "failure_time_s",
-            "values": " ".join(f"{v:.3g}" for v in values), "measured_values": " ".join(
-                "–" if not np.isfinite(m) else f"{m:.4g}" for m in y),
-            "finite": int(finite.sum()), "spread_max_over_min": spread, "loglog_slope": slope,
-            "direction": direction}
+    direction = (
+        ("increasing" if np.all(steps > 0) else "decreasing" if np.all(steps < 0) else "mixed")
+        if finite.sum() >= 2
+        else ""
+    )
+    return {
+        "figure": fig,
+        "varied": field,
+        "measured": "frequency_Hz" if regime == "stable" else "failure_time_s",
+        "values": " ".join(f"{v:.3g}" for v in values),
+        "measured_values": " ".join("–" if not np.isfinite(m) else f"{m:.4g}" for m in y),
+        "finite": int(finite.sum()),
+        "spread_max_over_min": spread,
+        "loglog_slope": slope,
+        "direction": direction,
+    }
 
 
 def _plot(path, fig_number, field, values, results, measured, regime, trend) -> None:
@@ -110,8 +166,9 @@ def _plot(path, fig_number, field, values, results, measured, regime, trend) -> 
     for v, result in zip(values, results):
         if result is not None:
             shown = result.time <= (STABLE_WINDOW if regime == "stable" else np.inf)
-            ax[0, 0].plot(result.time[shown], _signal(result, regime)[shown], lw=0.8,
-                          label=f"{name} = {v * scale:.3g} {unit}")
+            ax[0, 0].plot(
+                result.time[shown], _signal(result, regime)[shown], lw=0.8, label=f"{name} = {v * scale:.3g} {unit}"
+            )
     if regime == "unstable":
         ax[0, 0].axhline(2.0, color="k", ls="--", lw=0.8)
     ax[0, 0].set_xlabel("t (s)")

@@ -4,6 +4,7 @@ modes ν = 1/2 … 5, 10 ms. Modes ν ≥ 1 fail (amplitude doubled) at a trough
 Writes fig5.png (shapes at failure, amplitude ratio vs time), fig5_failure_times.csv and
 fig5_shapes.csv. Run: lightsail-mbs reproduce --figure 5 --out DIR [--quick].
 """
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -16,7 +17,7 @@ from lightsail_mbs.studies.tables import print_table, write_csv
 from lightsail_mbs.viz.plots import new_figure, plot_shape, save_figure
 
 FIGURES = (5,)
-MODES = tuple(0.5 * k for k in range(1, 11))     # ν = 1/2, 1, …, 5
+MODES = tuple(0.5 * k for k in range(1, 11))  # ν = 1/2, 1, …, 5
 QUICK_MODES = (0.5, 1.0, 1.5, 3.0)
 
 
@@ -24,22 +25,48 @@ def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, stor
     out = Path(out)
     modes = QUICK_MODES if quick else MODES
     params = [paper_case("rigid", defect_mode=nu) for nu in modes]
-    runs = run_cases(params, Path(store or out / "store") / "fig5", paper_settings("rigid"), solver=solver, workers=workers,
-                     scheduler=scheduler, label="fig 5", progress=progress)
+    runs = run_cases(
+        params,
+        Path(store or out / "store") / "fig5",
+        paper_settings("rigid"),
+        solver=solver,
+        workers=workers,
+        scheduler=scheduler,
+        label="fig 5",
+        progress=progress,
+    )
     rows, shapes = [], []
     for nu, (record, result) in zip(modes, runs):
         last = -1
         end = analysis.line_offsets(result.x[last], result.y[last]) if result else np.array([np.nan])
-        rows.append({"mode": nu, "failed": record.get("failed"), "failure_time_ms": _ms(record.get("failure_time")),
-                     "at_trough": analysis.fails_at_trough(result.x[last], result.y[last]) if result and record.get("failed") else None,
-                     "end_trough_mm": -1e3 * end.min(), "end_crest_mm": 1e3 * end.max(),
-                     "max_amplitude_ratio": record.get("max_amplitude_ratio"),
-                     "t_end_ms": _ms(record.get("t_end")), "error": record["error"] or ""})
+        rows.append(
+            {
+                "mode": nu,
+                "failed": record.get("failed"),
+                "failure_time_ms": _ms(record.get("failure_time")),
+                "at_trough": analysis.fails_at_trough(result.x[last], result.y[last])
+                if result and record.get("failed")
+                else None,
+                "end_trough_mm": -1e3 * end.min(),
+                "end_crest_mm": 1e3 * end.max(),
+                "max_amplitude_ratio": record.get("max_amplitude_ratio"),
+                "t_end_ms": _ms(record.get("t_end")),
+                "error": record["error"] or "",
+            }
+        )
         if result is not None:
             initial = analysis.line_offsets(result.x[0], result.y[0])
             final = analysis.line_offsets(result.x[last], result.y[last])
-            shapes += [{"mode": nu, "slice": i + 1, "x_m": result.x[last, i], "offset_initial_m": initial[i],
-                        "offset_end_m": final[i]} for i in range(result.params.n)]
+            shapes += [
+                {
+                    "mode": nu,
+                    "slice": i + 1,
+                    "x_m": result.x[last, i],
+                    "offset_initial_m": initial[i],
+                    "offset_end_m": final[i],
+                }
+                for i in range(result.params.n)
+            ]
     write_csv(out / "fig5_failure_times.csv", rows)
     write_csv(out / "fig5_shapes.csv", shapes)
     _plot(out / "fig5.png", modes, runs)
@@ -63,7 +90,7 @@ def _plot(path, modes, runs) -> None:
         plot_shape(axis, result, -1, end, color="C3" if result.failed else "C0")
         axis.set_title(f"ν = {nu:g}: {'fails at a trough' if result.failed else 'no failure'}", fontsize=9)
         axis.legend(fontsize=7)
-    for nu, (record, result) in zip(modes, runs):
+    for nu, (_record, result) in zip(modes, runs):
         if result is None:
             continue
         ratio = result.amplitude / result.amplitude[0]

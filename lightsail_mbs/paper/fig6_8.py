@@ -5,6 +5,7 @@ Fig. 6: E = 4.5e13 Pa (100 × E_cr,max = 4.5e11 Pa) — stable oscillatory; Fig.
 Writes fig6.png, fig7.png, fig8.png, fig6_8_angles_{stable,soft}.csv (θ of the plotted slices)
 and fig6_8_summary.csv. Run: lightsail-mbs reproduce --figure 6 --out DIR [--quick].
 """
+
 from __future__ import annotations
 
 from lightsail_mbs import RunSettings, paper_case
@@ -16,17 +17,29 @@ FIGURES = (6, 7, 8)
 
 
 def describe(p) -> str:
-    return (f"torsion, h = {p.thickness * 1e6:g} µm, E = {p.youngs_modulus:.2g} Pa "
-            f"(E_cr,max = {theory.critical_modulus_max(p):.2g} Pa)")
+    return (
+        f"torsion, h = {p.thickness * 1e6:g} µm, E = {p.youngs_modulus:.2g} Pa "
+        f"(E_cr,max = {theory.critical_modulus_max(p):.2g} Pa)"
+    )
 
 
 def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
     changes = dict(n=10) if quick else {}
     settings = RunSettings(t_final=1.0 if quick else 6.0)
     cases = {"stable": paper_case("torsion-stable", **changes), "soft": paper_case("torsion-soft", **changes)}
-    rows = angle_history_figures(out, "fig6_8", cases, [(6, "stable", None), (7, "soft", None), (8, "soft", 0.1)],
-                                 describe, settings=settings, solver=solver, workers=workers, scheduler=scheduler, store=store,
-                                 progress=progress)
+    rows = angle_history_figures(
+        out,
+        "fig6_8",
+        cases,
+        [(6, "stable", None), (7, "soft", None), (8, "soft", 0.1)],
+        describe,
+        settings=settings,
+        solver=solver,
+        workers=workers,
+        scheduler=scheduler,
+        store=store,
+        progress=progress,
+    )
     for row, p in zip(rows, cases.values()):
         row.update(E_Pa=p.youngs_modulus, E_cr_max_Pa=theory.critical_modulus_max(p))
     print_table(f"Figs 6–8 — torsion sail, h = 1 µm, ν = 3/2, {settings.t_final:g} s", rows)

@@ -4,6 +4,7 @@ in log space to a bracket ≤ 1.5 wide and compared with E_cr,max (Eq. 8); every
 with 12 s runs to show how it depends on the run time. Writes fig9.png, fig9_boundaries.csv, fig9_points.csv.
 Run: lightsail-mbs reproduce --figure 9 --out DIR [--quick].
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -13,7 +14,7 @@ from lightsail_mbs.paper.common import stability_map_figure
 from lightsail_mbs.studies.tables import print_table
 
 FIGURES = (9,)
-THICKNESSES = np.logspace(-8, -5, 7)      # m: 0.01 … 10 µm, half decades
+THICKNESSES = np.logspace(-8, -5, 7)  # m: 0.01 … 10 µm, half decades
 
 
 def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
@@ -22,14 +23,36 @@ def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, stor
     thicknesses = THICKNESSES
     if quick:
         base, settings, thicknesses = base.replace(n=10), RunSettings(t_final=1.0), np.logspace(-7, -5, 3)
-    rows = stability_map_figure(out, "fig9", 9, base, thicknesses, [1.5], settings=settings, solver=solver, workers=workers,
-                                scheduler=scheduler, store=store, progress=progress, recheck_all=True)
-    print_table(f"Fig. 9 — torsion map, ν = 3/2, {settings.t_final:g} s: boundary E vs E_cr,max (Eq. 8)",
-                [_short(r) for r in rows])
+    rows = stability_map_figure(
+        out,
+        "fig9",
+        9,
+        base,
+        thicknesses,
+        [1.5],
+        settings=settings,
+        solver=solver,
+        workers=workers,
+        scheduler=scheduler,
+        store=store,
+        progress=progress,
+        recheck_all=True,
+    )
+    print_table(
+        f"Fig. 9 — torsion map, ν = 3/2, {settings.t_final:g} s: boundary E vs E_cr,max (Eq. 8)",
+        [_short(r) for r in rows],
+    )
     return {"rows": rows}
 
 
 def _short(r: dict) -> dict:
-    return {"h_um": r["thickness_m"] * 1e6, "E_cr_max_Pa": r["analytic"], "E_stable_Pa": r["stable_value"],
-            "E_failed_Pa": r["unstable_value"], "ratio": r["ratio"], "runs": r["evaluations"],
-            "status": r["status"], "ratio_2t": r["ratio_2t"]}
+    return {
+        "h_um": r["thickness_m"] * 1e6,
+        "E_cr_max_Pa": r["analytic"],
+        "E_stable_Pa": r["stable_value"],
+        "E_failed_Pa": r["unstable_value"],
+        "ratio": r["ratio"],
+        "runs": r["evaluations"],
+        "status": r["status"],
+        "ratio_2t": r["ratio_2t"],
+    }

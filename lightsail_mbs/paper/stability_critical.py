@@ -20,6 +20,7 @@ divergence}.csv. Quick: a₀ = 1, 10, 100 µm, ν = 1 and 3/2, no map bisection,
 (8 t_c) and one paired run. Run: lightsail-mbs reproduce --scenario stability_critical, or
 python scenarios/stability_critical.py [--fig9 CSV] [--fig12 CSV].
 """
+
 from __future__ import annotations
 
 import csv
@@ -35,8 +36,10 @@ from lightsail_mbs.studies.tables import print_table, write_csv
 from lightsail_mbs.viz.plots import new_figure, save_figure
 
 NAME = "stability_critical"
-BASES = {"torsion": SailParameters(model="torsion", n=30, defect_mode=1.5),
-         "tnt": SailParameters(model="tnt", n=30, defect_mode=1.5, axial_springs=False, tension=1e-8)}
+BASES = {
+    "torsion": SailParameters(model="torsion", n=30, defect_mode=1.5),
+    "tnt": SailParameters(model="tnt", n=30, defect_mode=1.5, axial_springs=False, tension=1e-8),
+}
 MAP_SETTINGS = RunSettings(t_final=6.0)
 ANALYTIC = {"torsion": theory.critical_modulus_max, "tnt": theory.critical_tension_max}
 SWEPT = {"torsion": "youngs_modulus", "tnt": "tension"}
@@ -44,13 +47,15 @@ LABEL = {"torsion": "critical_modulus", "tnt": "critical_tension"}
 AMPLITUDES = (1e-6, 3e-6, 1e-5, 3e-5, 1e-4)
 MAP_AMPLITUDES = (1e-6, 1e-5, 1e-4)
 MODES = (1.0, 1.5, 2.0, 3.0)
-CURVE_RATIOS = {"torsion": (0.1, 0.3, 0.5, 1, 1.5, 2, 3, 4, 5, 6, 7, 7.5, 8, 9, 10, 12, 15, 20),
-                "tnt": (0.1, 0.5, 1, 2, 3, 4, 4.5, 5, 6, 8, 10, 15)}
+CURVE_RATIOS = {
+    "torsion": (0.1, 0.3, 0.5, 1, 1.5, 2, 3, 4, 5, 6, 7, 7.5, 8, 9, 10, 12, 15, 20),
+    "tnt": (0.1, 0.5, 1, 2, 3, 4, 4.5, 5, 6, 8, 10, 15),
+}
 QUICK_CURVE_RATIOS = (0.1, 1, 4, 7)
-MAP_THICKNESSES = np.logspace(-8, -5, 7)      # Figs 9 and 12
+MAP_THICKNESSES = np.logspace(-8, -5, 7)  # Figs 9 and 12
 DIVERGENCE_RATIOS = (2, 10, 30)
-RUN_TAU = 8.0                                 # critical ratios: runs of 8 t_c
-CURVE_TAU = 120.0                             # failure curves: runs of up to 120 t_c
+RUN_TAU = 8.0  # critical ratios: runs of 8 t_c
+CURVE_TAU = 120.0  # failure curves: runs of up to 120 t_c
 DIVERGENCE_TAU = 60.0
 
 
@@ -62,8 +67,17 @@ def critical_rows(model: str, amplitudes) -> list[dict]:
         p = BASES[model].replace(defect_amplitude=a0)
         found = cr.critical_ratio(p, RUN_TAU, factor=1.05)
         analytic = ANALYTIC[model](p)
-        rows.append(dict(model=model, amplitude_m=a0, analytic=analytic, critical=found.value * analytic,
-                         ratio=found.value, t_c=cr.time_scale(p), runs=found.runs))
+        rows.append(
+            dict(
+                model=model,
+                amplitude_m=a0,
+                analytic=analytic,
+                critical=found.value * analytic,
+                ratio=found.value,
+                t_c=cr.time_scale(p),
+                runs=found.runs,
+            )
+        )
     return rows
 
 
@@ -74,12 +88,19 @@ def exponent(rows, key: str = "critical") -> float:
 
 def fit_row(model: str, rows: list[dict]) -> dict:
     ratios = [r["ratio"] for r in rows]
-    return dict(model=model, name=LABEL[model], a0_exponent=exponent(rows), analytic_exponent=1.0,
-                ratio_mean=np.mean(ratios), ratio_spread=np.ptp(ratios) / np.mean(ratios))
+    return dict(
+        model=model,
+        name=LABEL[model],
+        a0_exponent=exponent(rows),
+        analytic_exponent=1.0,
+        ratio_mean=np.mean(ratios),
+        ratio_spread=np.ptp(ratios) / np.mean(ratios),
+    )
 
 
-def map_rows(model: str, amplitudes, store_dir, *, solver="reduced", workers=None, scheduler=None,
-             progress=False) -> list[dict]:
+def map_rows(
+    model: str, amplitudes, store_dir, *, solver="reduced", workers=None, scheduler=None, progress=False
+) -> list[dict]:
     """The 6 s boundary (MAP_SETTINGS) bisected with the sweep engine, one boundary per a₀."""
     base = BASES[model]
     name = SWEPT[model]
@@ -88,14 +109,30 @@ def map_rows(model: str, amplitudes, store_dir, *, solver="reduced", workers=Non
         p = base.replace(defect_amplitude=a0)
         a = ANALYTIC[model](p)
         problems[a0] = BoundaryProblem(lambda v, p=p: p.replace(**{name: float(v)}), a, 30 * a)
-    found = bisect_boundaries(problems, store_dir=store_dir, solver=solver, settings=MAP_SETTINGS, factor=1.1,
-                              workers=workers, scheduler=scheduler, progress=progress, max_expansions=3)
+    found = bisect_boundaries(
+        problems,
+        store_dir=store_dir,
+        solver=solver,
+        settings=MAP_SETTINGS,
+        factor=1.1,
+        workers=workers,
+        scheduler=scheduler,
+        progress=progress,
+        max_expansions=3,
+    )
     rows = []
     for a0, b in found.items():
         p = base.replace(defect_amplitude=a0)
-        rows.append(dict(model=model, amplitude_m=a0, map_boundary=b.value, map_status=b.status,
-                         map_ratio=None if b.value is None else b.value / ANALYTIC[model](p),
-                         run_in_t_c=MAP_SETTINGS.t_final / cr.time_scale(p)))
+        rows.append(
+            dict(
+                model=model,
+                amplitude_m=a0,
+                map_boundary=b.value,
+                map_status=b.status,
+                map_ratio=None if b.value is None else b.value / ANALYTIC[model](p),
+                run_in_t_c=MAP_SETTINGS.t_final / cr.time_scale(p),
+            )
+        )
     return rows
 
 
@@ -113,16 +150,20 @@ def mode_rows(modes) -> list[dict]:
     for nu in modes:
         p = BASES["torsion"].replace(defect_mode=nu)
         found = cr.critical_ratio(p, RUN_TAU, factor=1.05)
-        rows.append(dict(mode=nu, ratio=found.value, buckling_estimate=cr.lowest_mode_buckling_ratio(p),
-                         tnt_ratio=cr.critical_ratio(BASES["tnt"].replace(defect_mode=nu), RUN_TAU,
-                                                     factor=1.05).value))
+        rows.append(
+            dict(
+                mode=nu,
+                ratio=found.value,
+                buckling_estimate=cr.lowest_mode_buckling_ratio(p),
+                tnt_ratio=cr.critical_ratio(BASES["tnt"].replace(defect_mode=nu), RUN_TAU, factor=1.05).value,
+            )
+        )
     return rows
 
 
 def curve_rows(model: str, ratios, tau_final: float) -> list[dict]:
     """The failure curve τ_f(r) (None: no failure within tau_final)."""
-    return [dict(model=model, ratio=r, tau_f=cr.failure_tau(cr.with_ratio(BASES[model], r), tau_final))
-            for r in ratios]
+    return [dict(model=model, ratio=r, tau_f=cr.failure_tau(cr.with_ratio(BASES[model], r), tau_final)) for r in ratios]
 
 
 def read_map(path) -> dict:
@@ -157,16 +198,29 @@ def map_prediction(model: str, curve: list[dict], map_csv=None) -> list[dict]:
 def divergence_rows(ratios, tau_final: float) -> tuple[dict, list[dict]]:
     """Paired runs per ratio: ({ratio: (τ, growth)}, rows of the end τ, end growth and fitted rate per t_c
     over τ > 1)."""
-    divergence = {r: cr.divergence(cr.with_ratio(BASES["torsion"], r), tau_final, samples_per_tau=5)
-                  for r in ratios}
-    rates = [dict(ratio=r, tau_end=float(t[-1]), growth=float(s[-1]),
-                  rate_per_t_c=float(np.polyfit(t[t > 1], np.log(s[t > 1]), 1)[0]) if (t > 1).sum() > 2 else None)
-             for r, (t, s) in divergence.items()]
+    divergence = {r: cr.divergence(cr.with_ratio(BASES["torsion"], r), tau_final, samples_per_tau=5) for r in ratios}
+    rates = [
+        dict(
+            ratio=r,
+            tau_end=float(t[-1]),
+            growth=float(s[-1]),
+            rate_per_t_c=float(np.polyfit(t[t > 1], np.log(s[t > 1]), 1)[0]) if (t > 1).sum() > 2 else None,
+        )
+        for r, (t, s) in divergence.items()
+    ]
     return divergence, rates
 
 
-def compute(*, quick=False, solver="reduced", store_dir, workers=None, scheduler=None, progress=False,
-            map_csvs: dict | None = None) -> dict:
+def compute(
+    *,
+    quick=False,
+    solver="reduced",
+    store_dir,
+    workers=None,
+    scheduler=None,
+    progress=False,
+    map_csvs: dict | None = None,
+) -> dict:
     """Every table of the study (and the divergence curves for the figure)."""
     amps = AMPLITUDES[::2] if quick else AMPLITUDES
     table, fits, maps = [], [], []
@@ -175,30 +229,65 @@ def compute(*, quick=False, solver="reduced", store_dir, workers=None, scheduler
         table += rows
         fits.append(fit_row(model, rows))
         if not quick:
-            maps += map_rows(model, MAP_AMPLITUDES, Path(store_dir) / model, solver=solver, workers=workers,
-                             scheduler=scheduler, progress=progress)
+            maps += map_rows(
+                model,
+                MAP_AMPLITUDES,
+                Path(store_dir) / model,
+                solver=solver,
+                workers=workers,
+                scheduler=scheduler,
+                progress=progress,
+            )
     attach_critical(maps, table)
     modes = mode_rows(MODES[:2] if quick else MODES)
     one_mode = cr.one_mode_model(BASES["torsion"]).critical_ratio()
     curves, predicted = {}, []
     for model in BASES:
-        curves[model] = curve_rows(model, QUICK_CURVE_RATIOS if quick else CURVE_RATIOS[model],
-                                   RUN_TAU if quick else CURVE_TAU)
+        curves[model] = curve_rows(
+            model, QUICK_CURVE_RATIOS if quick else CURVE_RATIOS[model], RUN_TAU if quick else CURVE_TAU
+        )
         predicted += map_prediction(model, curves[model], (map_csvs or {}).get(model))
-    divergence, rates = divergence_rows(DIVERGENCE_RATIOS[:1] if quick else DIVERGENCE_RATIOS,
-                                        RUN_TAU if quick else DIVERGENCE_TAU)
-    return {"table": table, "fits": fits, "maps": maps, "modes": modes, "curve": curves["torsion"] + curves["tnt"],
-            "predicted_maps": predicted, "rates": rates, "one_mode_ratio": one_mode, "divergence": divergence}
+    divergence, rates = divergence_rows(
+        DIVERGENCE_RATIOS[:1] if quick else DIVERGENCE_RATIOS, RUN_TAU if quick else DIVERGENCE_TAU
+    )
+    return {
+        "table": table,
+        "fits": fits,
+        "maps": maps,
+        "modes": modes,
+        "curve": curves["torsion"] + curves["tnt"],
+        "predicted_maps": predicted,
+        "rates": rates,
+        "one_mode_ratio": one_mode,
+        "divergence": divergence,
+    }
 
 
 # ---- pipeline --------------------------------------------------------------------------------
-def run(out, *, solver="reduced", workers=None, scheduler=None, quick=False, store=None, progress=True,
-        fig9=None, fig12=None) -> dict:
+def run(
+    out,
+    *,
+    solver="reduced",
+    workers=None,
+    scheduler=None,
+    quick=False,
+    store=None,
+    progress=True,
+    fig9=None,
+    fig12=None,
+) -> dict:
     """fig9, fig12: fig9_boundaries.csv / fig12_boundaries.csv of `lightsail-mbs reproduce --figure 9/12`,
     whose boundaries are set next to the predicted ones (columns map_6s, map_12s)."""
     out = Path(out)
-    found = compute(quick=quick, solver=solver, store_dir=Path(store or out / "store") / NAME, workers=workers,
-                    scheduler=scheduler, progress=progress, map_csvs={"torsion": fig9, "tnt": fig12})
+    found = compute(
+        quick=quick,
+        solver=solver,
+        store_dir=Path(store or out / "store") / NAME,
+        workers=workers,
+        scheduler=scheduler,
+        progress=progress,
+        map_csvs={"torsion": fig9, "tnt": fig12},
+    )
     write_csv(out / "stability_critical_amplitude.csv", found["table"])
     write_csv(out / "stability_critical_fits.csv", found["fits"])
     if found["maps"]:
@@ -207,16 +296,21 @@ def run(out, *, solver="reduced", workers=None, scheduler=None, quick=False, sto
     write_csv(out / "stability_critical_curve.csv", found["curve"])
     write_csv(out / "stability_critical_maps_predicted.csv", found["predicted_maps"])
     write_csv(out / "stability_critical_divergence.csv", found["rates"])
-    print_table("Critical value from 8 t_c runs against a0 (h = 1 um, I0 = 0.1 GW/m2, nu = 3/2, n = 30)",
-                found["table"])
+    print_table(
+        "Critical value from 8 t_c runs against a0 (h = 1 um, I0 = 0.1 GW/m2, nu = 3/2, n = 30)", found["table"]
+    )
     print_table("Fitted exponent in a0 (analytic 1) and ratio to E_cr,max / T_cr,max", found["fits"])
     if found["maps"]:
         print_table(f"Against the bisected 6 s boundary ({solver} solver, factor 1.1)", found["maps"])
-    print_table(f"Ratio against the mode (one-mode Galerkin model of the sine: {found['one_mode_ratio']:.3g})",
-                found["modes"])
+    print_table(
+        f"Ratio against the mode (one-mode Galerkin model of the sine: {found['one_mode_ratio']:.3g})", found["modes"]
+    )
     print_table("Failure curves tau_f(r) = t_f/t_c (runs up to 120 t_c)", found["curve"])
-    print_table("Fig. 9 (E/E_cr,max) and Fig. 12 (T/T_cr,max, nu = 3/2) boundaries predicted from tau_f(r), "
-                "runs of 6 s and 12 s", found["predicted_maps"])
+    print_table(
+        "Fig. 9 (E/E_cr,max) and Fig. 12 (T/T_cr,max, nu = 3/2) boundaries predicted from tau_f(r), "
+        "runs of 6 s and 12 s",
+        found["predicted_maps"],
+    )
     print_table("Paired runs: growth of a 1e-9 angle perturbation", found["rates"])
     plot(out / "stability_critical.png", found["table"], found["maps"], found["curve"], found["divergence"])
     return found
@@ -233,8 +327,14 @@ def plot(path, table, maps, curve, divergence) -> Path:
         ax.loglog(a, [r["analytic"] for r in rows], "k--", label="Eq. 8" if model == "torsion" else "Eq. 10")
         m = [r for r in maps if r["model"] == model and r["map_boundary"]]
         if m:
-            ax.loglog([r["amplitude_m"] for r in m], [r["map_boundary"] for r in m], "s", mfc="none", ms=9,
-                      label="bisected 6 s boundary")
+            ax.loglog(
+                [r["amplitude_m"] for r in m],
+                [r["map_boundary"] for r in m],
+                "s",
+                mfc="none",
+                ms=9,
+                label="bisected 6 s boundary",
+            )
         ax.set_xlabel("defect amplitude a₀ (m)")
         ax.set_ylabel(unit)
         ax.set_title(f"{model}: h = 1 µm, I₀ = 0.1 GW/m², ν = 3/2", fontsize=9)

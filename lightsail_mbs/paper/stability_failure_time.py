@@ -13,6 +13,7 @@ Quick: h and a₀ at 0.1 and 10 µm / 1 and 100 µm, one ratio per model, a thir
 and 30. Run: lightsail-mbs reproduce --scenario stability_failure_time, or
 python scenarios/stability_failure_time.py.
 """
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -45,9 +46,18 @@ def grid_rows(base, ratios, thicknesses, amplitudes) -> list[dict]:
                 p = cr.with_ratio(base.replace(thickness=h, defect_amplitude=a0), r)
                 tau = cr.failure_tau(p, TAU_MAX)
                 tc = cr.time_scale(p)
-                rows.append(dict(model=p.model, ratio=r, thickness_m=h, amplitude_m=a0,
-                                 g0=p.nominal_acceleration, t_c=tc,
-                                 t_f=None if tau is None else tau * tc, F=tau))
+                rows.append(
+                    dict(
+                        model=p.model,
+                        ratio=r,
+                        thickness_m=h,
+                        amplitude_m=a0,
+                        g0=p.nominal_acceleration,
+                        t_c=tc,
+                        t_f=None if tau is None else tau * tc,
+                        F=tau,
+                    )
+                )
     return rows
 
 
@@ -68,27 +78,50 @@ def grid_and_fits(quick: bool = False) -> tuple[list[dict], list[dict]]:
             rows = grid_rows(base, [r], thick, amps)
             grid += rows
             F = np.array([x["F"] for x in rows if x["F"] is not None])
-            fits.append(dict(model=base.model, ratio=r, runs=len(rows), failed=len(F), **fit_exponents(rows),
-                             analytic_exponent=-0.5, F_mean=F.mean(), F_spread=(F.max() - F.min()) / F.mean()))
+            fits.append(
+                dict(
+                    model=base.model,
+                    ratio=r,
+                    runs=len(rows),
+                    failed=len(F),
+                    **fit_exponents(rows),
+                    analytic_exponent=-0.5,
+                    F_mean=F.mean(),
+                    F_spread=(F.max() - F.min()) / F.mean(),
+                )
+            )
     return grid, fits
 
 
 def curve_rows(quick: bool = False) -> list[dict]:
     """F(r) of both models over CURVE_RATIOS."""
-    return [dict(model=base.model, ratio=r, F=cr.failure_tau(cr.with_ratio(base, r), TAU_MAX))
-            for base in (TORSION, TNT) for r in (CURVE_RATIOS[::3] if quick else CURVE_RATIOS)]
+    return [
+        dict(model=base.model, ratio=r, F=cr.failure_tau(cr.with_ratio(base, r), TAU_MAX))
+        for base in (TORSION, TNT)
+        for r in (CURVE_RATIOS[::3] if quick else CURVE_RATIOS)
+    ]
 
 
 def mode_rows() -> list[dict]:
     """F against ν (torsion, r = 0.5)."""
-    return [dict(model="torsion", mode=nu, ratio=0.5,
-                 F=cr.failure_tau(cr.with_ratio(TORSION.replace(defect_mode=nu), 0.5), TAU_MAX)) for nu in MODES]
+    return [
+        dict(
+            model="torsion",
+            mode=nu,
+            ratio=0.5,
+            F=cr.failure_tau(cr.with_ratio(TORSION.replace(defect_mode=nu), 0.5), TAU_MAX),
+        )
+        for nu in MODES
+    ]
 
 
 def slice_count_rows(quick: bool = False) -> list[dict]:
     """F against n at r = 0.001 (the soft limit) and r = 1 (torsion)."""
-    return [dict(n=n, ratio=r, F=cr.failure_tau(cr.with_ratio(TORSION.replace(n=n), r), TAU_MAX))
-            for r in (0.001, 1.0) for n in (SOFT_N[:2] if quick else SOFT_N)]
+    return [
+        dict(n=n, ratio=r, F=cr.failure_tau(cr.with_ratio(TORSION.replace(n=n), r), TAU_MAX))
+        for r in (0.001, 1.0)
+        for n in (SOFT_N[:2] if quick else SOFT_N)
+    ]
 
 
 # ---- pipeline --------------------------------------------------------------------------------
@@ -130,8 +163,11 @@ def plot(path, grid, curve) -> Path:
     for model in ("torsion", "tnt"):
         pts = [(r["ratio"], r["F"]) for r in curve if r["model"] == model and r["F"] is not None]
         if pts:
-            bx.semilogx(*zip(*pts), markers[model] + "-",
-                        label=f"{model}: r = {'E/E_cr,max' if model == 'torsion' else 'T/T_cr,max'}")
+            bx.semilogx(
+                *zip(*pts),
+                markers[model] + "-",
+                label=f"{model}: r = {'E/E_cr,max' if model == 'torsion' else 'T/T_cr,max'}",
+            )
     bx.set_xlabel("stiffness ratio r")
     bx.set_ylabel("F = t_f / t_c")
     bx.set_title("the law's one function F(r) (ν = 3/2, n = 30)", fontsize=9)

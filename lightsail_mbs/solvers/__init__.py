@@ -16,6 +16,7 @@ Each solver is a module ``lightsail_mbs.solvers.<name>`` exposing
 :mod:`lightsail_mbs.solvers.skeleton` (sampling, stop rule, errors as results). A third solver is a
 new folder here and one line in ``SOLVERS``.
 """
+
 from __future__ import annotations
 
 import importlib
@@ -32,8 +33,14 @@ SOLVERS = {"exudyn": "exudyn.chain", "reduced": "reduced.solver"}
 __all__ = ["SOLVERS", "RunSettings", "paper_settings", "solve"]
 
 
-def solve(params: SailParameters, solver: str = "exudyn", settings: RunSettings | None = None, *,
-          progress: bool = False, **options) -> Result:
+def solve(
+    params: SailParameters,
+    solver: str = "exudyn",
+    settings: RunSettings | None = None,
+    *,
+    progress: bool = False,
+    **options,
+) -> Result:
     """Run one case with the named solver and return its Result.
 
     Parameters

@@ -1,4 +1,5 @@
 """Progress of a run in simulated time, shown on stderr (tqdm) or silent."""
+
 from __future__ import annotations
 
 import sys
@@ -12,9 +13,15 @@ class Progress:
         self._bar = None
         if enabled:
             from tqdm import tqdm
-            self._bar = tqdm(total=round(t_final, 9), desc=label, unit="s(sim)", file=sys.stderr,
-                             bar_format="{desc}: {percentage:3.0f}%|{bar}| t={n:.3g}/{total:.3g} s "
-                                        "[{elapsed}<{remaining}]", mininterval=0.5)
+
+            self._bar = tqdm(
+                total=round(t_final, 9),
+                desc=label,
+                unit="s(sim)",
+                file=sys.stderr,
+                bar_format="{desc}: {percentage:3.0f}%|{bar}| t={n:.3g}/{total:.3g} s [{elapsed}<{remaining}]",
+                mininterval=0.5,
+            )
 
     def update(self, t: float) -> None:
         if self._bar is not None:

@@ -5,6 +5,7 @@ The physical case (:class:`~lightsail_mbs.model.parameters.SailParameters`) says
 both, so a run can be repeated exactly. Numerical settings that belong to one solver (a step size, a
 tolerance, an integration method) are that solver's keyword options.
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -65,7 +66,7 @@ class RunSettings:
             times = np.append(times, self.t_final)
         return times
 
-    def replace(self, **changes) -> "RunSettings":
+    def replace(self, **changes) -> RunSettings:
         """A copy with some fields changed (validated again)."""
         return dataclasses.replace(self, **changes)
 
@@ -73,7 +74,7 @@ class RunSettings:
         return dataclasses.asdict(self)
 
     @classmethod
-    def from_dict(cls, d: dict) -> "RunSettings":
+    def from_dict(cls, d: dict) -> RunSettings:
         unknown = sorted(set(d) - set(FIELDS))
         if unknown:
             raise ParameterError(f"settings {unknown[0]!r} is invalid: allowed {', '.join(FIELDS)}")

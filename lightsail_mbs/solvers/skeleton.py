@@ -17,15 +17,16 @@ this contract (see :func:`lightsail_mbs.solvers.solve`):
 requested output times (the reduced solver's compiled and scipy integrators); Exudyn's solver drives
 its own loop and uses the monitor from its post-step function.
 """
+
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 
 from lightsail_mbs.solvers.settings import RunSettings
 
-FINISHED = "finished"      # status of an integrator that has reached t_final
+FINISHED = "finished"  # status of an integrator that has reached t_final
 
 
 class FailureMonitor:
@@ -47,8 +48,15 @@ class FailureMonitor:
         return int(above[0]) if above.size else None
 
 
-def collect_samples(advance: Callable, y0: np.ndarray, sample_times: np.ndarray, monitor: FailureMonitor,
-                    amplitude_of: Callable, bar, chunk: int):
+def collect_samples(
+    advance: Callable,
+    y0: np.ndarray,
+    sample_times: np.ndarray,
+    monitor: FailureMonitor,
+    amplitude_of: Callable,
+    bar,
+    chunk: int,
+):
     """Drive an integrator over the sample grid; returns (list of state batches (size, k), error or None).
 
     advance(times) -> (batch, t, status): the states at the first k ≥ 0 of the requested output times
@@ -59,13 +67,13 @@ def collect_samples(advance: Callable, y0: np.ndarray, sample_times: np.ndarray,
     """
     states, error, next_sample = [y0[:, None]], None, 1
     while next_sample < sample_times.size:
-        batch, t, status = advance(sample_times[next_sample:next_sample + chunk])
+        batch, t, status = advance(sample_times[next_sample : next_sample + chunk])
         if batch.shape[1]:
             states.append(batch)
             next_sample += batch.shape[1]
             stop = monitor.first_failure(amplitude_of(batch))
             if stop is not None:
-                states[-1] = batch[:, :stop + 1]
+                states[-1] = batch[:, : stop + 1]
                 break
         if status not in (None, FINISHED):
             error = status

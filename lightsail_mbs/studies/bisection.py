@@ -10,11 +10,12 @@ already computed and a killed bisection resumes without recomputing (the path of
 only on its own outcomes). With ``points_per_round = k`` each step evaluates k interior points at
 once, shrinking the bracket's log-width k + 1 times — for clusters with more workers than boundaries.
 """
+
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
 
 from lightsail_mbs.model.parameters import ParameterError
 from lightsail_mbs.solvers.settings import RunSettings
@@ -75,11 +76,11 @@ class BoundaryProblem:
 class _Search:
     """State of one bracketing/bisection; asks for values and takes their stability."""
 
-    def __init__(self, label, problem: BoundaryProblem, *, factor, log, stable_above, points_per_round,
-                 max_expansions):
+    def __init__(self, label, problem: BoundaryProblem, *, factor, log, stable_above, points_per_round, max_expansions):
         if not (0 < problem.lo < problem.hi and math.isfinite(problem.hi)):
-            raise ParameterError(f"bracket ({problem.lo!r}, {problem.hi!r}) of {label!r} is invalid: "
-                                 "allowed 0 < lo < hi < inf")
+            raise ParameterError(
+                f"bracket ({problem.lo!r}, {problem.hi!r}) of {label!r} is invalid: allowed 0 < lo < hi < inf"
+            )
         self.problem, self.factor, self.log = problem, factor, log
         self.stable_above, self.k, self.max_expansions = stable_above, points_per_round, max_expansions
         self.lo, self.hi = float(problem.lo), float(problem.hi)
@@ -97,7 +98,7 @@ class _Search:
             return []
         if self.s_lo is None or self.s_hi is None:
             return [v for v, s in ((self.lo, self.s_lo), (self.hi, self.s_hi)) if s is None]
-        if self.s_lo == self.s_hi:   # not bracketed: step outward, doubling the (log-)width
+        if self.s_lo == self.s_hi:  # not bracketed: step outward, doubling the (log-)width
             below = self.s_lo == self.stable_above
             value = self._between(-2.0) if below else self._between(3.0)
             if value <= 0:
@@ -106,8 +107,7 @@ class _Search:
             return [value]
         return [self._between(j / (self.k + 1)) for j in range(1, self.k + 1)]
 
-    def take(self, values: list[float], stable: list[bool | None], keys: list[str],
-             errors: list[str | None]) -> None:
+    def take(self, values: list[float], stable: list[bool | None], keys: list[str], errors: list[str | None]) -> None:
         self.out.steps += 1
         self.out.evaluations += list(zip(values, stable, keys))
         for v, s, e in zip(values, stable, errors):
@@ -138,8 +138,11 @@ class _Search:
             if self.hi / self.lo <= self.factor:
                 self.stop("converged", "")
         elif self.expansions >= self.max_expansions:
-            self.stop("unbracketed", f"{'stable' if self.s_lo else 'unstable'} over "
-                                      f"[{self.lo:.6g}, {self.hi:.6g}] after {self.expansions} expansions")
+            self.stop(
+                "unbracketed",
+                f"{'stable' if self.s_lo else 'unstable'} over "
+                f"[{self.lo:.6g}, {self.hi:.6g}] after {self.expansions} expansions",
+            )
 
     def remaining(self) -> int:
         """A guess of the evaluations still to come (for the progress bar's total and ETA)."""
@@ -153,19 +156,30 @@ class _Search:
 
     def _record_bracket(self) -> None:
         if self.s_lo != self.s_hi:
-            self.out.stable_value, self.out.unstable_value = ((self.lo, self.hi) if self.s_lo
-                                                              else (self.hi, self.lo))
+            self.out.stable_value, self.out.unstable_value = (self.lo, self.hi) if self.s_lo else (self.hi, self.lo)
 
     def stop(self, status: str, message: str) -> None:
         self.out.status, self.out.message = status, message
 
 
-def bisect_boundaries(problems: dict, *, store_dir, solver: str = "exudyn", settings: RunSettings | None = None,
-                      options: dict | None = None,
-                      stable: Callable[[dict], bool | None] = default_stable, factor: float = 1.5,
-                      log: bool = True, stable_above: bool = True, points_per_round: int = 1,
-                      max_expansions: int = 6, workers: int | None = None, scheduler=None,
-                      progress: bool = True, case_function: Callable = solve_case) -> dict:
+def bisect_boundaries(
+    problems: dict,
+    *,
+    store_dir,
+    solver: str = "exudyn",
+    settings: RunSettings | None = None,
+    options: dict | None = None,
+    stable: Callable[[dict], bool | None] = default_stable,
+    factor: float = 1.5,
+    log: bool = True,
+    stable_above: bool = True,
+    points_per_round: int = 1,
+    max_expansions: int = 6,
+    workers: int | None = None,
+    scheduler=None,
+    progress: bool = True,
+    case_function: Callable = solve_case,
+) -> dict:
     """Bisect several boundaries in lock-step; returns ``{label: Boundary}``.
 
     problems: ``{label: BoundaryProblem(make_params, lo, hi)}`` (make_params runs in this process and
@@ -177,20 +191,39 @@ def bisect_boundaries(problems: dict, *, store_dir, solver: str = "exudyn", sett
         raise ParameterError(f"factor={factor!r} is invalid: allowed > 1")
     if not (isinstance(points_per_round, int) and points_per_round >= 1):
         raise ParameterError(f"points_per_round={points_per_round!r} is invalid: allowed an integer ≥ 1")
-    searches = [_Search(label, problem, factor=factor, log=log, stable_above=stable_above,
-                        points_per_round=points_per_round, max_expansions=max_expansions)
-                 for label, problem in problems.items()]
-    with Sweep(store_dir, workers=workers, scheduler=scheduler, progress=progress,
-               case_function=case_function, label="bisection") as sweep:
-        waiting: dict[str, list] = {}   # case key -> [(search, value)] in submission order
+    searches = [
+        _Search(
+            label,
+            problem,
+            factor=factor,
+            log=log,
+            stable_above=stable_above,
+            points_per_round=points_per_round,
+            max_expansions=max_expansions,
+        )
+        for label, problem in problems.items()
+    ]
+    with Sweep(
+        store_dir,
+        workers=workers,
+        scheduler=scheduler,
+        progress=progress,
+        case_function=case_function,
+        label="bisection",
+    ) as sweep:
+        waiting: dict[str, list] = {}  # case key -> [(search, value)] in submission order
 
         def step(search: _Search) -> None:
             """Submit the cases of the search's next step."""
             search.answers = {}
             for value in search.wanted():
                 try:
-                    case = Case(search.problem.make_params(value), solver, dict(options or {}),
-                                settings=settings or RunSettings())
+                    case = Case(
+                        search.problem.make_params(value),
+                        solver,
+                        dict(options or {}),
+                        settings=settings or RunSettings(),
+                    )
                 except ParameterError as exc:
                     search.out.evaluations.append((value, None, None))
                     search.stop("error", f"no case at {value:.6g}: {exc}")
@@ -209,8 +242,12 @@ def bisect_boundaries(problems: dict, *, store_dir, solver: str = "exudyn", sett
                 search.answers[value] = record
                 if None not in search.answers.values():
                     values, records = list(search.answers), list(search.answers.values())
-                    search.take(values, [stable(r) for r in records], [r["key"] for r in records],
-                                [r.get("error") for r in records])
+                    search.take(
+                        values,
+                        [stable(r) for r in records],
+                        [r["key"] for r in records],
+                        [r.get("error") for r in records],
+                    )
                     step(search)
             sweep.set_total(sweep.bar.n + sum(s.remaining() for s in searches))
     return {search.out.label: search.out for search in searches}

@@ -10,37 +10,60 @@ validation/{cantilever,string,modes}.py and tests/test_validation_classic.py.
   "pinned"), instead of the paper's fixed first slice centre with a free right end.
 * free–free beam: the paper's torsion sail (Sec. IV.B) without the beam, both ends free.
 """
+
 from __future__ import annotations
 
 import math
 
 import numpy as np
 
+from lightsail_mbs.analysis.frequencies import SineFit, fit_sinusoid
 from lightsail_mbs.model import chain_theory as ct
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.solvers.settings import RunSettings
-from lightsail_mbs.analysis.frequencies import SineFit, fit_sinusoid
 
-WIRE_DIAMETER = 0.43e-3      # m, D'Addario G3 (paper Appendix B)
-CANTILEVER_RUN = RunSettings(t_final=2.0, stop_at_failure=False)             # Appendix A: 2 s
-STRING_RUN = RunSettings(t_final=0.05, output_interval=1e-5, stop_at_failure=False)   # Appendix B: 50 ms
+WIRE_DIAMETER = 0.43e-3  # m, D'Addario G3 (paper Appendix B)
+CANTILEVER_RUN = RunSettings(t_final=2.0, stop_at_failure=False)  # Appendix A: 2 s
+STRING_RUN = RunSettings(t_final=0.05, output_interval=1e-5, stop_at_failure=False)  # Appendix B: 50 ms
 FREE_RUN = RunSettings(stop_at_failure=False)
 
 
 def cantilever_case(n: int = 30, **changes) -> SailParameters:
     """Paper Appendix A: the clamped steel chain under the ramped tip load (Eq. 43)."""
-    base = dict(model="torsion", n=n, length=1.0, width=0.1, thickness=0.2, density=7800.0,
-                youngs_modulus=200e9, intensity=0.0, defect_amplitude=0.0, boundary="cantilever",
-                tip_load=100.0, tip_load_time_constant=0.3)
+    base = dict(
+        model="torsion",
+        n=n,
+        length=1.0,
+        width=0.1,
+        thickness=0.2,
+        density=7800.0,
+        youngs_modulus=200e9,
+        intensity=0.0,
+        defect_amplitude=0.0,
+        boundary="cantilever",
+        tip_load=100.0,
+        tip_load_time_constant=0.3,
+    )
     return SailParameters(**{**base, **changes})
 
 
 def g3_string_case(n: int = 20, **changes) -> SailParameters:
     """Paper Appendix B: the G3 string as an extensible TnT chain, pinned ends, half-sine pluck."""
     d = WIRE_DIAMETER
-    base = dict(model="tnt", n=n, length=0.6477, width=math.pi * d / (2 * math.sqrt(3)),
-                thickness=math.sqrt(3) / 2 * d, density=7800.0, youngs_modulus=210e9, tension=72.485,
-                intensity=0.0, defect_amplitude=1e-4, defect_mode=0.5, boundary="pinned")
+    base = dict(
+        model="tnt",
+        n=n,
+        length=0.6477,
+        width=math.pi * d / (2 * math.sqrt(3)),
+        thickness=math.sqrt(3) / 2 * d,
+        density=7800.0,
+        youngs_modulus=210e9,
+        tension=72.485,
+        intensity=0.0,
+        defect_amplitude=1e-4,
+        defect_mode=0.5,
+        boundary="pinned",
+    )
     return SailParameters(**{**base, **changes})
 
 
@@ -80,7 +103,7 @@ def quasi_static_tip(p: SailParameters, time: np.ndarray) -> np.ndarray:
     ys = ct.cantilever_tip_deflection(p.tip_load, p.length, bending_stiffness(p), p.n)
     w1 = ct.chain_angular_frequencies(p)[0]
     tau = p.tip_load_time_constant
-    return ys * (1.0 - np.exp(-time / tau) * w1 ** 2 / (w1 ** 2 + tau ** -2))
+    return ys * (1.0 - np.exp(-time / tau) * w1**2 / (w1**2 + tau**-2))
 
 
 def plateau(p: SailParameters, time: np.ndarray, tip: np.ndarray, start: float = 0.5) -> SineFit:
@@ -97,9 +120,12 @@ def error_budget(p: SailParameters, settings: RunSettings = CANTILEVER_RUN) -> d
     centres = p.slice_length * (np.arange(1, p.n + 1) - 0.5)
     static = ct.cantilever_deflection(p.tip_load, p.length, EI, p.n)
     _, vibration = ct.tip_ramp_vibration(p)
-    return {"discretisation": paper_error(p, centres, static),
-            "load_deficit": static[-1] * math.exp(-settings.t_final / p.tip_load_time_constant),
-            "vibration": float(vibration[0]), "vibration_bound": float(vibration.sum())}
+    return {
+        "discretisation": paper_error(p, centres, static),
+        "load_deficit": static[-1] * math.exp(-settings.t_final / p.tip_load_time_constant),
+        "vibration": float(vibration[0]),
+        "vibration_bound": float(vibration.sum()),
+    }
 
 
 # ---- string -------------------------------------------------------------------------------
@@ -119,9 +145,11 @@ def string_references(p: SailParameters) -> dict:
     continuous string of the chain's stretched length L(1 + T/EA) with the same total mass."""
     mu = line_density(p)
     stretched = p.length + (p.n - 1) * p.tension / p.axial_stiffness if p.extensible else p.length
-    return {"discrete": float(ct.chain_angular_frequencies(p)[0] / (2 * math.pi)),
-            "continuous": ct.string_frequency(p.tension, mu, p.length),
-            "continuous_stretched": ct.string_frequency(p.tension, mu * p.length / stretched, stretched)}
+    return {
+        "discrete": float(ct.chain_angular_frequencies(p)[0] / (2 * math.pi)),
+        "continuous": ct.string_frequency(p.tension, mu, p.length),
+        "continuous_stretched": ct.string_frequency(p.tension, mu * p.length / stretched, stretched),
+    }
 
 
 # ---- linearised modes ---------------------------------------------------------------------

@@ -4,8 +4,10 @@ For each case both solvers run the same SailParameters; the report gives the lar
 difference max |Δθ| over the samples where both amplitudes are below 1.5× their initial value
 (the instability amplifies any difference by e every ~0.1 s after that), each solver's failure
 verdict and time, their relative difference, the wall times and, for free vibration (I₀ = 0), the
-reduced solver's energy drift. Plots (viz.plots.crosscheck_figure): θ of three slices from both solvers and |Δθ| on a log scale.
+reduced solver's energy drift. Plots (viz.plots.crosscheck_figure): θ of three slices from both
+solvers and |Δθ| on a log scale.
 """
+
 from __future__ import annotations
 
 import math
@@ -20,9 +22,9 @@ from lightsail_mbs.solvers import solve
 from lightsail_mbs.solvers.settings import RunSettings, paper_settings
 from lightsail_mbs.studies.tables import fmt
 
-WINDOW_RATIO = 1.5           # compare angles while both amplitudes are < 1.5 × initial
-ANGLE_LIMIT = 1e-6           # rad
-FAILURE_TIME_LIMIT = 0.01    # relative
+WINDOW_RATIO = 1.5  # compare angles while both amplitudes are < 1.5 × initial
+ANGLE_LIMIT = 1e-6  # rad
+FAILURE_TIME_LIMIT = 0.01  # relative
 
 
 @dataclass(frozen=True)
@@ -32,37 +34,65 @@ class Case:
     settings: RunSettings
     note: str
     reduced_options: dict = field(default_factory=lambda: dict(rtol=1e-10))
-    exudyn_step_scale: float = 1.0   # × exudyn_chain.default_step_size: generalized-α is 2nd order, the
-                                     # reduced DOP853 8th: the comparison needs a finer Exudyn step
+    exudyn_step_scale: float = 1.0  # × exudyn_chain.default_step_size: generalized-α is 2nd order, the
+    # reduced DOP853 8th: the comparison needs a finer Exudyn step
 
 
 def free_tnt() -> SailParameters:
     """An unlit, untensioned extensible chain with bending on, thick (h = 1 cm) so that its axial
     springs (ω ≈ 10⁴ rad/s) stay within a factor ~10 of its bending modes and both solvers resolve them."""
-    return SailParameters(model="tnt", n=6, intensity=0.0, tension=0.0, bending=True, youngs_modulus=1e9,
-                          thickness=1e-2, defect_amplitude=1e-2)
+    return SailParameters(
+        model="tnt",
+        n=6,
+        intensity=0.0,
+        tension=0.0,
+        bending=True,
+        youngs_modulus=1e9,
+        thickness=1e-2,
+        defect_amplitude=1e-2,
+    )
 
 
 SIX_SECONDS = RunSettings(t_final=6.0)
 CASES = {
-    "rigid-0.5": Case("rigid-0.5", paper_case("rigid", defect_mode=0.5), paper_settings("rigid"),
-                      "Fig. 5c–d: mode ½ does not fail"),
+    "rigid-0.5": Case(
+        "rigid-0.5", paper_case("rigid", defect_mode=0.5), paper_settings("rigid"), "Fig. 5c–d: mode ½ does not fail"
+    ),
     # the stiffness-free chain amplifies round-off ~e^25 by the 1.5× window: the reduced solution itself
     # moves by 2e-7 … 5e-6 rad between rtol 1e-9 … 1e-12, so both solvers run near their limits here
-    "rigid-1.5": Case("rigid-1.5", paper_case("rigid", defect_mode=1.5), paper_settings("rigid"),
-                      "Fig. 5a–b: trough failure",
-                      dict(rtol=1e-12, atol=1e-17), exudyn_step_scale=0.0625),
-    "torsion-stable": Case("torsion-stable", paper_case("torsion-stable"), SIX_SECONDS, "Fig. 6: E = 4.5e13 Pa",
-                           exudyn_step_scale=0.25),
-    "torsion-soft": Case("torsion-soft", paper_case("torsion-soft"), SIX_SECONDS, "Fig. 7: E = 4.5e9 Pa",
-                         exudyn_step_scale=0.125),
+    "rigid-1.5": Case(
+        "rigid-1.5",
+        paper_case("rigid", defect_mode=1.5),
+        paper_settings("rigid"),
+        "Fig. 5a–b: trough failure",
+        dict(rtol=1e-12, atol=1e-17),
+        exudyn_step_scale=0.0625,
+    ),
+    "torsion-stable": Case(
+        "torsion-stable", paper_case("torsion-stable"), SIX_SECONDS, "Fig. 6: E = 4.5e13 Pa", exudyn_step_scale=0.25
+    ),
+    "torsion-soft": Case(
+        "torsion-soft", paper_case("torsion-soft"), SIX_SECONDS, "Fig. 7: E = 4.5e9 Pa", exudyn_step_scale=0.125
+    ),
     "tnt-stable": Case("tnt-stable", paper_case("tnt-stable"), SIX_SECONDS, "Fig. 10: T = 3.34e-3 N"),
-    "tnt-soft": Case("tnt-soft", paper_case("tnt-soft"), SIX_SECONDS, "Fig. 11: T = 3.34e-8 N",
-                     exudyn_step_scale=0.125),
-    "free-torsion": Case("free-torsion", paper_case("torsion-stable", intensity=0.0), RunSettings(t_final=1.0),
-                         "free vibration, I₀ = 0", exudyn_step_scale=0.25),
-    "free-tnt": Case("free-tnt", free_tnt(), RunSettings(t_final=0.02), "free vibration, I₀ = 0, T = 0, bending on",
-                     dict(rtol=1e-10, method="DOP853"), exudyn_step_scale=0.25),
+    "tnt-soft": Case(
+        "tnt-soft", paper_case("tnt-soft"), SIX_SECONDS, "Fig. 11: T = 3.34e-8 N", exudyn_step_scale=0.125
+    ),
+    "free-torsion": Case(
+        "free-torsion",
+        paper_case("torsion-stable", intensity=0.0),
+        RunSettings(t_final=1.0),
+        "free vibration, I₀ = 0",
+        exudyn_step_scale=0.25,
+    ),
+    "free-tnt": Case(
+        "free-tnt",
+        free_tnt(),
+        RunSettings(t_final=0.02),
+        "free vibration, I₀ = 0, T = 0, bending on",
+        dict(rtol=1e-10, method="DOP853"),
+        exudyn_step_scale=0.25,
+    ),
 }
 
 
@@ -92,36 +122,59 @@ def compare(case: Case, exudyn, reduced) -> dict:
     dtheta = np.abs(exudyn.theta[ie[:end]] - reduced.theta[ir[:end]]).max() if end else math.nan
     t_ex, t_red = exudyn.failure_time, reduced.failure_time
     rel = abs(t_ex - t_red) / t_red if t_ex is not None and t_red is not None else None
-    row = dict(case=case.name, note=case.note, window_end=float(exudyn.time[ie[end - 1]]) if end else 0.0,
-               max_dtheta=float(dtheta), failed_exudyn=exudyn.failed, failed_reduced=reduced.failed,
-               failure_time_exudyn=t_ex, failure_time_reduced=t_red, failure_time_rel_diff=rel,
-               wall_exudyn=exudyn.wall_time, wall_reduced=reduced.wall_time,
-               error_exudyn=exudyn.error, error_reduced=reduced.error, energy_drift=None)
+    row = dict(
+        case=case.name,
+        note=case.note,
+        window_end=float(exudyn.time[ie[end - 1]]) if end else 0.0,
+        max_dtheta=float(dtheta),
+        failed_exudyn=exudyn.failed,
+        failed_reduced=reduced.failed,
+        failure_time_exudyn=t_ex,
+        failure_time_reduced=t_red,
+        failure_time_rel_diff=rel,
+        wall_exudyn=exudyn.wall_time,
+        wall_reduced=reduced.wall_time,
+        error_exudyn=exudyn.error,
+        error_reduced=reduced.error,
+        energy_drift=None,
+    )
     if case.params.intensity == 0:
         energy = analysis.mechanical_energy(reduced)
         row["energy_drift"] = float(np.abs(energy / energy[0] - 1).max())
-    row["passed"] = bool(dtheta <= ANGLE_LIMIT and row["failed_exudyn"] == row["failed_reduced"]
-                         and (rel is None or rel <= FAILURE_TIME_LIMIT)
-                         and not exudyn.error and not reduced.error
-                         and (row["energy_drift"] is None or row["energy_drift"] <= 1e-8))
+    row["passed"] = bool(
+        dtheta <= ANGLE_LIMIT
+        and row["failed_exudyn"] == row["failed_reduced"]
+        and (rel is None or rel <= FAILURE_TIME_LIMIT)
+        and not exudyn.error
+        and not reduced.error
+        and (row["energy_drift"] is None or row["energy_drift"] <= 1e-8)
+    )
     return row
 
 
 def markdown(rows: list[dict]) -> str:
-    lines = ["# Cross-check: Exudyn chain vs reduced-Lagrangian chain", "",
-             "Generated by `python validation/crosscheck.py` (or `lightsail-mbs crosscheck`). "
-             f"max |Δθ| is taken while both amplitudes are below {WINDOW_RATIO}× their initial value; "
-             f"pass: max |Δθ| ≤ {ANGLE_LIMIT:g} rad, same verdict, failure times within "
-             f"{FAILURE_TIME_LIMIT:.0%}, no solver error, free-vibration energy drift ≤ 1e-8.", "",
-             "| case | note | Exudyn step (s) | max abs Δθ (rad) | window end (s) | failed exudyn / reduced | t_fail exudyn (s) | "
-             "t_fail reduced (s) | rel. diff | wall exudyn (s) | wall reduced (s) | energy drift | pass |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    lines = [
+        "# Cross-check: Exudyn chain vs reduced-Lagrangian chain",
+        "",
+        "Generated by `python validation/crosscheck.py` (or `lightsail-mbs crosscheck`). "
+        f"max |Δθ| is taken while both amplitudes are below {WINDOW_RATIO}× their initial value; "
+        f"pass: max |Δθ| ≤ {ANGLE_LIMIT:g} rad, same verdict, failure times within "
+        f"{FAILURE_TIME_LIMIT:.0%}, no solver error, free-vibration energy drift ≤ 1e-8.",
+        "",
+        "| case | note | Exudyn step (s) | max abs Δθ (rad) | window end (s) | failed exudyn / reduced "
+        "| t_fail exudyn (s) | t_fail reduced (s) | rel. diff | wall exudyn (s) | wall reduced (s) | energy drift "
+        "| pass |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
     for r in rows:
-        lines.append(f"| {r['case']} | {r['note']} | {fmt(r.get('exudyn_step'), '.3g')} | {fmt(r['max_dtheta'], '.2e')} | {fmt(r['window_end'])} | "
-                     f"{fmt(r['failed_exudyn'])} / {fmt(r['failed_reduced'])} | {fmt(r['failure_time_exudyn'], '.6g')} | "
-                     f"{fmt(r['failure_time_reduced'], '.6g')} | {fmt(r['failure_time_rel_diff'], '.2e')} | "
-                     f"{fmt(r['wall_exudyn'], '.3g')} | {fmt(r['wall_reduced'], '.3g')} | "
-                     f"{fmt(r['energy_drift'], '.1e')} | {'✅' if r['passed'] else '❌'} |")
+        lines.append(
+            f"| {r['case']} | {r['note']} | {fmt(r.get('exudyn_step'), '.3g')} | {fmt(r['max_dtheta'], '.2e')} | "
+            f"{fmt(r['window_end'])} | "
+            f"{fmt(r['failed_exudyn'])} / {fmt(r['failed_reduced'])} | {fmt(r['failure_time_exudyn'], '.6g')} | "
+            f"{fmt(r['failure_time_reduced'], '.6g')} | {fmt(r['failure_time_rel_diff'], '.2e')} | "
+            f"{fmt(r['wall_exudyn'], '.3g')} | {fmt(r['wall_reduced'], '.3g')} | "
+            f"{fmt(r['energy_drift'], '.1e')} | {'✅' if r['passed'] else '❌'} |"
+        )
     errors = [r for r in rows if r["error_exudyn"] or r["error_reduced"]]
     for r in errors:
         lines.append(f"\n{r['case']}: exudyn error {r['error_exudyn']!r}, reduced error {r['error_reduced']!r}")
@@ -129,8 +182,13 @@ def markdown(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
-def run(names: list[str] | None = None, out_dir: Path | str = "validation", progress: bool = False,
-        write: bool = True, exudyn_step_scale: float = 1.0) -> list[dict]:
+def run(
+    names: list[str] | None = None,
+    out_dir: Path | str = "validation",
+    progress: bool = False,
+    write: bool = True,
+    exudyn_step_scale: float = 1.0,
+) -> list[dict]:
     """Run the selected cases with both solvers; write crosscheck.md and the plots into out_dir.
 
     exudyn_step_scale multiplies each case's Exudyn step (its own scale × exudyn_chain.default_step_size):
@@ -154,12 +212,21 @@ def run(names: list[str] | None = None, out_dir: Path | str = "validation", prog
             from lightsail_mbs.viz.plots import crosscheck_figure
 
             ie, ir = common_samples(exudyn.time, reduced.time, case.settings.sample_interval)
-            crosscheck_figure(exudyn, reduced, ie, ir, f"{case.name}: {case.note}", ANGLE_LIMIT,
-                              out_dir / f"crosscheck_{case.name}.png")
+            crosscheck_figure(
+                exudyn,
+                reduced,
+                ie,
+                ir,
+                f"{case.name}: {case.note}",
+                ANGLE_LIMIT,
+                out_dir / f"crosscheck_{case.name}.png",
+            )
         if progress:
-            print(f"  max|Δθ| = {row['max_dtheta']:.2e} rad, failed {row['failed_exudyn']}/{row['failed_reduced']}, "
-                  f"wall {row['wall_exudyn']:.3g}/{row['wall_reduced']:.3g} s, {'pass' if row['passed'] else 'FAIL'}",
-                  flush=True)
+            print(
+                f"  max|Δθ| = {row['max_dtheta']:.2e} rad, failed {row['failed_exudyn']}/{row['failed_reduced']}, "
+                f"wall {row['wall_exudyn']:.3g}/{row['wall_reduced']:.3g} s, {'pass' if row['passed'] else 'FAIL'}",
+                flush=True,
+            )
     if write:
         out_dir.mkdir(parents=True, exist_ok=True)
         (out_dir / "crosscheck.md").write_text(markdown(rows))

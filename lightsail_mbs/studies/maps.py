@@ -5,16 +5,17 @@ Each boundary is bracketed around the analytic value (analytic / span … analyt
 if needed) and bisected in log space by :func:`lightsail_mbs.bisection.bisect_boundaries` until the
 bracket is at most ``factor`` wide; every run is a resumable case of the sweep store.
 """
+
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
 
 from lightsail_mbs.model import theory
-from lightsail_mbs.studies.bisection import BoundaryProblem, bisect_boundaries
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
 from lightsail_mbs.solvers.settings import RunSettings
+from lightsail_mbs.studies.bisection import BoundaryProblem, bisect_boundaries
 from lightsail_mbs.studies.sweep import solve_case
 
 # the swept parameter of each model and its analytic critical value
@@ -48,16 +49,36 @@ class MapRow:
         return None if b is None else b / self.analytic
 
     def as_dict(self) -> dict:
-        return {"thickness_m": self.thickness, "mode": self.mode, "t_final_s": self.t_final,
-                "analytic": self.analytic, "stable_value": self.stable_value,
-                "unstable_value": self.unstable_value, "boundary": self.boundary, "ratio": self.ratio,
-                "status": self.status, "evaluations": len(self.points)}
+        return {
+            "thickness_m": self.thickness,
+            "mode": self.mode,
+            "t_final_s": self.t_final,
+            "analytic": self.analytic,
+            "stable_value": self.stable_value,
+            "unstable_value": self.unstable_value,
+            "boundary": self.boundary,
+            "ratio": self.ratio,
+            "status": self.status,
+            "evaluations": len(self.points),
+        }
 
 
-def boundary_map(base: SailParameters, cases, *, store_dir, settings: RunSettings, solver: str = "exudyn",
-                 factor: float = 1.5, span: float = 30.0, workers=None, scheduler=None,
-                 progress: bool = True, options: dict | None = None, max_expansions: int = 1,
-                 case_function: Callable = solve_case) -> list[MapRow]:
+def boundary_map(
+    base: SailParameters,
+    cases,
+    *,
+    store_dir,
+    settings: RunSettings,
+    solver: str = "exudyn",
+    factor: float = 1.5,
+    span: float = 30.0,
+    workers=None,
+    scheduler=None,
+    progress: bool = True,
+    options: dict | None = None,
+    max_expansions: int = 1,
+    case_function: Callable = solve_case,
+) -> list[MapRow]:
     """Bisect the boundary of ``base`` (model torsion: E; tnt: T) at every (thickness, mode) of
     ``cases``; one row per case, in their order, each run with ``settings``. All boundaries advance at
     once on one sweep.
@@ -76,11 +97,32 @@ def boundary_map(base: SailParameters, cases, *, store_dir, settings: RunSetting
         a = float(critical(p))
         analytic[(float(h), float(nu))] = a
         problems[(float(h), float(nu))] = BoundaryProblem(
-            lambda value, p=p: p.replace(**{name: float(value)}), a / span, a * span)
-    found = bisect_boundaries(problems, store_dir=store_dir, solver=solver, settings=settings, options=options,
-                              factor=factor,
-                              workers=workers, scheduler=scheduler, progress=progress, max_expansions=max_expansions,
-                              case_function=case_function)
-    return [MapRow(h, nu, settings.t_final, analytic[(h, nu)], b.stable_value, b.unstable_value, b.status,
-                   b.message, [(v, s) for v, s, _ in b.evaluations])
-            for (h, nu), b in found.items()]
+            lambda value, p=p: p.replace(**{name: float(value)}), a / span, a * span
+        )
+    found = bisect_boundaries(
+        problems,
+        store_dir=store_dir,
+        solver=solver,
+        settings=settings,
+        options=options,
+        factor=factor,
+        workers=workers,
+        scheduler=scheduler,
+        progress=progress,
+        max_expansions=max_expansions,
+        case_function=case_function,
+    )
+    return [
+        MapRow(
+            h,
+            nu,
+            settings.t_final,
+            analytic[(h, nu)],
+            b.stable_value,
+            b.unstable_value,
+            b.status,
+            b.message,
+            [(v, s) for v, s, _ in b.evaluations],
+        )
+        for (h, nu), b in found.items()
+    ]

@@ -5,6 +5,7 @@ For each value of a swept parameter (E or T), N seeded defects (shapes.multimode
 Wilson score interval, and the failure-time distribution of the failed runs (median, quartiles,
 mean with its 95 % Student-t interval).
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -21,6 +22,7 @@ SWEEPABLE = ("youngs_modulus", "tension", "thickness", "intensity", "defect_ampl
 def wilson_interval(failures: int, trials: int, confidence: float = 0.95) -> tuple[float, float]:
     """Wilson score interval for a binomial proportion (Wilson 1927)."""
     from statistics import NormalDist
+
     if trials == 0:
         return (0.0, 1.0)
     z = NormalDist().inv_cdf(0.5 + confidence / 2)
@@ -46,42 +48,90 @@ class MonteCarloRow:
     failure_time_mean_halfwidth: float | None
 
 
-def cases(base: SailParameters, parameter: str, values, seeds: int, solver: str = "exudyn",
-          options: dict | None = None, settings: RunSettings | None = None) -> list[Case]:
+def cases(
+    base: SailParameters,
+    parameter: str,
+    values,
+    seeds: int,
+    solver: str = "exudyn",
+    options: dict | None = None,
+    settings: RunSettings | None = None,
+) -> list[Case]:
     """The sweep: every (value, seed) pair, seeds 0…seeds−1."""
     if parameter not in SWEEPABLE:
         raise ParameterError(f"parameter={parameter!r} is invalid: allowed one of {', '.join(SWEEPABLE)}")
     if not isinstance(seeds, int) or seeds < 1:
         raise ParameterError(f"seeds={seeds!r} is invalid: allowed an integer ≥ 1")
-    return [Case(base.replace(**{parameter: float(v)}, defect_seed=s), solver, dict(options or {}),
-                 settings=settings or RunSettings())
-            for v in values for s in range(seeds)]
+    return [
+        Case(
+            base.replace(**{parameter: float(v)}, defect_seed=s),
+            solver,
+            dict(options or {}),
+            settings=settings or RunSettings(),
+        )
+        for v in values
+        for s in range(seeds)
+    ]
 
 
 def summarise(values, seeds: int, records: list[dict]) -> list[MonteCarloRow]:
     """Group the records (in the order of `cases`) by value and summarise each group."""
     from scipy import stats
+
     rows = []
     for i, value in enumerate(values):
-        group = records[i * seeds:(i + 1) * seeds]
+        group = records[i * seeds : (i + 1) * seeds]
         ok = [r for r in group if r["status"] == "ok"]
         times = np.array([r["failure_time"] for r in ok if r["failed"]], float)
         k = times.size
         low, high = wilson_interval(k, len(ok))
         half = float(stats.t.ppf(0.975, k - 1) * times.std(ddof=1) / np.sqrt(k)) if k > 1 else None
         q = np.percentile(times, [25, 50, 75]) if k else [None] * 3
-        rows.append(MonteCarloRow(float(value), len(ok), k, len(group) - len(ok), k / len(ok) if ok else float("nan"),
-                                  low, high, _f(q[1]), _f(q[0]), _f(q[2]), _f(times.mean()) if k else None, half))
+        rows.append(
+            MonteCarloRow(
+                float(value),
+                len(ok),
+                k,
+                len(group) - len(ok),
+                k / len(ok) if ok else float("nan"),
+                low,
+                high,
+                _f(q[1]),
+                _f(q[0]),
+                _f(q[2]),
+                _f(times.mean()) if k else None,
+                half,
+            )
+        )
     return rows
 
 
-def run(base: SailParameters, parameter: str, values, seeds: int, store_dir, *, solver: str = "exudyn",
-        settings: RunSettings | None = None, options: dict | None = None, workers: int | None = None,
-        scheduler=None, progress: bool = True, case_function=solve_case) -> list[MonteCarloRow]:
+def run(
+    base: SailParameters,
+    parameter: str,
+    values,
+    seeds: int,
+    store_dir,
+    *,
+    solver: str = "exudyn",
+    settings: RunSettings | None = None,
+    options: dict | None = None,
+    workers: int | None = None,
+    scheduler=None,
+    progress: bool = True,
+    case_function=solve_case,
+) -> list[MonteCarloRow]:
     """Run (or resume) the Monte Carlo sweep and summarise it per value."""
     values = [float(v) for v in values]
-    records = run_sweep(cases(base, parameter, values, seeds, solver, options, settings), store_dir, workers=workers,
-                        scheduler=scheduler, progress=progress, case_function=case_function, label="monte carlo")
+    records = run_sweep(
+        cases(base, parameter, values, seeds, solver, options, settings),
+        store_dir,
+        workers=workers,
+        scheduler=scheduler,
+        progress=progress,
+        case_function=case_function,
+        label="monte carlo",
+    )
     return summarise(values, seeds, records)
 
 

@@ -4,6 +4,7 @@ A runner takes cases at any time (``submit``) and hands back finished ones (``wa
 least one is done; ``[]`` when none is left), each as ``(case, record, result)`` from :func:`execute`,
 which runs in the worker and never raises for a failing case.
 """
+
 from __future__ import annotations
 
 import collections
@@ -13,8 +14,8 @@ import multiprocessing
 import os
 import time
 import traceback
+from collections.abc import Callable
 from concurrent.futures.process import BrokenProcessPool
-from typing import Callable
 
 from lightsail_mbs.result import Result
 
@@ -31,8 +32,12 @@ def execute(case_function: Callable, case) -> tuple[dict, Result | None]:
     try:
         out = case_function(case)
     except Exception as exc:  # a failing case is a record, not a crash of the sweep
-        record = {"status": "error", "error": f"{type(exc).__name__}: {exc}", "failed": None,
-                  "traceback": traceback.format_exc(limit=-8)}
+        record = {
+            "status": "error",
+            "error": f"{type(exc).__name__}: {exc}",
+            "failed": None,
+            "traceback": traceback.format_exc(limit=-8),
+        }
     else:
         if isinstance(out, Result):
             record = out.summary()
@@ -47,8 +52,13 @@ def execute(case_function: Callable, case) -> tuple[dict, Result | None]:
 
 def identity(case) -> dict:
     """What every record says about its case."""
-    return {"key": case.key, "solver": case.solver, "options": case.options,
-            "parameters": case.params.to_dict(), "settings": case.settings.to_dict()}
+    return {
+        "key": case.key,
+        "solver": case.solver,
+        "options": case.options,
+        "parameters": case.params.to_dict(),
+        "settings": case.settings.to_dict(),
+    }
 
 
 def lost_record(case, why: str) -> dict:
@@ -70,6 +80,7 @@ def dask_client(scheduler):
         yield scheduler
         return
     from distributed import Client
+
     with Client(scheduler) as client:
         yield client
 
@@ -119,7 +130,7 @@ class PoolRunner:
         method = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
         self.context = multiprocessing.get_context(method)
         self.queue, self.suspects = collections.deque(), collections.deque()
-        self.running: dict[cf.Future, tuple[object, bool]] = {}   # future -> (case, running alone?)
+        self.running: dict[cf.Future, tuple[object, bool]] = {}  # future -> (case, running alone?)
         self.pool = cf.ProcessPoolExecutor(workers, mp_context=self.context)
 
     def submit(self, case) -> None:
@@ -139,7 +150,7 @@ class PoolRunner:
                 while not self.suspects and self.queue and len(self.running) < 2 * self.workers:
                     self._start(self.queue, alone=False)
                 done, _ = cf.wait(self.running, return_when=cf.FIRST_COMPLETED)
-            except BrokenProcessPool:   # the pool broke while cases were being submitted
+            except BrokenProcessPool:  # the pool broke while cases were being submitted
                 done, broken = set(), True
             for future in done:
                 case, alone = self.running.pop(future)
@@ -148,8 +159,7 @@ class PoolRunner:
                 except BrokenProcessPool:
                     broken = True
                     if alone:
-                        finished.append((case, lost_record(case, "worker process died running this case"),
-                                         None))
+                        finished.append((case, lost_record(case, "worker process died running this case"), None))
                     else:
                         self.suspects.append(case)
             if broken:
@@ -178,6 +188,7 @@ class DaskRunner:
         if not self.futures:
             return []
         from distributed import wait
+
         done, _ = wait(list(self.futures), return_when="FIRST_COMPLETED")
         finished = []
         for future in done:

@@ -12,6 +12,7 @@ version, is *corrupt*; a record whose saved Result is missing or unreadable is *
 count as not finished: the sweep recomputes them. :meth:`CaseStore.audit` reports them without
 recomputing (``lightsail-mbs store DIR``).
 """
+
 from __future__ import annotations
 
 import json
@@ -64,7 +65,7 @@ class CaseStore:
         return self.directory / "results" / f"{key}.npz"
 
     def state(self, key: str, with_result: bool = False) -> str:
-        """"current", "missing", "corrupt", "stale" or (a current record without its asked-for saved
+        """ "current", "missing", "corrupt", "stale" or (a current record without its asked-for saved
         Result) "incomplete"."""
         path = self.record_path(key)
         if not path.exists():

@@ -15,24 +15,25 @@ Records are written by this (the submitting) process, so cluster workers need no
 :class:`Sweep` is the live form: submit cases at any time and collect them as they finish (the
 stability bisections of :mod:`lightsail_mbs.bisection` choose each case from the previous ones).
 """
+
 from __future__ import annotations
 
 import hashlib
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable
 
 from lightsail_mbs.model.parameters import LEGACY_NAMES, ParameterError, SailParameters
 from lightsail_mbs.result import Result
-from lightsail_mbs.studies.runners import available_cores, dask_client, make_runner
 from lightsail_mbs.solvers.settings import RunSettings
+from lightsail_mbs.studies.runners import available_cores, dask_client, make_runner
 from lightsail_mbs.studies.store import CaseStore, to_json
 
 __all__ = ["Case", "Sweep", "run_sweep", "run_cases", "solve_case", "available_cores", "dask_client"]
 
 KEY_LENGTH = 20  # hex digits of the SHA-256 of a case's description
-STORED_NAMES = {new: old for old, new in LEGACY_NAMES.items()}   # field names in the key's parameter dict
+STORED_NAMES = {new: old for old, new in LEGACY_NAMES.items()}  # field names in the key's parameter dict
 
 
 @dataclass(frozen=True)
@@ -53,8 +54,9 @@ class Case:
         try:
             text = to_json(self.description())
         except TypeError as exc:
-            raise ParameterError(f"options={self.options!r} is invalid: allowed JSON-serialisable "
-                                 f"values only ({exc})") from None
+            raise ParameterError(
+                f"options={self.options!r} is invalid: allowed JSON-serialisable values only ({exc})"
+            ) from None
         object.__setattr__(self, "key", hashlib.sha256(text.encode()).hexdigest()[:KEY_LENGTH])
 
     def description(self) -> dict:
@@ -68,6 +70,7 @@ class Case:
 def solve_case(case: Case) -> Result:
     """The default case function: ``lightsail_mbs.solve(params, solver, settings, **options)``, no progress bar."""
     from lightsail_mbs.solvers import solve
+
     return solve(case.params, case.solver, case.settings, progress=False, **case.options)
 
 
@@ -81,8 +84,17 @@ class Sweep:
     Arguments: see :func:`run_sweep`.
     """
 
-    def __init__(self, store_dir, *, workers: int | None = None, scheduler=None, progress: bool = True,
-                 case_function: Callable = solve_case, retry_errors: bool = False, label: str = "sweep"):
+    def __init__(
+        self,
+        store_dir,
+        *,
+        workers: int | None = None,
+        scheduler=None,
+        progress: bool = True,
+        case_function: Callable = solve_case,
+        retry_errors: bool = False,
+        label: str = "sweep",
+    ):
         if workers is not None and (not isinstance(workers, int) or isinstance(workers, bool) or workers < 1):
             raise ParameterError(f"workers={workers!r} is invalid: allowed an integer ≥ 1 or None (all cores)")
         self.store = CaseStore(store_dir)
@@ -90,15 +102,23 @@ class Sweep:
         self.case_function, self.retry_errors, self.label = case_function, retry_errors, label
         self.errors = 0
         self._ready: list[tuple[Case, dict]] = []
-        self._waiting: dict[str, list[Case]] = {}   # key -> submissions of a case now running
+        self._waiting: dict[str, list[Case]] = {}  # key -> submissions of a case now running
 
-    def __enter__(self) -> "Sweep":
+    def __enter__(self) -> Sweep:
         from tqdm import tqdm
+
         self._client_context = dask_client(self.scheduler)
         client = self._client_context.__enter__()
         self._runner = make_runner(self.case_function, workers=self.workers, client=client)
-        self.bar = tqdm(total=0, desc=self.label, unit="case", file=sys.stderr, disable=not self.progress,
-                        dynamic_ncols=True, smoothing=0.1)
+        self.bar = tqdm(
+            total=0,
+            desc=self.label,
+            unit="case",
+            file=sys.stderr,
+            disable=not self.progress,
+            dynamic_ncols=True,
+            smoothing=0.1,
+        )
         return self
 
     def __exit__(self, kind, value, tb) -> None:
@@ -159,9 +179,17 @@ class Sweep:
         return finished
 
 
-def run_sweep(cases, store_dir, *, workers: int | None = None, scheduler=None, progress: bool = True,
-              case_function: Callable = solve_case, retry_errors: bool = False,
-              label: str = "sweep") -> list[dict]:
+def run_sweep(
+    cases,
+    store_dir,
+    *,
+    workers: int | None = None,
+    scheduler=None,
+    progress: bool = True,
+    case_function: Callable = solve_case,
+    retry_errors: bool = False,
+    label: str = "sweep",
+) -> list[dict]:
     """Run every case not yet in the store at ``store_dir``; return the records in the order of ``cases``.
 
     workers: local processes (default: all cores; 1 runs in this process). Ignored with a scheduler.
@@ -174,8 +202,15 @@ def run_sweep(cases, store_dir, *, workers: int | None = None, scheduler=None, p
     """
     cases = list(cases)
     unique = {getattr(case, "key", id(case)): case for case in cases}
-    with Sweep(store_dir, workers=_fewer(workers, len(unique)), scheduler=scheduler, progress=progress,
-               case_function=case_function, retry_errors=retry_errors, label=label) as sweep:
+    with Sweep(
+        store_dir,
+        workers=_fewer(workers, len(unique)),
+        scheduler=scheduler,
+        progress=progress,
+        case_function=case_function,
+        retry_errors=retry_errors,
+        label=label,
+    ) as sweep:
         sweep.set_total(len(unique))
         for case in unique.values():
             sweep.submit(case)
@@ -188,12 +223,21 @@ def run_sweep(cases, store_dir, *, workers: int | None = None, scheduler=None, p
 def _fewer(workers: int | None, cases: int) -> int | None:
     """No more local workers than cases (at least one)."""
     if workers is not None and not (isinstance(workers, int) and workers >= 1):
-        return workers   # let Sweep reject it with its message
+        return workers  # let Sweep reject it with its message
     return max(1, min(workers or available_cores(), cases))
 
 
-def run_cases(params_list, store_dir, settings, *, solver: str = "exudyn", workers=None, scheduler=None,
-              label: str = "cases", progress: bool = True) -> list[tuple[dict, Result | None]]:
+def run_cases(
+    params_list,
+    store_dir,
+    settings,
+    *,
+    solver: str = "exudyn",
+    workers=None,
+    scheduler=None,
+    label: str = "cases",
+    progress: bool = True,
+) -> list[tuple[dict, Result | None]]:
     """Run (or find in the store) every case with its full Result saved; return (record, Result) pairs
     in order. settings: one RunSettings for every case, or one per case. A case whose solver failed comes
     back with its record and, if any, its partial Result."""

@@ -1,4 +1,5 @@
 """The one place that writes tables: CSV files and Markdown tables (printed or returned as text)."""
+
 from __future__ import annotations
 
 import csv

@@ -6,6 +6,7 @@ other with one exaggeration and colour scale; make_movie turns frames into an MP
 no system ffmpeg) or a GIF (Pillow). What a frame shows is render_scene's job; drawing it is the job
 of a renderer: "matplotlib" (Agg) or "exudyn" (Exudyn's software raytracer, no display).
 """
+
 from __future__ import annotations
 
 import math
@@ -25,8 +26,9 @@ AUTO_ORDER = ("exudyn", "matplotlib")
 DEFAULT_FRAMES = 100
 
 
-def frame_indices(time: np.ndarray, frames: int | None = None, every_seconds: float | None = None,
-                  failure_time: float | None = None) -> np.ndarray:
+def frame_indices(
+    time: np.ndarray, frames: int | None = None, every_seconds: float | None = None, failure_time: float | None = None
+) -> np.ndarray:
     """Indices of the stored states to draw, increasing and distinct.
 
     frames=N: the states nearest to N evenly spaced times from the first to the last stored time;
@@ -46,8 +48,9 @@ def frame_indices(time: np.ndarray, frames: int | None = None, every_seconds: fl
     else:
         n = min(DEFAULT_FRAMES, count) if frames is None else frames
         if not (isinstance(n, (int, np.integer)) and 1 <= n <= count):
-            raise ParameterError(f"frames={frames!r} is invalid: allowed an integer 1 ≤ frames ≤ {count} "
-                                 "(the number of stored states)")
+            raise ParameterError(
+                f"frames={frames!r} is invalid: allowed an integer 1 ≤ frames ≤ {count} (the number of stored states)"
+            )
         targets = np.linspace(time[0], time[-1], int(n))
     picks = _nearest(time, targets)
     if failure_time is not None:
@@ -59,7 +62,7 @@ def frame_indices(time: np.ndarray, frames: int | None = None, every_seconds: fl
         # several targets fell on one state (uneven output): fill up with the unused states nearest the gaps
         spare = np.setdiff1d(np.arange(count), picks)
         extra = spare[np.argsort(np.abs(time[spare][:, None] - targets[None, :]).min(axis=1), kind="stable")]
-        picks = np.sort(np.concatenate([picks, extra[:targets.size - picks.size]]))
+        picks = np.sort(np.concatenate([picks, extra[: targets.size - picks.size]]))
     return picks
 
 
@@ -82,11 +85,17 @@ def parse_size(size) -> tuple[int, int]:
             size = tuple(int(v) for v in size.lower().split("x"))
         except ValueError:
             size = ()
-    ok = (len(size) == 2 and all(isinstance(v, (int, np.integer)) for v in size)
-          and MIN_WIDTH <= size[0] <= MAX_SIDE and MIN_HEIGHT <= size[1] <= MAX_SIDE)
+    ok = (
+        len(size) == 2
+        and all(isinstance(v, (int, np.integer)) for v in size)
+        and MIN_WIDTH <= size[0] <= MAX_SIDE
+        and MIN_HEIGHT <= size[1] <= MAX_SIDE
+    )
     if not ok:
-        raise ParameterError(f"size={given!r} is invalid: allowed WIDTHxHEIGHT with integers "
-                             f"{MIN_WIDTH} ≤ WIDTH ≤ {MAX_SIDE} and {MIN_HEIGHT} ≤ HEIGHT ≤ {MAX_SIDE} pixels")
+        raise ParameterError(
+            f"size={given!r} is invalid: allowed WIDTHxHEIGHT with integers "
+            f"{MIN_WIDTH} ≤ WIDTH ≤ {MAX_SIDE} and {MIN_HEIGHT} ≤ HEIGHT ≤ {MAX_SIDE} pixels"
+        )
     return int(size[0]), int(size[1])
 
 
@@ -99,8 +108,10 @@ def open_canvas(renderer: str, width: int, height: int):
         try:
             if name == "exudyn":
                 from lightsail_mbs.viz.raytrace import ExudynCanvas
+
                 return ExudynCanvas(width, height)
             from lightsail_mbs.viz.matplotlib_canvas import MatplotlibCanvas
+
             return MatplotlibCanvas(width, height)
         except ImportError as exc:
             if renderer != "auto":
@@ -114,10 +125,20 @@ def _write_png(image: np.ndarray, path: Path) -> Path:
     return path
 
 
-def render_frames(result: Result, out_dir, frames: int | None = None, every_seconds: float | None = None,
-                  size=(800, 400), exaggeration: float | None = None, renderer: str = "auto",
-                  color_by: str | None = "curvature", color_scale: str = "frame", arrows: bool = True,
-                  label: str | None = None, progress=None) -> list[Path]:
+def render_frames(
+    result: Result,
+    out_dir,
+    frames: int | None = None,
+    every_seconds: float | None = None,
+    size=(800, 400),
+    exaggeration: float | None = None,
+    renderer: str = "auto",
+    color_by: str | None = "curvature",
+    color_scale: str = "frame",
+    arrows: bool = True,
+    label: str | None = None,
+    progress=None,
+) -> list[Path]:
     """Write out_dir/frame_0000.png, ... of `result` sampled by frame_indices; returns the paths.
 
     exaggeration: the factor E on the deflection (None: automatic, render_scene.auto_exaggeration, lowered
@@ -145,11 +166,21 @@ def render_frames(result: Result, out_dir, frames: int | None = None, every_seco
     return paths
 
 
-def render_comparison(first: Result, second: Result, out_dir, labels=("run 1", "run 2"),
-                      frames: int | None = None, every_seconds: float | None = None, size=(800, 800),
-                      exaggeration: float | None = None, renderer: str = "auto",
-                      color_by: str | None = "curvature", color_scale: str = "frame", arrows: bool = True,
-                      progress=None) -> list[Path]:
+def render_comparison(
+    first: Result,
+    second: Result,
+    out_dir,
+    labels=("run 1", "run 2"),
+    frames: int | None = None,
+    every_seconds: float | None = None,
+    size=(800, 800),
+    exaggeration: float | None = None,
+    renderer: str = "auto",
+    color_by: str | None = "curvature",
+    color_scale: str = "frame",
+    arrows: bool = True,
+    progress=None,
+) -> list[Path]:
     """Frames of two runs at the same simulated times, `first` above `second` (each half the height),
     with one exaggeration per frame for both and one colour scale. A run that ended earlier (e.g. stopped at failure)
     keeps showing its last state."""
@@ -170,12 +201,14 @@ def render_comparison(first: Result, second: Result, out_dir, labels=("run 1", "
         paths = []
         for k, t in enumerate(times):
             states = [(r, int(_nearest(r.time, np.array([min(t, r.time[-1])]))[0])) for r in runs]
-            e = frame_exaggeration(style, states)          # one factor for both panels
-            images = [canvas.draw(build_scene(r, i, style, name, exaggeration=e))
-                      for (r, i), name in zip(states, labels)]
-            stacked = np.concatenate([images[0], np.full((height - 2 * panel.height, width, 3), 255, np.uint8),
-                                      images[1]])
-            stacked[panel.height - 1:panel.height + 1] = 120     # a grey rule between the panels
+            e = frame_exaggeration(style, states)  # one factor for both panels
+            images = [
+                canvas.draw(build_scene(r, i, style, name, exaggeration=e)) for (r, i), name in zip(states, labels)
+            ]
+            stacked = np.concatenate(
+                [images[0], np.full((height - 2 * panel.height, width, 3), 255, np.uint8), images[1]]
+            )
+            stacked[panel.height - 1 : panel.height + 1] = 120  # a grey rule between the panels
             paths.append(_write_png(stacked, out / f"frame_{k:04d}.png"))
             report(k + 1)
     finally:
@@ -190,6 +223,7 @@ def _progress(progress, total: int):
         import sys
 
         from tqdm import tqdm
+
         bar = tqdm(total=total, desc="rendering", unit="frame", file=sys.stderr, mininterval=0.5)
         return (lambda k: bar.update(k - bar.n)), bar.close
     if callable(progress):
@@ -220,12 +254,15 @@ def make_movie(frames, path, fps: float = 20.0) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     if suffix == ".gif":
         pictures = [Image.fromarray(im) for im in images]
-        pictures[0].save(path, save_all=True, append_images=pictures[1:], duration=round(1000.0 / fps), loop=0,
-                         optimize=False)
+        pictures[0].save(
+            path, save_all=True, append_images=pictures[1:], duration=round(1000.0 / fps), loop=0, optimize=False
+        )
         return path
     import imageio.v2 as imageio
-    with imageio.get_writer(path, format="FFMPEG", fps=fps, codec="libx264", quality=7, macro_block_size=1,
-                            pixelformat="yuv420p") as writer:
+
+    with imageio.get_writer(
+        path, format="FFMPEG", fps=fps, codec="libx264", quality=7, macro_block_size=1, pixelformat="yuv420p"
+    ) as writer:
         for im in images:
             writer.append_data(_even(im))
     return path

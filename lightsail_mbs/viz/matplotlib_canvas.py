@@ -1,4 +1,5 @@
 """Draw a render_scene.Scene with matplotlib's Agg backend (no display): one figure reused for every frame."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -48,7 +49,7 @@ class MatplotlibCanvas:
             artist.set_text(item.text)
             artist.set_color(item.rgba)
             artist.set_fontsize(item.size * POINTS_PER_PIXEL)
-        for artist in self.texts[len(scene.texts):]:
+        for artist in self.texts[len(scene.texts) :]:
             artist.set_visible(False)
         self.canvas.draw()
         return np.asarray(self.canvas.buffer_rgba())[..., :3].copy()

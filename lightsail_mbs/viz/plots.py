@@ -1,6 +1,7 @@
 """The recurring plots, on matplotlib's object API and an Agg canvas (no display, no pyplot state):
 slice angles against time, shapes, stability maps, the solver cross-check.
 """
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -59,9 +60,16 @@ def plot_shape(ax, result: Result, index: int, label: str, **style) -> None:
     ax.set_ylabel("offset from line (mm)")
 
 
-def plot_map(ax, points: list[tuple[float, float, bool]], boundary: list[tuple[float, float, float]],
-             analytic: tuple[np.ndarray, np.ndarray], ylabel: str, label: str = "", color: str = "C0",
-             marker_offset: float = 1.0) -> None:
+def plot_map(
+    ax,
+    points: list[tuple[float, float, bool]],
+    boundary: list[tuple[float, float, float]],
+    analytic: tuple[np.ndarray, np.ndarray],
+    ylabel: str,
+    label: str = "",
+    color: str = "C0",
+    marker_offset: float = 1.0,
+) -> None:
     """A stability map on log-log axes: evaluated (thickness, value, stable) points, the bisected
     boundary (thickness, low, high) as a bracket bar through its geometric mean, the analytic line."""
     for stable in (True, False):
@@ -73,8 +81,15 @@ def plot_map(ax, points: list[tuple[float, float, bool]], boundary: list[tuple[f
     if boundary:
         h, lo, hi = (np.array(c, float) for c in zip(*boundary))
         mid = np.sqrt(lo * hi)
-        ax.errorbar(h * MICRO * marker_offset, mid, yerr=[mid - lo, hi - mid], color=color, lw=1.2,
-                    capsize=3, label=f"{label}bisected boundary")
+        ax.errorbar(
+            h * MICRO * marker_offset,
+            mid,
+            yerr=[mid - lo, hi - mid],
+            color=color,
+            lw=1.2,
+            capsize=3,
+            label=f"{label}bisected boundary",
+        )
     ax.plot(analytic[0] * MICRO, analytic[1], "k-", lw=1.0, label="analytic")
     ax.set_xscale("log")
     ax.set_yscale("log")

@@ -7,6 +7,7 @@ the ground's graphics data and calls SC.renderer.RedrawAndGetImage(useRaytracer=
 needs neither a display nor OpenGL. renderer.Start() is never called (without a display it ends
 the process).
 """
+
 from __future__ import annotations
 
 import os
@@ -51,18 +52,26 @@ class ExudynCanvas:
 
     def _set_view(self, box) -> None:
         """Orthographic view of box: the visible height is 2·zoom, centred on the box centre."""
-        self.sc.renderer.ZoomAll()          # initialises the render state of the inactive renderer
-        self.sc.renderer.SetModelView(zoom=0.5 * (box[3] - box[2]),
-                                      centerPoint=[0.5 * (box[0] + box[1]), 0.5 * (box[2] + box[3]), 0.0])
+        self.sc.renderer.ZoomAll()  # initialises the render state of the inactive renderer
+        self.sc.renderer.SetModelView(
+            zoom=0.5 * (box[3] - box[2]), centerPoint=[0.5 * (box[0] + box[1]), 0.5 * (box[2] + box[3]), 0.0]
+        )
         self.box = tuple(box)
 
     def draw(self, scene: Scene) -> np.ndarray:
         if (scene.width, scene.height) != self.size:
             raise ValueError(f"scene of {scene.width}x{scene.height} px on a {self.size[0]}x{self.size[1]} canvas")
         graphics = [_triangle_list(scene)] + [
-            {"type": "Text", "color": list(t.rgba), "text": t.text, "fontSize": FONT_SCALE * t.size,
-             "offset": [0.0, 0.0],
-             "position": [t.x, t.y - TEXT_TOP * FONT_SCALE * t.size * scene.pixel, LAYER]} for t in scene.texts]
+            {
+                "type": "Text",
+                "color": list(t.rgba),
+                "text": t.text,
+                "fontSize": FONT_SCALE * t.size,
+                "offset": [0.0, 0.0],
+                "position": [t.x, t.y - TEXT_TOP * FONT_SCALE * t.size * scene.pixel, LAYER],
+            }
+            for t in scene.texts
+        ]
         self.mbs.SetObjectParameter(self.ground, "VgraphicsData", graphics)
         if self.box != tuple(scene.box):
             self._set_view(scene.box)
@@ -73,7 +82,7 @@ class ExudynCanvas:
         self.mbs.Reset()
 
 
-LAYER = 1e-3       # z step between consecutive primitives (world units; the view is orthographic)
+LAYER = 1e-3  # z step between consecutive primitives (world units; the view is orthographic)
 # Exudyn's monospace font advances 0.725 font sizes per character and its letters reach 1.27 font sizes
 # above a Text's position; scaled to the advance of render_scene.CHAR_WIDTH, top at the given y
 FONT_SCALE = 0.6 / 0.725
@@ -98,5 +107,10 @@ def _triangle_list(scene: Scene) -> dict:
     tri = 4 * m + 3 * np.arange(k)[:, None] + [0, 1, 2]
     triangles = np.concatenate([quad_tris.reshape(-1, 3), tri.reshape(-1, 3)]).astype(int)
     normals = np.tile([0.0, 0.0, 1.0], len(points))
-    return {"type": "TriangleList", "points": points.ravel(), "colors": colors.ravel(),
-            "triangles": triangles.ravel(), "normals": normals}
+    return {
+        "type": "TriangleList",
+        "points": points.ravel(),
+        "colors": colors.ravel(),
+        "triangles": triangles.ravel(),
+        "normals": normals,
+    }

@@ -11,6 +11,7 @@ its components along the slice's normal and tangent and drawn along the drawn sl
 tangent, ending on the slice (the beam comes from below); the TnT boundary tension
 T(∓cos θ, ∓sin θ) at the free ends (Eq. 32) along the drawn end slices.
 """
+
 from __future__ import annotations
 
 import math
@@ -32,7 +33,7 @@ TENSION_RGBA = (0.0, 0.5, 0.2, 1.0)
 FAIL_RGBA = (0.85, 0.0, 0.0, 1.0)
 TEXT_RGBA = (0.0, 0.0, 0.0, 1.0)
 TIME_RGBA = (0.2, 0.35, 0.7, 1.0)
-CHAR_WIDTH = 0.6      # advance of a monospace character in font sizes (DejaVu Sans Mono; Exudyn's font scaled to it)
+CHAR_WIDTH = 0.6  # advance of a monospace character in font sizes (DejaVu Sans Mono; Exudyn's font scaled to it)
 # diverging: blue (negative) - dark grey (zero, distinct from the light grey initial shape) - red (positive)
 COLORMAP = LinearSegmentedColormap.from_list("sail", ["#1f5bd6", "#7f9fe0", "#303030", "#e07a7a", "#d11f1f"])
 COLOR_SCALES = ("frame", "run")
@@ -100,8 +101,10 @@ def check_color_by(params, color_by) -> None:
     if color_by not in COLOR_BY:
         raise ParameterError(f"color_by={color_by!r} is invalid: allowed 'curvature', 'moment' or None")
     if color_by == "moment" and params.torsional_stiffness == 0.0:
-        raise ParameterError(f"color_by='moment' is invalid for model={params.model!r} with bending="
-                             f"{params.bending}: allowed only with torsional springs (k_T > 0); use 'curvature'")
+        raise ParameterError(
+            f"color_by='moment' is invalid for model={params.model!r} with bending="
+            f"{params.bending}: allowed only with torsional springs (k_T > 0); use 'curvature'"
+        )
 
 
 @dataclass(frozen=True)
@@ -135,7 +138,7 @@ class Layout:
     def box(self) -> tuple:
         """World box: x from −0.05 to 1.05 (sail length 1); y = 0 in the middle of the sail band."""
         pix = 1.1 / self.width
-        mid = 0.5 * (self.bottom_band - self.top_band) * pix      # y = 0 sits this far above the centre
+        mid = 0.5 * (self.bottom_band - self.top_band) * pix  # y = 0 sits this far above the centre
         half = 0.5 * self.height * pix
         return (-0.05, 1.05, -half - mid, half - mid)
 
@@ -155,8 +158,13 @@ def _offsets(result: Result, index: int):
     x, y, th = result.x[index], result.y[index], result.theta[index]
     xc, yc, cphi, sphi = _line_frame(x, y)
     half = 0.5 * p.slice_length
-    ends = np.stack([np.stack([x - half * np.cos(th), y - half * np.sin(th)], -1),
-                     np.stack([x + half * np.cos(th), y + half * np.sin(th)], -1)], 1)   # (n, 2, 2)
+    ends = np.stack(
+        [
+            np.stack([x - half * np.cos(th), y - half * np.sin(th)], -1),
+            np.stack([x + half * np.cos(th), y + half * np.sin(th)], -1),
+        ],
+        1,
+    )  # (n, 2, 2)
     du, dv = ends[..., 0] - xc, ends[..., 1] - yc
     u = cphi * du + sphi * dv + 0.5 * p.length
     v = -sphi * du + cphi * dv
@@ -216,7 +224,7 @@ def auto_exaggeration(results, indices, layout: Layout) -> float:
     return _round_down(e)
 
 
-def frame_exaggeration(style: "Style", states) -> float:
+def frame_exaggeration(style: Style, states) -> float:
     """E for one frame showing the (result, index) pairs `states`: the style's, or with automatic
     exaggeration lowered (two significant digits, below 1 if need be) so that every sail stays in its band."""
     if not style.adaptive:
@@ -228,22 +236,29 @@ def frame_exaggeration(style: "Style", states) -> float:
     return _round_down(limit / peak)
 
 
-def make_style(results, indices, layout: Layout, exaggeration=None, color_by="curvature", arrows=True,
-               color_scale="frame") -> Style:
+def make_style(
+    results, indices, layout: Layout, exaggeration=None, color_by="curvature", arrows=True, color_scale="frame"
+) -> Style:
     for r in results:
         check_color_by(r.params, color_by)
     if color_scale not in COLOR_SCALES:
-        raise ParameterError(f"color_scale={color_scale!r} is invalid: allowed 'frame' (each frame its own range) "
-                             "or 'run' (one range for the whole sequence)")
+        raise ParameterError(
+            f"color_scale={color_scale!r} is invalid: allowed 'frame' (each frame its own range) "
+            "or 'run' (one range for the whole sequence)"
+        )
     adaptive = exaggeration is None
     if adaptive:
         exaggeration = auto_exaggeration(results, indices, layout)
     elif not (isinstance(exaggeration, (int, float)) and math.isfinite(exaggeration) and exaggeration > 0):
         raise ParameterError(f"exaggeration={exaggeration!r} is invalid: allowed a finite number > 0 (None: automatic)")
-    vmax = max((float(np.abs(hinge_values(r, i, color_by)).max(initial=0.0)) for r, idx in zip(results, indices)
-                for i in idx), default=0.0)
-    time_span = (min(float(r.time[0]) for r in results),
-                 max(max(float(r.settings.t_final), float(r.time[-1])) for r in results))
+    vmax = max(
+        (float(np.abs(hinge_values(r, i, color_by)).max(initial=0.0)) for r, idx in zip(results, indices) for i in idx),
+        default=0.0,
+    )
+    time_span = (
+        min(float(r.time[0]) for r in results),
+        max(max(float(r.settings.t_final), float(r.time[-1])) for r in results),
+    )
     return Style(layout, float(exaggeration), adaptive, color_by, color_scale, vmax, bool(arrows), time_span)
 
 
@@ -265,8 +280,9 @@ def _fmt_exaggeration(e: float) -> str:
     return f"{e:.2g}" if e < 10 or e >= 1e5 else f"{e:.0f}"
 
 
-def build_scene(result: Result, index: int, style: Style, label: str | None = None,
-                exaggeration: float | None = None) -> Scene:
+def build_scene(
+    result: Result, index: int, style: Style, label: str | None = None, exaggeration: float | None = None
+) -> Scene:
     """The primitives of stored state `index` of `result` under `style`, with the deflection exaggerated by
     `exaggeration` (None: frame_exaggeration of this state alone)."""
     p = result.params
@@ -274,16 +290,16 @@ def build_scene(result: Result, index: int, style: Style, label: str | None = No
     L = p.length
     pix = 1.1 / lay.width
     E = frame_exaggeration(style, [(result, index)]) if exaggeration is None else exaggeration
-    strokes, triangles, texts = [], [], []       # strokes: (points (2, 2), rgba, width in pixels)
+    strokes, triangles, texts = [], [], []  # strokes: (points (2, 2), rgba, width in pixels)
 
     # initial shape (ghost) and the best-fit line
     u0, v0 = _offsets(result, 0)
-    ghost = np.stack([u0, E * v0], -1) / L              # (n, 2 ends, 2)
+    ghost = np.stack([u0, E * v0], -1) / L  # (n, 2 ends, 2)
     strokes.extend((seg, GHOST_RGBA, 2.0 * lay.scale) for seg in ghost)
     strokes.append((np.array([[0.0, 0.0], [1.0, 0.0]]), GHOST_RGBA, 1.0))
 
     u, v = _offsets(result, index)
-    ends = np.stack([u, E * v], -1) / L                 # (n, 2, 2) drawn end points
+    ends = np.stack([u, E * v], -1) / L  # (n, 2, 2) drawn end points
     centres = ends.mean(axis=1)
     along = ends[:, 1] - ends[:, 0]
     along /= np.linalg.norm(along, axis=1, keepdims=True)
@@ -330,13 +346,27 @@ def build_scene(result: Result, index: int, style: Style, label: str | None = No
         _mark_failure(ends, E * v / L, lay, strokes, triangles)
     what = f"{label}: " if label else ""
     lowered = f" (lowered from x{_fmt_exaggeration(style.exaggeration)})" if E < style.exaggeration else ""
-    texts.append(Text(x0, y2, f"{what}{p.model}, n = {p.n}, {result.solver}   deflection x{_fmt_exaggeration(E)}"
-                      f"{lowered} vs best-fit line, grey: t = 0", lay.small_font))
+    texts.append(
+        Text(
+            x0,
+            y2,
+            f"{what}{p.model}, n = {p.n}, {result.solver}   deflection x{_fmt_exaggeration(E)}"
+            f"{lowered} vs best-fit line, grey: t = 0",
+            lay.small_font,
+        )
+    )
     if style.arrows:
         texts.append(Text(x0, y3, "arrows: radiation load", lay.small_font, LOAD_RGBA))
         if p.model == "tnt" and p.tension > 0:
-            texts.append(Text(x0 + text_width("arrows: radiation load, ", lay.small_font) * pix, y3,
-                              f"boundary tension T = {p.tension:.3g} N", lay.small_font, TENSION_RGBA))
+            texts.append(
+                Text(
+                    x0 + text_width("arrows: radiation load, ", lay.small_font) * pix,
+                    y3,
+                    f"boundary tension T = {p.tension:.3g} N",
+                    lay.small_font,
+                    TENSION_RGBA,
+                )
+            )
     if result.error and index == result.time.size - 1:
         note = f"solver stopped: {result.error}"[:60]
         texts.append(Text(x1 - text_width(note, lay.small_font) * pix, y3, note, lay.small_font, FAIL_RGBA))
@@ -381,17 +411,24 @@ def _legend(result: Result, index: int, style: Style, vmax: float, strokes, tria
     fail = result.failure_time
     if fail is not None:
         xf = x0 + (fail - t0) / span * (x1 - x0)
-        strokes.append((np.array([[xf, y_bar - 8 * lay.scale * pix], [xf, y_bar + 8 * lay.scale * pix]]),
-                        FAIL_RGBA, 3 * lay.scale))
-    texts.append(Text(x0, y_text, f"time {t0:g} - {t1:g} s" + ("" if fail is None else " (red: failure)"),
-                      lay.small_font))
+        strokes.append(
+            (np.array([[xf, y_bar - 8 * lay.scale * pix], [xf, y_bar + 8 * lay.scale * pix]]), FAIL_RGBA, 3 * lay.scale)
+        )
+    texts.append(
+        Text(x0, y_text, f"time {t0:g} - {t1:g} s" + ("" if fail is None else " (red: failure)"), lay.small_font)
+    )
     if style.color_by is None:
         return
     c0, c1, cells = 0.65, 1.0, 48
     edges = np.linspace(c0, c1, cells + 1)
     for k in range(cells):
-        strokes.append((np.array([[edges[k], y_bar], [edges[k + 1], y_bar]]),
-                        _color((k + 0.5) / cells * 2 - 1, 1.0), 10 * lay.scale))
+        strokes.append(
+            (
+                np.array([[edges[k], y_bar], [edges[k + 1], y_bar]]),
+                _color((k + 0.5) / cells * 2 - 1, 1.0),
+                10 * lay.scale,
+            )
+        )
     unit = "1/m" if style.color_by == "curvature" else "N m"
     texts.append(Text(c0, y_text, f"{style.color_by} +-{vmax:.2g} {unit}", lay.small_font))
 

@@ -1,5 +1,6 @@
 """Amplitude and failure criterion (analysis.failure): invariant to rigid motion, interpolated failure time,
 troughs."""
+
 import numpy as np
 import pytest
 
@@ -33,7 +34,7 @@ def test_amplitude_scales_and_vectorises():
 
 def test_failure_time_interpolated():
     t = np.linspace(0, 1, 11)
-    amp = np.exp(t)                     # doubles at ln 2
+    amp = np.exp(t)  # doubles at ln 2
     ft = analysis.failure_time(t, amp, 2.0)
     assert abs(ft - np.log(2)) < 0.01
     assert analysis.failure_time(t, np.ones_like(t), 2.0) is None
@@ -42,7 +43,7 @@ def test_failure_time_interpolated():
 def test_trough_detection():
     x, y = sine_state(mode=1.5)
     y = y.copy()
-    y[np.argmin(y)] -= 5e-5          # a deep trough
+    y[np.argmin(y)] -= 5e-5  # a deep trough
     assert analysis.fails_at_trough(x, y)
     assert not analysis.fails_at_trough(x, -y)
 

@@ -1,5 +1,6 @@
 """Finite-amplitude stability (analysis.finite_amplitude): the failure time scales with t_c, the critical
 stiffness ratio, divergence, the one-mode model, the boundary a map of finite runs finds."""
+
 import numpy as np
 import pytest
 
@@ -13,8 +14,10 @@ SMALL_TNT = SailParameters(model="tnt", n=10, defect_mode=1.5, axial_springs=Fal
 @pytest.mark.parametrize("base", [SMALL_TORSION, SMALL_TNT], ids=["torsion", "tnt"])
 def test_failure_time_scales_with_t_c_over_two_decades(base):
     """t_f = F(r) t_c: g₀ over two decades (h) and a₀ over two decades give the same τ_f = t_f/t_c."""
-    taus = [cr.failure_tau(cr.with_ratio(base.replace(thickness=h, defect_amplitude=a0), 1.0), 20.0)
-            for h, a0 in ((1e-7, 1e-6), (1e-5, 1e-4), (1e-6, 1e-5))]
+    taus = [
+        cr.failure_tau(cr.with_ratio(base.replace(thickness=h, defect_amplitude=a0), 1.0), 20.0)
+        for h, a0 in ((1e-7, 1e-6), (1e-5, 1e-4), (1e-6, 1e-5))
+    ]
     assert None not in taus
     assert max(taus) / min(taus) < 1.01
 
@@ -35,7 +38,7 @@ def test_critical_ratio_independent_of_amplitude():
     """E_cr ∝ a₀ (exponent 1): the bisected ratio E/E_cr,max at a₀ = 1 µm and 100 µm brackets overlap."""
     lo, hi = (cr.critical_ratio(SMALL_TORSION.replace(defect_amplitude=a0), 6.0, factor=1.05) for a0 in (1e-6, 1e-4))
     assert lo.failed_ratio <= hi.stable_ratio and hi.failed_ratio <= lo.stable_ratio
-    assert 1.0 < lo.value < 30.0       # above the quasi-static E_cr,max, not by orders of magnitude
+    assert 1.0 < lo.value < 30.0  # above the quasi-static E_cr,max, not by orders of magnitude
 
 
 def test_divergence_grows_in_the_unstable_regime():
@@ -55,7 +58,7 @@ def test_one_mode_potentials_are_cubic_load_and_quadratic_stiffness():
 
 def test_boundary_for_run_inverts_the_failure_curve():
     ratios, taus = [0.1, 1.0, 4.0, 8.0, 16.0], [1.6, 2.0, 3.5, 50.0, None]
-    assert cr.boundary_for_run(ratios, taus, 1.0) is None            # nothing fails within the run
+    assert cr.boundary_for_run(ratios, taus, 1.0) is None  # nothing fails within the run
     assert cr.boundary_for_run(ratios, taus, 2.0) == pytest.approx(1.0)
     assert 1.0 < cr.boundary_for_run(ratios, taus, 3.0) < 4.0
     assert cr.boundary_for_run(ratios, taus, 10.0) == pytest.approx(4.0 * 2.0 ** ((10 - 3.5) / 46.5))
@@ -70,9 +73,10 @@ def test_boundary_for_run_takes_the_last_crossing_of_a_non_monotone_curve():
 
 def test_lowest_mode_buckling_ratio_balances_euler_load_and_defect_compression():
     from lightsail_mbs.model import theory
+
     p = SailParameters(model="torsion", defect_mode=1.5, thickness=2e-6, defect_amplitude=3e-5)
     q = cr.with_ratio(p, cr.lowest_mode_buckling_ratio(p))
-    euler = q.youngs_modulus * q.thickness ** 3 * cr.FREE_FREE_BETA1_L ** 2 / (12 * q.length ** 2)
+    euler = q.youngs_modulus * q.thickness**3 * cr.FREE_FREE_BETA1_L**2 / (12 * q.length**2)
     assert euler == pytest.approx(theory.radiation_pressure(q) * q.defect_amplitude, rel=1e-12)
 
 

@@ -1,5 +1,6 @@
 """Frequencies of a run (analysis.frequencies): the refined FFT peak of many slices, rigid rotation ignored;
 least-squares sinusoid fits beyond the FFT bin, damped decay."""
+
 import numpy as np
 import pytest
 
@@ -11,8 +12,12 @@ from tests.sweep_fake import fake_result
 @pytest.mark.parametrize("frequency", [0.4, 2.74, 17.0])
 def test_dominant_frequency_of_a_drifting_multi_slice_signal(frequency):
     t = np.arange(0.0, 6.0, 1e-3)
-    signals = np.column_stack([np.sin(2 * np.pi * frequency * t + phase) + 0.3 * np.sin(2 * np.pi * 2.3 * frequency * t)
-                               + 0.05 * t for phase in (0.0, 1.0, 2.0)])
+    signals = np.column_stack(
+        [
+            np.sin(2 * np.pi * frequency * t + phase) + 0.3 * np.sin(2 * np.pi * 2.3 * frequency * t) + 0.05 * t
+            for phase in (0.0, 1.0, 2.0)
+        ]
+    )
     # resolution of the raw FFT is 1/6 Hz; the refined peak is far better
     assert dominant_frequency(t, signals) == pytest.approx(frequency, rel=2e-3)
 
@@ -29,8 +34,6 @@ def test_angle_frequency_ignores_rigid_rotation():
 def test_spectrum_rejects_uneven_sampling():
     with pytest.raises(ValueError, match="uniform"):
         dominant_frequency(np.r_[0.0, np.cumsum(np.linspace(1.0, 2.0, 20))], np.ones(21))
-
-
 
 
 def test_fit_sinusoid_recovers_frequency_beyond_the_fft_bin():

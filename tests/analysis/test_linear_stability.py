@@ -1,5 +1,6 @@
 """Linear stability (analysis.linear_stability): the linearised flat sail of both solvers — the load does not
 shift the spectrum at first order, it acts along the sail."""
+
 import numpy as np
 import pytest
 
@@ -42,7 +43,7 @@ def test_exudyn_linear_spectrum_with_load_equals_unloaded_and_reduced(name):
     lit, dark = st.linear_spectrum(p, "exudyn"), st.linear_spectrum(st.unlit(p), "exudyn")
     assert elastic_shift(lit, dark) < 1e-6
     reduced = st.linear_spectrum(st.unlit(p), "reduced")
-    assert elastic_shift(dark, reduced) < 1e-6       # the two solvers' unloaded chains agree
+    assert elastic_shift(dark, reduced) < 1e-6  # the two solvers' unloaded chains agree
 
 
 def test_load_acts_along_the_sail_at_first_order():
@@ -52,7 +53,7 @@ def test_load_acts_along_the_sail_at_first_order():
     jac, dark = st.reduced_jacobian(p), st.reduced_jacobian(st.unlit(p))
     dof = p.n + 2
     np.testing.assert_allclose(jac[dof, 2:dof], -p.nominal_acceleration / p.n, rtol=1e-6)
-    transverse = np.abs(jac[dof + 1:, :dof] - dark[dof + 1:, :dof]).max()
+    transverse = np.abs(jac[dof + 1 :, :dof] - dark[dof + 1 :, :dof]).max()
     assert transverse < 1e-9 * p.nominal_acceleration
 
 

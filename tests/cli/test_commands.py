@@ -1,5 +1,6 @@
 """The command line (lightsail_mbs.cli): as a user runs it (JSON output, clear one-line errors, no traceback),
 and each subcommand in-process (options, stability, render, reproduce, crosscheck)."""
+
 import json
 import subprocess
 import sys
@@ -18,14 +19,33 @@ def cli(*args):
 
 def clis(*commands):
     """Several command lines at once (each is mostly the interpreter's start-up); their CompletedProcess."""
-    procs = [subprocess.Popen([sys.executable, "-m", "lightsail_mbs.cli", *args], stdout=subprocess.PIPE,
-                              stderr=subprocess.PIPE, text=True) for args in commands]
+    procs = [
+        subprocess.Popen(
+            [sys.executable, "-m", "lightsail_mbs.cli", *args],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        for args in commands
+    ]
     return [subprocess.CompletedProcess(proc.args, proc.returncode, *proc.communicate()) for proc in procs]
 
 
 def test_theory_json_paper_numbers():
-    out = cli("theory", "--thickness", "1e-6", "--density", "1000", "--intensity", "1e8",
-              "--amplitude", "1e-5", "--mode", "1.5", "--json")
+    out = cli(
+        "theory",
+        "--thickness",
+        "1e-6",
+        "--density",
+        "1000",
+        "--intensity",
+        "1e8",
+        "--amplitude",
+        "1e-5",
+        "--mode",
+        "1.5",
+        "--json",
+    )
     assert out.returncode == 0, out.stderr
     numbers = json.loads(out.stdout)
     assert numbers["e_cr_max"] == pytest.approx(4.5e11, rel=0.01)
@@ -33,13 +53,16 @@ def test_theory_json_paper_numbers():
     assert numbers["g0"] == pytest.approx(2e8 / (299_792_458.0 * 1e-3))
 
 
-@pytest.mark.parametrize("args, name", [
-    (["--thickness", "0"], "thickness"),
-    (["--n", "1"], "n"),
-    (["--modulus", "nan"], "youngs_modulus"),
-    (["--model", "tnt", "--tension", "-1"], "tension"),
-    (["--mode", "-2"], "mode"),
-])
+@pytest.mark.parametrize(
+    "args, name",
+    [
+        (["--thickness", "0"], "thickness"),
+        (["--n", "1"], "n"),
+        (["--modulus", "nan"], "youngs_modulus"),
+        (["--model", "tnt", "--tension", "-1"], "tension"),
+        (["--mode", "-2"], "mode"),
+    ],
+)
 def test_bad_input_one_line_error(args, name):
     for out in clis(["theory", *args], ["simulate", *args]):
         assert out.returncode != 0
@@ -48,8 +71,24 @@ def test_bad_input_one_line_error(args, name):
 
 
 def test_simulate_reports_heat_of_material_damping():
-    out = cli("simulate", "--model", "torsion", "--n", "6", "--modulus", "4.5e15", "--intensity", "0",
-              "--stiffness-damping", "3e-3", "--t-final", "0.2", "--solver", "reduced", "--quiet")
+    out = cli(
+        "simulate",
+        "--model",
+        "torsion",
+        "--n",
+        "6",
+        "--modulus",
+        "4.5e15",
+        "--intensity",
+        "0",
+        "--stiffness-damping",
+        "3e-3",
+        "--t-final",
+        "0.2",
+        "--solver",
+        "reduced",
+        "--quiet",
+    )
     assert out.returncode == 0, out.stderr
     heat = float(out.stdout.split("dissipated as heat:")[1].split()[0])
     assert heat > 0
@@ -61,13 +100,16 @@ def test_case_and_run_options_and_their_aliases():
     parser = build_parser()
     long = parser.parse_args(["simulate", "--defect-amplitude", "2e-5", "--defect-mode", "2.5", "--n", "8"])
     short = parser.parse_args(["simulate", "--amplitude", "2e-5", "--mode", "2.5", "--n", "8"])
-    assert params_from_args(long) == params_from_args(short) == SailParameters(n=8, defect_amplitude=2e-5,
-                                                                                defect_mode=2.5)
+    assert (
+        params_from_args(long) == params_from_args(short) == SailParameters(n=8, defect_amplitude=2e-5, defect_mode=2.5)
+    )
     assert settings_from_args(long) == RunSettings()
-    run = parser.parse_args(["simulate", "--t-final", "0.5", "--output-interval", "1e-3", "--failure-ratio", "3",
-                             "--run-past-failure"])
-    assert settings_from_args(run) == RunSettings(t_final=0.5, output_interval=1e-3, failure_ratio=3.0,
-                                                  stop_at_failure=False)
+    run = parser.parse_args(
+        ["simulate", "--t-final", "0.5", "--output-interval", "1e-3", "--failure-ratio", "3", "--run-past-failure"]
+    )
+    assert settings_from_args(run) == RunSettings(
+        t_final=0.5, output_interval=1e-3, failure_ratio=3.0, stop_at_failure=False
+    )
 
 
 def test_montecarlo_defect_options(tmp_path):
@@ -90,9 +132,26 @@ def test_reproduce_prints_the_wall_time_of_each_pipeline(tmp_path, capsys, monke
         calls.append((out, kwargs))
         print("Fig. 5 — stand-in")
         return {}
+
     monkeypatch.setattr(reproduce, "pipeline", lambda name: types.SimpleNamespace(FIGURES=(5,), run=fake_run))
-    assert main(["reproduce", "--figure", "5", "--quick", "--solver", "reduced", "--workers", "1", "--quiet",
-                 "--out", str(tmp_path)]) == 0
+    assert (
+        main(
+            [
+                "reproduce",
+                "--figure",
+                "5",
+                "--quick",
+                "--solver",
+                "reduced",
+                "--workers",
+                "1",
+                "--quiet",
+                "--out",
+                str(tmp_path),
+            ]
+        )
+        == 0
+    )
     printed = capsys.readouterr().out
     assert "Fig. 5" in printed and "wall time" in printed and "| all |" in printed
     [(out, kwargs)] = calls
@@ -102,8 +161,10 @@ def test_reproduce_prints_the_wall_time_of_each_pipeline(tmp_path, capsys, monke
 
 @pytest.mark.parametrize("model, key", [("torsion", "critical_modulus"), ("tnt", "critical_tension")])
 def test_stability_command_json(model, key, capsys):
-    code = main(["stability", "--model", model, "--n", "10", "--tau-final", "6", "--factor", "1.2",
-                     "--linear", "--json"] + (["--tension", "1e-8"] if model == "tnt" else []))
+    code = main(
+        ["stability", "--model", model, "--n", "10", "--tau-final", "6", "--factor", "1.2", "--linear", "--json"]
+        + (["--tension", "1e-8"] if model == "tnt" else [])
+    )
     assert code == 0
     out = json.loads(capsys.readouterr().out)
     lo, hi = out[f"{key}_bracket"]
@@ -115,8 +176,22 @@ def test_stability_command_json(model, key, capsys):
 def test_cli_render_writes_frames_and_movie(run, tmp_path, capsys):
     path = run.save(tmp_path / "soft")
     out = tmp_path / "frames"
-    code = main(["render", str(path), "--out", str(out), "--frames", "3", "--size", "320x160",
-                 "--renderer", "matplotlib", "--movie", "gif"])
+    code = main(
+        [
+            "render",
+            str(path),
+            "--out",
+            str(out),
+            "--frames",
+            "3",
+            "--size",
+            "320x160",
+            "--renderer",
+            "matplotlib",
+            "--movie",
+            "gif",
+        ]
+    )
     assert code == 0
     assert len(list(out.glob("frame_*.png"))) == 3 and (out / "soft.gif").exists()
     assert read_image(out / "frame_0002.png").shape == (160, 320, 3)

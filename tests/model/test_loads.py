@@ -1,4 +1,5 @@
 """The radiation load: Eq. (11), its optics and beam-profile generalisations."""
+
 import numpy as np
 import pytest
 
@@ -41,9 +42,9 @@ def test_absorbing_facet_by_hand():
     th = np.deg2rad(30.0)
     fx, fy = radiation_forces(p, np.array([0.5]), np.array([th]))
     area = 0.25 * 1.0
-    power = 1e9 * area * np.cos(th)                     # intercepted power
-    normal_push = 2 * 0.6 * power / C * np.cos(th)      # specular: 2R (P/c) cos θ along n
-    absorbed = 0.3 * power / C                          # absorbed: α P/c along the beam
+    power = 1e9 * area * np.cos(th)  # intercepted power
+    normal_push = 2 * 0.6 * power / C * np.cos(th)  # specular: 2R (P/c) cos θ along n
+    absorbed = 0.3 * power / C  # absorbed: α P/c along the beam
     n = np.array([-np.sin(th), np.cos(th)])
     assert fx[0] == pytest.approx(normal_push * n[0], rel=1e-13)
     assert fy[0] == pytest.approx(normal_push * n[1] + absorbed, rel=1e-13)
@@ -82,13 +83,16 @@ def test_off_centre_beam_torque_sign():
     assert np.sum(applied_forces(p.replace(beam_center=0.3), x, np.zeros(40))[1] * (x - x.mean())) < 0
 
 
-@pytest.mark.parametrize("changes, name", [
-    (dict(reflectivity=1.2), "reflectivity"),
-    (dict(reflectivity=0.8, absorptivity=0.3), "absorptivity"),
-    (dict(beam_waist=0.0), "beam_waist"),
-    (dict(beam_center=float("nan")), "beam_center"),
-    (dict(reflectivity=0.0, absorptivity=0.0), "reflectivity"),
-])
+@pytest.mark.parametrize(
+    "changes, name",
+    [
+        (dict(reflectivity=1.2), "reflectivity"),
+        (dict(reflectivity=0.8, absorptivity=0.3), "absorptivity"),
+        (dict(beam_waist=0.0), "beam_waist"),
+        (dict(beam_center=float("nan")), "beam_center"),
+        (dict(reflectivity=0.0, absorptivity=0.0), "reflectivity"),
+    ],
+)
 def test_bad_optics(changes, name):
     with pytest.raises(ParameterError, match=name):
         SailParameters(**changes)
@@ -111,8 +115,10 @@ def test_gaussian_beam_effect_falls_as_inverse_waist_squared():
     ÷100 in the difference (the soft sail over 0.3 s, where it is largest)."""
     p, settings = paper_case("torsion-soft"), RunSettings(t_final=0.3)
     uniform = solve(p, "reduced", settings, rtol=1e-12)
-    d = [_relative_difference(solve(p.replace(beam_waist=w), "reduced", settings, rtol=1e-12), uniform)
-         for w in (1e4, 1e5, 1e6)]
+    d = [
+        _relative_difference(solve(p.replace(beam_waist=w), "reduced", settings, rtol=1e-12), uniform)
+        for w in (1e4, 1e5, 1e6)
+    ]
     assert 90 < d[0] / d[1] < 110 and 90 < d[1] / d[2] < 110
 
 

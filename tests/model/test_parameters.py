@@ -1,5 +1,6 @@
 """Parameters: validation before any solving, derived quantities (paper Sec. III), supports and tip load
 (validation fields, Appendices A–B), material damping, the dict form and the names of older records."""
+
 import math
 
 import pytest
@@ -7,22 +8,25 @@ import pytest
 from lightsail_mbs import ParameterError, SailParameters, paper_case
 
 
-@pytest.mark.parametrize("field, value, words", [
-    ("thickness", 0.0, "thickness"),
-    ("thickness", -1e-6, "> 0"),
-    ("n", 1, "2 ≤ n"),
-    ("n", 2.5, "integer"),
-    ("density", float("nan"), "finite"),
-    ("intensity", float("inf"), "finite"),
-    ("model", "membrane", "rigid, torsion, tnt"),
-    ("defect_mode", 0.0, "mode"),
-    ("defect_mode", -1.5, "> 0"),
-    ("defect_amplitude", -1e-5, "≥ 0"),
-    ("youngs_modulus", -4.5e9, "youngs_modulus"),
-    ("torsional_damping", -1.0, "torsional_damping"),
-    ("defect_amplitude", 0.2, "45°"),
-    ("defect_mode_count", 0, "defect_mode_count"),
-])
+@pytest.mark.parametrize(
+    "field, value, words",
+    [
+        ("thickness", 0.0, "thickness"),
+        ("thickness", -1e-6, "> 0"),
+        ("n", 1, "2 ≤ n"),
+        ("n", 2.5, "integer"),
+        ("density", float("nan"), "finite"),
+        ("intensity", float("inf"), "finite"),
+        ("model", "membrane", "rigid, torsion, tnt"),
+        ("defect_mode", 0.0, "mode"),
+        ("defect_mode", -1.5, "> 0"),
+        ("defect_amplitude", -1e-5, "≥ 0"),
+        ("youngs_modulus", -4.5e9, "youngs_modulus"),
+        ("torsional_damping", -1.0, "torsional_damping"),
+        ("defect_amplitude", 0.2, "45°"),
+        ("defect_mode_count", 0, "defect_mode_count"),
+    ],
+)
 def test_bad_value_names_parameter_and_range(field, value, words):
     with pytest.raises(ParameterError) as err:
         SailParameters(**{field: value})
@@ -52,7 +56,7 @@ def test_derived_quantities_follow_the_paper():
     l = 1.0 / 30
     assert p.slice_length == pytest.approx(l)
     assert p.slice_mass == pytest.approx(1000.0 * 1e-6 * l)
-    assert p.slice_inertia == pytest.approx(p.slice_mass * l ** 2 / 12)
+    assert p.slice_inertia == pytest.approx(p.slice_mass * l**2 / 12)
     assert p.torsional_stiffness == pytest.approx(4.5e9 * 1e-18 / 12 / l)
     # g0 = f0 / m: a flat slice is balanced exactly by the frame force
     assert p.flat_force / p.slice_mass == pytest.approx(p.nominal_acceleration, rel=1e-14)
@@ -60,7 +64,7 @@ def test_derived_quantities_follow_the_paper():
 
 def test_bending_defaults_per_model_and_axial_stiffness():
     assert SailParameters(model="torsion").torsional_stiffness > 0
-    assert SailParameters(model="tnt").torsional_stiffness == 0.0          # paper: k_T = 0 in TnT runs
+    assert SailParameters(model="tnt").torsional_stiffness == 0.0  # paper: k_T = 0 in TnT runs
     assert SailParameters(model="tnt", bending=True).torsional_stiffness > 0
     assert SailParameters(model="rigid").torsional_stiffness == 0.0
     p = SailParameters(model="tnt", n=30, youngs_modulus=1e11, thickness=1e-6)
@@ -70,8 +74,15 @@ def test_bending_defaults_per_model_and_axial_stiffness():
 
 
 def test_stiffness_damping_adds_beta_k_to_every_damper():
-    p = SailParameters(model="tnt", youngs_modulus=1e9, tension=1e-3, bending=True, torsional_damping=1e-9,
-                       axial_damping=2.0, stiffness_damping=1e-4)
+    p = SailParameters(
+        model="tnt",
+        youngs_modulus=1e9,
+        tension=1e-3,
+        bending=True,
+        torsional_damping=1e-9,
+        axial_damping=2.0,
+        stiffness_damping=1e-4,
+    )
     assert p.total_torsional_damping == pytest.approx(1e-9 + 1e-4 * p.torsional_stiffness, rel=1e-15)
     assert p.total_axial_damping == pytest.approx(2.0 + 1e-4 * p.axial_stiffness, rel=1e-15)
     assert SailParameters(model="rigid", torsional_damping=1.0, stiffness_damping=1.0).total_torsional_damping == 0.0
@@ -92,8 +103,18 @@ def test_from_dict_reads_the_names_of_older_records():
     """Saved runs and store records written before the renames: amplitude, mode, defect_modes, and run
     control kept with the case (skipped: it is RunSettings now)."""
     p = SailParameters(defect_amplitude=2e-5, defect_mode=2.5, defect_seed=4, defect_mode_count=7)
-    old = {("amplitude" if k == "defect_amplitude" else "mode" if k == "defect_mode"
-            else "defect_modes" if k == "defect_mode_count" else k): v for k, v in p.to_dict().items()}
+    old = {
+        (
+            "amplitude"
+            if k == "defect_amplitude"
+            else "mode"
+            if k == "defect_mode"
+            else "defect_modes"
+            if k == "defect_mode_count"
+            else k
+        ): v
+        for k, v in p.to_dict().items()
+    }
     old.update(t_final=0.3, output_interval=1e-3, stop_at_failure=False, failure_ratio=3.0)
     assert "defect_mode" not in old and "mode" in old
     assert SailParameters.from_dict(old) == p
@@ -110,7 +131,7 @@ def test_defaults_keep_the_free_sail_and_its_dict():
     p = SailParameters()
     assert p.boundary == "free" and p.tip_load == 0.0 and p.tip_load_time_constant == 0.0
     d = p.to_dict()
-    assert not {"boundary", "tip_load", "tip_load_time_constant"} & set(d)   # sweep keys unchanged
+    assert not {"boundary", "tip_load", "tip_load_time_constant"} & set(d)  # sweep keys unchanged
     assert SailParameters.from_dict(d) == p
 
 
@@ -125,14 +146,17 @@ def test_tip_force_is_equation_43():
     p = SailParameters(tip_load=100.0, tip_load_time_constant=0.3)
     assert p.tip_force(0.0) == 0.0
     assert p.tip_force(0.3) == pytest.approx(100.0 * (1 - math.exp(-1)), rel=1e-15)
-    assert SailParameters(tip_load=-5.0).tip_force(0.0) == -5.0          # τ = 0: full load at once
+    assert SailParameters(tip_load=-5.0).tip_force(0.0) == -5.0  # τ = 0: full load at once
 
 
-@pytest.mark.parametrize("changes, name", [
-    (dict(boundary="clamped"), "boundary"),
-    (dict(tip_load=math.nan), "tip_load"),
-    (dict(tip_load_time_constant=-1.0), "tip_load_time_constant"),
-])
+@pytest.mark.parametrize(
+    "changes, name",
+    [
+        (dict(boundary="clamped"), "boundary"),
+        (dict(tip_load=math.nan), "tip_load"),
+        (dict(tip_load_time_constant=-1.0), "tip_load_time_constant"),
+    ],
+)
 def test_bad_support_values_name_the_parameter(changes, name):
     with pytest.raises(ParameterError, match=name):
         SailParameters(**changes)

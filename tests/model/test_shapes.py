@@ -1,4 +1,5 @@
 """Initial shape: hinges on the sine of Eq. (1), exact chords, slices along the chords."""
+
 import numpy as np
 import pytest
 
@@ -41,10 +42,11 @@ def test_flat_sail_for_zero_amplitude():
 
 def test_multimode_defect_seeded_rms_and_chords():
     from lightsail_mbs.model.shapes import multimode_coefficients, multimode_profile
+
     p = SailParameters(n=60, defect_amplitude=1e-4, defect_seed=3, defect_mode_count=12, defect_spectrum=1.5)
     nu, a, phase = multimode_coefficients(p)
     nu2, a2, phase2 = multimode_coefficients(p)
-    np.testing.assert_array_equal(a, a2)                    # same seed, same defect
+    np.testing.assert_array_equal(a, a2)  # same seed, same defect
     assert not np.allclose(a, multimode_coefficients(p.replace(defect_seed=4))[1])
     np.testing.assert_allclose(nu, 0.5 * np.arange(1, 13))
     x = np.linspace(0, 1, 20001)

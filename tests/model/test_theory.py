@@ -1,4 +1,5 @@
 """Closed forms of Section II against hand evaluation of Eqs (4), (7)–(10)."""
+
 import numpy as np
 import pytest
 
@@ -44,4 +45,4 @@ def test_local_critical_values_peak_at_troughs():
 def test_perturbed_acceleration_second_order():
     p = paper_torsion().replace(defect_amplitude=1e-3)
     ratio = theory.perturbed_acceleration(p) / theory.nominal_acceleration(p)
-    assert ratio == pytest.approx(1 - 2 * np.pi ** 2 * 1.5 ** 2 * 1e-6)
+    assert ratio == pytest.approx(1 - 2 * np.pi**2 * 1.5**2 * 1e-6)

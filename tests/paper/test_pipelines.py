@@ -4,6 +4,7 @@ figure, and ``reproduce --all``.
 The map figure runs the fake solver of tests/sweep_fake.py (fails iff E < E_cr,max); the Fig. 5 test runs the
 reduced solver. The full Fig. 5 check, the Figs 18–23 trend statements and --all are slow.
 """
+
 import numpy as np
 import pytest
 
@@ -23,9 +24,20 @@ def test_every_figure_has_its_pipeline():
 def test_map_figure_survives_a_thickness_where_every_run_errs(tmp_path):
     """A solver error is a result: the map is drawn, and the row says 'error'."""
     base = SailParameters(model="torsion", n=8)
-    rows = stability_map_figure(tmp_path, "map", 0, base, [1e-7, 1e-6], [1.5, 2.0], settings=RunSettings(t_final=0.1),
-                                solver="fake", workers=1, progress=False, case_function=fake_case,
-                                options={"error_modes": [2.0]})
+    rows = stability_map_figure(
+        tmp_path,
+        "map",
+        0,
+        base,
+        [1e-7, 1e-6],
+        [1.5, 2.0],
+        settings=RunSettings(t_final=0.1),
+        solver="fake",
+        workers=1,
+        progress=False,
+        case_function=fake_case,
+        options={"error_modes": [2.0]},
+    )
     assert [r["status"] for r in rows] == ["converged", "error", "converged", "error"]
     assert (tmp_path / "map.png").exists()
 
@@ -83,14 +95,14 @@ def test_figures_18_to_23_trends(tmp_path):
     unstable = [r for r in runs if r["regime"] == "unstable"]
     assert all(r["failed"] == "False" and float(r["frequency_Hz"]) > 0 for r in stable)
     assert all(r["failed"] == "True" for r in unstable if float(r["thickness_m"]) <= 1e-6)
-    assert trends[18]["direction"] == "increasing"      # frequency vs tension
-    assert trends[19]["direction"] == "decreasing"      # frequency vs thickness
+    assert trends[18]["direction"] == "increasing"  # frequency vs tension
+    assert trends[19]["direction"] == "decreasing"  # frequency vs thickness
     fig23 = [r for r in unstable if r["figure"] == "23"]
     times = [float(r["failure_time_s"]) if r["failed"] == "True" else np.inf for r in fig23]
     assert [float(r["thickness_m"]) for r in fig23] == sorted(float(r["thickness_m"]) for r in fig23)
-    assert np.all(np.diff(times) > 0)                   # failure time vs thickness
-    assert float(trends[21]["spread_max_over_min"]) < 1.2   # failure time vs tension (T ≪ T_cr,max)
-    assert float(trends[22]["spread_max_over_min"]) < 2.0   # failure time vs mode: same order
+    assert np.all(np.diff(times) > 0)  # failure time vs thickness
+    assert float(trends[21]["spread_max_over_min"]) < 1.2  # failure time vs tension (T ≪ T_cr,max)
+    assert float(trends[22]["spread_max_over_min"]) < 2.0  # failure time vs mode: same order
 
 
 @pytest.mark.slow

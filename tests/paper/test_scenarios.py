@@ -1,5 +1,6 @@
 """The studies beyond the paper as package pipelines (lightsail_mbs.paper.SCENARIOS), run quick: beam
 optics, material damping, the animations, the stability studies."""
+
 import numpy as np
 import pytest
 
@@ -12,15 +13,19 @@ def test_beam_optics_scenario(tmp_path):
     has a smaller g₀; an off-centre beam turns the flat sail 1° faster the farther off it is, within 20 %
     of the rigid-plate estimate."""
     rows = scenario("beam_optics").run(tmp_path, quick=True, workers=1, progress=False)["rows"]
-    assert {p.name for p in tmp_path.iterdir()} >= {"beam_optics.png", "beam_optics_profile.csv",
-                                                      "beam_optics_tilt.csv"}
+    assert {p.name for p in tmp_path.iterdir()} >= {
+        "beam_optics.png",
+        "beam_optics_profile.csv",
+        "beam_optics_tilt.csv",
+    }
     stiff = [r for r in rows if r["kind"] == "profile" and r["E_Pa"] == 4.5e13]
-    gauss = sorted((r for r in stiff if r["reflectivity"] == 1 and np.isfinite(r["beam_waist_m"])),
-                   key=lambda r: r["beam_waist_m"])
+    gauss = sorted(
+        (r for r in stiff if r["reflectivity"] == 1 and np.isfinite(r["beam_waist_m"])), key=lambda r: r["beam_waist_m"]
+    )
     assert all(r["failed"] for r in gauss)
     assert all(a["failure_time_s"] < b["failure_time_s"] for a, b in zip(gauss, gauss[1:]))
     g0 = [r["g0"] for r in stiff if np.isinf(r["beam_waist_m"])]
-    assert g0[0] > g0[1] > g0[2]            # R = 1; R = 0.9, α = 0.1; R = 0, α = 1
+    assert g0[0] > g0[1] > g0[2]  # R = 1; R = 0.9, α = 0.1; R = 0, α = 1
     tilt = [r for r in rows if r["kind"] == "tilt"]
     assert all(a["turn_1deg_s"] > b["turn_1deg_s"] for a, b in zip(tilt, tilt[1:]))
     assert all(abs(r["turn_1deg_s"] / r["turn_1deg_estimate_s"] - 1) < 0.2 for r in tilt)
@@ -44,8 +49,15 @@ def test_animations_render_saved_runs(tmp_path):
 
     animations = scenario("animations")
     growing_sine(rate=3.0).save(tmp_path / "runs" / "animations" / "soft_torsion.npz")
-    animations.run(tmp_path / "docs", store=tmp_path / "runs", cases=["soft_torsion"], frames=4, size="300x150",
-                   until_ratio=3, progress=False)
+    animations.run(
+        tmp_path / "docs",
+        store=tmp_path / "runs",
+        cases=["soft_torsion"],
+        frames=4,
+        size="300x150",
+        until_ratio=3,
+        progress=False,
+    )
     frames = imageio.mimread(tmp_path / "docs" / "soft_torsion.gif")
     assert len(frames) == 4 and frames[0].shape[:2] == (150, 300)
     cut = animations.cut_at_ratio(growing_sine(rate=3.0), 3.0)

@@ -1,20 +1,24 @@
 """Run control (RunSettings): validation, the sample grid, the paper's runs, and solve()'s use of it."""
+
 import numpy as np
 import pytest
 
 from lightsail_mbs import ParameterError, RunSettings, SailParameters, paper_settings, solve
 
 
-@pytest.mark.parametrize("field, value, words", [
-    ("t_final", 0.0, "t_final"),
-    ("t_final", -1.0, "> 0"),
-    ("t_final", float("nan"), "finite"),
-    ("failure_ratio", 1.0, "> 1"),
-    ("failure_ratio", float("inf"), "failure_ratio"),
-    ("output_interval", 10.0, "output_interval"),
-    ("output_interval", 0.0, "output_interval ≤ t_final"),
-    ("stop_at_failure", 1, "stop_at_failure"),
-])
+@pytest.mark.parametrize(
+    "field, value, words",
+    [
+        ("t_final", 0.0, "t_final"),
+        ("t_final", -1.0, "> 0"),
+        ("t_final", float("nan"), "finite"),
+        ("failure_ratio", 1.0, "> 1"),
+        ("failure_ratio", float("inf"), "failure_ratio"),
+        ("output_interval", 10.0, "output_interval"),
+        ("output_interval", 0.0, "output_interval ≤ t_final"),
+        ("stop_at_failure", 1, "stop_at_failure"),
+    ],
+)
 def test_bad_value_names_the_field_and_range(field, value, words):
     with pytest.raises(ParameterError) as err:
         RunSettings(**{field: value})
@@ -36,9 +40,10 @@ def test_sample_interval_default():
 
 
 def test_sample_times_include_zero_and_t_final():
-    np.testing.assert_allclose(RunSettings(t_final=0.05, output_interval=0.01).sample_times(),
-                               np.arange(6) * 0.01, rtol=0, atol=1e-15)
-    uneven = RunSettings(t_final=0.025, output_interval=0.01).sample_times()       # Δt does not divide t_final
+    np.testing.assert_allclose(
+        RunSettings(t_final=0.05, output_interval=0.01).sample_times(), np.arange(6) * 0.01, rtol=0, atol=1e-15
+    )
+    uneven = RunSettings(t_final=0.025, output_interval=0.01).sample_times()  # Δt does not divide t_final
     np.testing.assert_allclose(uneven, [0.0, 0.01, 0.02, 0.025], rtol=0, atol=1e-15)
     default = RunSettings().sample_times()
     assert default.size == 6001 and default[0] == 0.0 and default[-1] == pytest.approx(6.0, rel=1e-14)

@@ -1,5 +1,6 @@
 """The run skeleton every solver keeps: the failure monitor (stop rule) and the sampling loop
 collect_samples, driven here by a fake integrator whose state is its own amplitude."""
+
 import numpy as np
 import pytest
 
@@ -21,7 +22,7 @@ def test_no_stop_when_the_settings_say_so():
 def test_first_index_at_or_above_the_limit():
     monitor = FailureMonitor(2.0, RunSettings(failure_ratio=3.0))
     assert monitor.active and monitor.limit == 6.0
-    assert monitor.first_failure(np.array([2.0, 5.9, 6.0, 7.0, 1.0])) == 2      # at the limit counts
+    assert monitor.first_failure(np.array([2.0, 5.9, 6.0, 7.0, 1.0])) == 2  # at the limit counts
     assert monitor.first_failure(np.array([2.0, 6.5, 6.0])) == 1
     assert monitor.first_failure(np.array([2.0, 5.999999])) is None
     assert monitor.first_failure(np.array([])) is None
@@ -48,7 +49,7 @@ class FakeIntegrator:
 
     def __call__(self, times):
         self.requests.append(np.array(times))
-        times = times[:self.per_call]
+        times = times[: self.per_call]
         call = len(self.requests)
         status = "boom at t = 0.5" if call == self.error_at else FINISHED if call == self.finish_at else None
         t = float(times[-1]) if times.size else 0.0
@@ -64,19 +65,19 @@ def collect(integrator, settings, initial=1.0, chunk=3):
 
 
 def test_stops_at_the_first_flagged_sample_and_keeps_it():
-    settings = RunSettings(t_final=1.0, output_interval=0.1)          # e^t ≥ 2 first at t = 0.7
+    settings = RunSettings(t_final=1.0, output_interval=0.1)  # e^t ≥ 2 first at t = 0.7
     fake = FakeIntegrator()
     y, error, _, times = collect(fake, settings)
     assert error is None and y.size == 8
     np.testing.assert_allclose(y, np.exp(times[:8]))
     assert y[-1] >= 2.0 > y[-2]
-    assert len(fake.requests) == 3 and all(r.size <= 3 for r in fake.requests)       # chunks of ≤ 3 times
-    np.testing.assert_allclose(np.concatenate(fake.requests), times[1:10])          # nothing asked twice
+    assert len(fake.requests) == 3 and all(r.size <= 3 for r in fake.requests)  # chunks of ≤ 3 times
+    np.testing.assert_allclose(np.concatenate(fake.requests), times[1:10])  # nothing asked twice
 
 
 def test_runs_the_whole_grid_without_failure():
     settings = RunSettings(t_final=1.0, output_interval=0.1, stop_at_failure=False)
-    fake = FakeIntegrator(per_call=2)                                 # hands back fewer than asked
+    fake = FakeIntegrator(per_call=2)  # hands back fewer than asked
     y, error, bar, times = collect(fake, settings)
     assert error is None and y.size == times.size == 11
     np.testing.assert_allclose(y, np.exp(times))
@@ -88,9 +89,9 @@ def test_an_error_ends_the_run_with_the_samples_before_it():
     fake = FakeIntegrator(per_call=2, error_at=3)
     y, error, bar, times = collect(fake, settings)
     assert error == "boom at t = 0.5"
-    assert y.size == 1 + 3 * 2 and len(fake.requests) == 3            # the failing call's samples are kept
+    assert y.size == 1 + 3 * 2 and len(fake.requests) == 3  # the failing call's samples are kept
     np.testing.assert_allclose(y, np.exp(times[:7]))
-    assert len(bar.times) == 2                                        # no progress after the error
+    assert len(bar.times) == 2  # no progress after the error
 
 
 def test_an_error_without_samples_keeps_the_earlier_ones():
@@ -104,7 +105,7 @@ def test_stops_when_the_integrator_has_finished():
     settings = RunSettings(t_final=1.0, output_interval=0.1, stop_at_failure=False)
     fake = FakeIntegrator(per_call=2, finish_at=2)
     y, error, bar, times = collect(fake, settings)
-    assert error is None and len(fake.requests) == 2                  # not asked again after FINISHED
+    assert error is None and len(fake.requests) == 2  # not asked again after FINISHED
     assert y.size == 1 + 2 * 2
     np.testing.assert_allclose(y, np.exp(times[:5]))
     assert bar.times == pytest.approx([0.2, 0.4])

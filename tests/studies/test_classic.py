@@ -2,6 +2,7 @@
 
 The numbers asserted are the headline checks of the validations; the full tables come from validation/*.py.
 """
+
 import math
 
 import numpy as np
@@ -39,7 +40,7 @@ def test_cantilever_static_converges_at_first_order_to_euler_bernoulli():
     errors, predicted = [], []
     for n in ns:
         p = classic.cantilever_case(n)
-        eb = p.tip_load * p.length ** 3 / (3 * classic.bending_stiffness(p))
+        eb = p.tip_load * p.length**3 / (3 * classic.bending_stiffness(p))
         errors.append(static_state(p, "exudyn").y[-1] / eb - 1)
         predicted.append(float(ct.cantilever_relative_error(n)))
     assert np.allclose(errors, predicted, rtol=1e-5)
@@ -96,7 +97,7 @@ def test_runs_of_the_appendices():
 def test_g3_continuous_string_frequency():
     """Eq. 45 with μ = ρπd²/4 and T = 72.485 N: 195.28 Hz (not the 196 Hz the paper aims at)."""
     ref = classic.string_references(classic.g3_string_case(20))
-    mu = 7800 * math.pi * 0.43e-3 ** 2 / 4
+    mu = 7800 * math.pi * 0.43e-3**2 / 4
     assert ref["continuous"] == pytest.approx(math.sqrt(72.485 / mu) / (2 * 0.6477), rel=1e-12)
     assert ref["continuous"] == pytest.approx(195.28, abs=0.01)
 
@@ -104,16 +105,18 @@ def test_g3_continuous_string_frequency():
 def test_g3_section_matches_the_wire():
     p = classic.g3_string_case(10)
     d = classic.WIRE_DIAMETER
-    assert p.width * p.thickness == pytest.approx(math.pi * d ** 2 / 4, rel=1e-14)
-    assert p.second_moment_of_area == pytest.approx(math.pi * d ** 4 / 64, rel=1e-14)
+    assert p.width * p.thickness == pytest.approx(math.pi * d**2 / 4, rel=1e-14)
+    assert p.second_moment_of_area == pytest.approx(math.pi * d**4 / 64, rel=1e-14)
 
 
 def test_discrete_string_converges_to_the_continuous_string():
     """Inextensible: second order, +(π/n)²/24. Extensible: to the stretched string, plus a first-order
     part ≈ (T/EA)/n from the last slice, which has no spring after it."""
     ns = [10, 20, 40, 80, 160]
-    for springs, limit, orders, last in ((False, "continuous", (1.95, 2.05), 2e-5),
-                                         (True, "continuous_stretched", (1.5, 1.95), 3e-5)):
+    for springs, limit, orders, last in (
+        (False, "continuous", (1.95, 2.05), 2e-5),
+        (True, "continuous_stretched", (1.5, 1.95), 3e-5),
+    ):
         errs = []
         for n in ns:
             ref = classic.string_references(classic.g3_string_case(n, axial_springs=springs))

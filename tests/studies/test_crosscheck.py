@@ -1,4 +1,5 @@
 """Cross-validation of the two solvers (studies.crosscheck): independent formulations agree on short runs."""
+
 import numpy as np
 import pytest
 
@@ -12,8 +13,9 @@ def test_agrees_with_exudyn_on_a_short_torsion_run(case):
     give the same angles to < 1e-8 rad (θ ~ 1e-4 rad) over 0.3 s, and the cross-check row passes."""
     pytest.importorskip("exudyn")
     p, settings = paper_case(case, n=10), RunSettings(t_final=0.3)
-    row = crosscheck.compare(crosscheck.Case(case, p, settings, "short"), solve(p, "exudyn", settings),
-                             solve(p, "reduced", settings))
+    row = crosscheck.compare(
+        crosscheck.Case(case, p, settings, "short"), solve(p, "exudyn", settings), solve(p, "reduced", settings)
+    )
     assert row["max_dtheta"] < 1e-8 and row["window_end"] == pytest.approx(0.3)
     assert row["passed"]
 

@@ -4,6 +4,7 @@ comparisons, movies.
 The runs are synthetic (tests.helpers.growing_sine): slices on w(x, t) = a₀ e^{t/τ} sin(2πνx/L) with exact
 chords, so the amplitude ratio at time t is e^{t/τ}; ``run`` is the fixture of tests/conftest.py.
 """
+
 import numpy as np
 import pytest
 
@@ -13,13 +14,13 @@ from lightsail_mbs.viz.scene import Layout
 from tests.helpers import growing_sine, read_image
 
 RENDERERS = ("matplotlib", "exudyn")
-SAIL_STROKE_PX = 4.0          # render_scene: sail strokes are 4·scale pixels wide
+SAIL_STROKE_PX = 4.0  # render_scene: sail strokes are 4·scale pixels wide
 
 
 def sail_extent(image: np.ndarray) -> int:
     """Vertical extent (pixels) of the dark sail strokes inside the band between text and legend."""
     lay = Layout(image.shape[1], image.shape[0])
-    band = image[int(lay.top_band) + 1:image.shape[0] - int(lay.bottom_band) - 1]
+    band = image[int(lay.top_band) + 1 : image.shape[0] - int(lay.bottom_band) - 1]
     rows = np.nonzero((band.max(axis=2) < 120).any(axis=1))[0]
     return int(rows.max() - rows.min() + 1)
 
@@ -34,8 +35,9 @@ def test_frame_indices_even_distinct_and_include_failure(run):
     assert frame_indices(run.time, frames=run.time.size).size == run.time.size
 
 
-@pytest.mark.parametrize("bad", [dict(frames=0), dict(frames=10_000), dict(every_seconds=0.0),
-                                 dict(frames=3, every_seconds=0.1)])
+@pytest.mark.parametrize(
+    "bad", [dict(frames=0), dict(frames=10_000), dict(every_seconds=0.0), dict(frames=3, every_seconds=0.1)]
+)
 def test_frame_indices_reject_bad_input(run, bad):
     with pytest.raises(ParameterError):
         frame_indices(run.time, **bad)
@@ -56,8 +58,9 @@ def test_bad_options_name_the_parameter(run, tmp_path):
 def test_frames_size_count_differ_and_extent_follows_amplitude(run, tmp_path, renderer):
     size = (400, 200)
     exaggeration = 2000.0
-    paths = render_frames(run, tmp_path, frames=4, size=size, renderer=renderer, exaggeration=exaggeration,
-                          color_by=None, arrows=False)
+    paths = render_frames(
+        run, tmp_path, frames=4, size=size, renderer=renderer, exaggeration=exaggeration, color_by=None, arrows=False
+    )
     assert [p.name for p in paths] == [f"frame_{k:04d}.png" for k in range(4)]
     assert sorted(tmp_path.glob("frame_*.png")) == paths
     images = [read_image(p) for p in paths]
@@ -78,7 +81,7 @@ def test_full_frame_with_colours_arrows_tension_and_failure(tmp_path, renderer):
     last = read_image(paths[-1])
     assert last.shape == (160, 320, 3)
     red = (last[..., 0] > 180) & (last[..., 1] < 60) & (last[..., 2] < 60)
-    assert red[:, :3].any() and red[:3, :].any()           # the failure border
+    assert red[:, :3].any() and red[:3, :].any()  # the failure border
     assert not ((read_image(paths[0])[..., 0] > 180) & (read_image(paths[0])[..., 1] < 60))[:3, :].any()
 
 
@@ -92,17 +95,27 @@ def test_renderers_agree_on_the_drawn_sail(run, tmp_path):
 
 def test_comparison_frames_stack_two_runs(run, tmp_path):
     fast = growing_sine(rate=2.0, steps=21)
-    paths = render_comparison(run, fast, tmp_path, labels=("slow", "fast"), frames=3, size=(400, 400),
-                              renderer="matplotlib", color_by=None, arrows=False)
+    paths = render_comparison(
+        run,
+        fast,
+        tmp_path,
+        labels=("slow", "fast"),
+        frames=3,
+        size=(400, 400),
+        renderer="matplotlib",
+        color_by=None,
+        arrows=False,
+    )
     assert len(paths) == 3
     im = read_image(paths[-1])
     assert im.shape == (400, 400, 3)
     top, bottom = sail_extent(im[:200]), sail_extent(im[200:])
-    assert bottom > top        # same exaggeration: the faster-growing run (e² vs e¹) is drawn taller
+    assert bottom > top  # same exaggeration: the faster-growing run (e² vs e¹) is drawn taller
 
 
 def test_movies_are_written_and_readable(run, tmp_path):
     import imageio.v2 as imageio
+
     paths = render_frames(run, tmp_path, frames=5, size=(322, 161), renderer="matplotlib")
     gif = make_movie(paths, tmp_path / "run.gif", fps=10)
     frames = imageio.mimread(gif)
@@ -110,6 +123,6 @@ def test_movies_are_written_and_readable(run, tmp_path):
     mp4 = make_movie(paths, tmp_path / "run.mp4", fps=10)
     with imageio.get_reader(mp4, format="FFMPEG") as reader:
         video = [f for f in reader]
-    assert len(video) == 5 and video[0].shape[:2] == (162, 322)     # padded to even height for yuv420p
+    assert len(video) == 5 and video[0].shape[:2] == (162, 322)  # padded to even height for yuv420p
     with pytest.raises(ParameterError, match="path"):
         make_movie(paths, tmp_path / "run.avi")

@@ -3,6 +3,7 @@
 ``run`` (tests/conftest.py) is a synthetic sine growing as e^t over 1 s (tests.helpers.growing_sine), so the
 curvature at the hinges is known in closed form.
 """
+
 import math
 
 import numpy as np
@@ -26,16 +27,16 @@ def test_hinge_curvature_is_the_sines_second_derivative(run):
 
 def test_auto_exaggeration_draws_initial_amplitude_at_5_percent_of_length(run):
     lay = Layout(800, 400)
-    e = auto_exaggeration([run], [np.arange(run.time.size // 2)], lay)     # grows e^0.5: fits at 5 % of L
+    e = auto_exaggeration([run], [np.arange(run.time.size // 2)], lay)  # grows e^0.5: fits at 5 % of L
     drawn = e * run.amplitude[0] / run.params.length
-    assert 0.045 < drawn <= 0.05                  # rounded down to two significant digits
-    long_run = growing_sine(rate=4.0)             # grows e^4 ≈ 55×: failure (×2) at t = ln 2 / 4
+    assert 0.045 < drawn <= 0.05  # rounded down to two significant digits
+    long_run = growing_sine(rate=4.0)  # grows e^4 ≈ 55×: failure (×2) at t = ln 2 / 4
     every = np.arange(long_run.time.size)
     style = make_style([long_run], [every], lay)
-    assert style.exaggeration == e                # up to failure the sail fits at 5 % of L
+    assert style.exaggeration == e  # up to failure the sail fits at 5 % of L
     peak = np.abs(long_run.y[-1]).max() / long_run.params.length
     e_last = frame_exaggeration(style, [(long_run, every[-1])])
-    assert e_last < e and e_last * peak < lay.sail_half_height    # lowered after failure to stay in the band
+    assert e_last < e and e_last * peak < lay.sail_half_height  # lowered after failure to stay in the band
     assert frame_exaggeration(style, [(long_run, 0)]) == e
     fixed = make_style([long_run], [every], lay, exaggeration=e)
-    assert frame_exaggeration(fixed, [(long_run, every[-1])]) == e    # a given factor is never changed
+    assert frame_exaggeration(fixed, [(long_run, every[-1])]) == e  # a given factor is never changed

@@ -37,6 +37,7 @@ balance with the load's axial components and ring) and by RIGID_STEP_DIVISOR for
 Newton relTol 1e-8 and absTol 1e-8 f₀ × defect slope. The convergence study behind these numbers
 (`python validation/benchmark.py --convergence`) is in the documentation's solver page.
 """
+
 from __future__ import annotations
 
 import math
@@ -64,10 +65,10 @@ STEP_FACTOR = 0.026
 EXTENSIBLE_STEP_DIVISOR = 4
 # Rigid chains (no bending springs): the failure time converges to 0.3 % at h/6.
 RIGID_STEP_DIVISOR = 6
-NEWTON_REL_TOL = 1e-8           # residual reduction per step (Exudyn default)
-NEWTON_ABS_FACTOR = 1e-8        # absolute residual tolerance as a fraction of f₀ × defect slope (see default_abs_tol)
-SPECTRAL_RADIUS = 0.9           # generalized-α numerical damping of the highest frequencies
-SAMPLES_PER_CHECK = 50          # failure check (and progress) after this many output samples
+NEWTON_REL_TOL = 1e-8  # residual reduction per step (Exudyn default)
+NEWTON_ABS_FACTOR = 1e-8  # absolute residual tolerance as a fraction of f₀ × defect slope (see default_abs_tol)
+SPECTRAL_RADIUS = 0.9  # generalized-α numerical damping of the highest frequencies
+SAMPLES_PER_CHECK = 50  # failure check (and progress) after this many output samples
 
 
 def default_step_size(p: SailParameters, settings: RunSettings) -> float:
@@ -105,21 +106,31 @@ def build(p: SailParameters, initial: shapes.ChainState | None = None):
     load = generalized_force(p, layout)
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
-    node = mbs.AddNode(NodeGenericODE2(referenceCoordinates=[0.0] * layout.size, initialCoordinates=q0,
-                                       initialCoordinates_t=[0.0] * layout.size,
-                                       numberOfODE2Coordinates=layout.size))
-    tree = mbs.AddObject(ObjectKinematicTree(nodeNumber=node, forceUserFunction=lambda mbs, t, i, q, q_t: load(q),
-                                             **tree_arguments(p, layout, exu)))
-    add_supports(p, mbs, node, tree, layout, q0)        # supports and tip load (validations; none for a sail)
-    sensors = [mbs.AddSensor(SensorNode(nodeNumber=node, storeInternal=True, writeToFile=False,
-                                        outputVariableType=kind))
-               for kind in (exu.OutputVariableType.Coordinates, exu.OutputVariableType.Coordinates_t)]
+    node = mbs.AddNode(
+        NodeGenericODE2(
+            referenceCoordinates=[0.0] * layout.size,
+            initialCoordinates=q0,
+            initialCoordinates_t=[0.0] * layout.size,
+            numberOfODE2Coordinates=layout.size,
+        )
+    )
+    tree = mbs.AddObject(
+        ObjectKinematicTree(
+            nodeNumber=node, forceUserFunction=lambda mbs, t, i, q, q_t: load(q), **tree_arguments(p, layout, exu)
+        )
+    )
+    add_supports(p, mbs, node, tree, layout, q0)  # supports and tip load (validations; none for a sail)
+    sensors = [
+        mbs.AddSensor(SensorNode(nodeNumber=node, storeInternal=True, writeToFile=False, outputVariableType=kind))
+        for kind in (exu.OutputVariableType.Coordinates, exu.OutputVariableType.Coordinates_t)
+    ]
     mbs.Assemble()
     return SC, mbs, layout, sensors, load
 
 
-def simulation_settings(t_final: float, step_size: float, rel_tol: float, abs_tol: float,
-                        spectral_radius: float = SPECTRAL_RADIUS):
+def simulation_settings(
+    t_final: float, step_size: float, rel_tol: float, abs_tol: float, spectral_radius: float = SPECTRAL_RADIUS
+):
     """Exudyn's SimulationSettings for one generalized-α run of fixed step to t_final."""
     import exudyn as exu
 
@@ -133,27 +144,37 @@ def simulation_settings(t_final: float, step_size: float, rel_tol: float, abs_to
     ti.minimumStepSize = step_size * 1e-4
     ti.verboseMode = 0
     s.solution.file.write = False
-    s.solution.sensors.writePeriod = 0.5 * step_size      # every step; _samples keeps the output grid
+    s.solution.sensors.writePeriod = 0.5 * step_size  # every step; _samples keeps the output grid
     s.linearSolver.solverType = exu.LinearSolverType.EXUdense
     return s
 
 
-def run(params: SailParameters, settings: RunSettings, *, progress: bool = False, step_size: float | None = None,
-        newton_rel_tol: float | None = None, newton_abs_tol: float | None = None,
-        spectral_radius: float = SPECTRAL_RADIUS, samples_per_check: int = SAMPLES_PER_CHECK,
-        **options) -> Result:
+def run(
+    params: SailParameters,
+    settings: RunSettings,
+    *,
+    progress: bool = False,
+    step_size: float | None = None,
+    newton_rel_tol: float | None = None,
+    newton_abs_tol: float | None = None,
+    spectral_radius: float = SPECTRAL_RADIUS,
+    samples_per_check: int = SAMPLES_PER_CHECK,
+    **options,
+) -> Result:
     """Integrate one case to t_final or to failure; see the module docstring."""
     import exudyn as exu
 
     if options:
-        raise ParameterError(f"options={sorted(options)} are invalid: the exudyn solver accepts step_size, "
-                             "newton_rel_tol, newton_abs_tol, spectral_radius, samples_per_check")
+        raise ParameterError(
+            f"options={sorted(options)} are invalid: the exudyn solver accepts step_size, "
+            "newton_rel_tol, newton_abs_tol, spectral_radius, samples_per_check"
+        )
     p = params
     dt = settings.sample_interval
     h = default_step_size(p, settings) if step_size is None else float(step_size)
     if not (h > 0 and math.isfinite(h)):
         raise ParameterError(f"step_size={step_size!r} is invalid: allowed 0 < step_size ≤ output interval {dt:g}")
-    h = dt / math.ceil(dt / h * (1 - 1e-12))        # whole steps per output sample
+    h = dt / math.ceil(dt / h * (1 - 1e-12))  # whole steps per output sample
     rel_tol = NEWTON_REL_TOL if newton_rel_tol is None else float(newton_rel_tol)
     abs_tol = default_abs_tol(p) if newton_abs_tol is None else float(newton_abs_tol)
     if not 0 <= spectral_radius <= 1:
@@ -179,7 +200,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
             return True
         bar.update(t)
         if monitor.active:
-            q = mbs.GetSensorStoredData(sensors[0])[-(check_steps + 1):]
+            q = mbs.GetSensorStoredData(sensors[0])[-(check_steps + 1) :]
             if monitor.first_failure(analysis.amplitude(*layout.positions(q[:, 1:])[:2])) is not None:
                 watch["failed"] = True
                 return False
@@ -193,12 +214,13 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
             solver.InitializeSolver(mbs, s)
             ok = solver.SolveSteps(mbs, s)
             if not ok:
-                error = (f"Newton did not converge at t = {solver.it.currentTime:.9g} s "
-                         f"(exudyn: {solver.GetErrorString()})")
+                error = (
+                    f"Newton did not converge at t = {solver.it.currentTime:.9g} s (exudyn: {solver.GetErrorString()})"
+                )
             elif not np.all(np.isfinite(mbs.systemData.GetODE2Coordinates())):
                 error = f"non-finite state at t = {solver.it.currentTime:.9g} s"
             solver.FinalizeSolver(mbs, s)
-    except exu.ExudynError as exc:       # solver failures are results, not crashes
+    except exu.ExudynError as exc:  # solver failures are results, not crashes
         error = f"exudyn: {exc}".strip()
     finally:
         bar.update(solver.it.currentTime)
@@ -207,11 +229,11 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
 
     q, q_t = (_samples(mbs.GetSensorStoredData(sn), dt, h) for sn in sensors)
     t_now = float(solver.it.currentTime)
-    if error is None and len(q) and t_now > q[-1, 0] + 0.5 * dt:   # a final sample the sensor
+    if error is None and len(q) and t_now > q[-1, 0] + 0.5 * dt:  # a final sample the sensor
         q = np.vstack((q, np.concatenate(([t_now], mbs.systemData.GetODE2Coordinates()))))  # skipped
         q_t = np.vstack((q_t, np.concatenate(([t_now], mbs.systemData.GetODE2Coordinates_t()))))
     rows = min(len(q), len(q_t))
-    if rows == 0:                                     # failed before the first sample
+    if rows == 0:  # failed before the first sample
         q = np.concatenate(([0.0], layout.coordinates(initial)))[None, :]
         q_t = np.zeros_like(q)
         rows = 1
@@ -219,7 +241,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     x, y, theta, z = layout.positions(q[:, 1:])
     vx, vy, omega, z_rate = layout.velocities(q[:, 1:], q_t[:, 1:])
     over = monitor.first_failure(analysis.amplitude(x, y))
-    if over is not None:                              # end at the first sample past failure
+    if over is not None:  # end at the first sample past failure
         cut = over + 1
         q, x, y, theta, z, vx, vy, omega, z_rate = (a[:cut] for a in (q, x, y, theta, z, vx, vy, omega, z_rate))
     info = {
@@ -234,9 +256,23 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         "steps_per_sample": steps_per_sample,
         "coordinates": layout.size,
     }
-    return Result.from_trajectory(p, "exudyn", q[:, 0], x, y, theta, vx, vy, omega,
-                                  z=z if z.shape[-1] else None, z_rate=z_rate if z.shape[-1] else None,
-                                  wall_time=wall, error=error, info=info, settings=settings)
+    return Result.from_trajectory(
+        p,
+        "exudyn",
+        q[:, 0],
+        x,
+        y,
+        theta,
+        vx,
+        vy,
+        omega,
+        z=z if z.shape[-1] else None,
+        z_rate=z_rate if z.shape[-1] else None,
+        wall_time=wall,
+        error=error,
+        info=info,
+        settings=settings,
+    )
 
 
 def _samples(data: np.ndarray, dt: float, h: float) -> np.ndarray:

@@ -1,4 +1,5 @@
 """Exudyn prints to stdout by default; the commands print JSON there. One switch for every Exudyn call."""
+
 from __future__ import annotations
 
 from contextlib import contextmanager

@@ -16,6 +16,7 @@ The constraints make the system a DAE (index 3, Lagrange multipliers), which Exu
 generalized-α and static solvers handle directly; ComputeODE2Eigenvalues projects on the null
 space of their Jacobian.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -26,9 +27,16 @@ from lightsail_mbs.solvers.exudyn.tree import ChainLayout
 
 def add_supports(p: SailParameters, mbs, node: int, tree: int, layout: ChainLayout, q0: np.ndarray) -> None:
     """Add the constraints of p.boundary and the tip load to mbs (before Assemble)."""
-    from exudyn.itemInterface import (LoadForceVector, MarkerBodyRigid, MarkerKinematicTreeRigid,
-                                      MarkerNodeCoordinate, NodePointGround, ObjectConnectorCoordinate,
-                                      ObjectGround, ObjectJointGeneric)
+    from exudyn.itemInterface import (
+        LoadForceVector,
+        MarkerBodyRigid,
+        MarkerKinematicTreeRigid,
+        MarkerNodeCoordinate,
+        NodePointGround,
+        ObjectConnectorCoordinate,
+        ObjectGround,
+        ObjectJointGeneric,
+    )
 
     l = layout.slice_length
     last = int(layout.angle_index[-1])
@@ -47,8 +55,9 @@ def add_supports(p: SailParameters, mbs, node: int, tree: int, layout: ChainLayo
         tip = mbs.AddMarker(MarkerKinematicTreeRigid(objectNumber=tree, linkNumber=last, localPosition=[l, 0.0, 0.0]))
         mbs.AddObject(ObjectJointGeneric(markerNumbers=[support, tip], constrainedAxes=[0, 1, 0, 0, 0, 0]))
     if p.tip_load:
-        centre = mbs.AddMarker(MarkerKinematicTreeRigid(objectNumber=tree, linkNumber=last,
-                                                        localPosition=[0.5 * l, 0.0, 0.0]))
+        centre = mbs.AddMarker(
+            MarkerKinematicTreeRigid(objectNumber=tree, linkNumber=last, localPosition=[0.5 * l, 0.0, 0.0])
+        )
         kwargs = {}
         if p.tip_load_time_constant:
             kwargs["loadVectorUserFunction"] = lambda mbs, t, load: [0.0, p.tip_force(t), 0.0]

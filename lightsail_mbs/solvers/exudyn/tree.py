@@ -30,6 +30,7 @@ e_j = (cos θ_j, sin θ_j), normal e_j^⊥ = (−sin θ_j, cos θ_j):
     G_j       = e_j^⊥ · [(l + z_j) P_j + (l/2) f_j]     (torque about hinge j; z_n ≡ 0)
     Q_θ₁      = Σ_j G_j,   Q_φk = Σ_{j≥k} G_j,   Q_zj = e_j · P_j
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -46,15 +47,15 @@ class ChainLayout:
 
     n: int
     slice_length: float
-    angle_index: np.ndarray      # (n,) indices of θ₁, φ₂, …, φₙ
-    stretch_index: np.ndarray    # (n−1,) indices of z₁…z_{n−1}, empty if inextensible
+    angle_index: np.ndarray  # (n,) indices of θ₁, φ₂, …, φₙ
+    stretch_index: np.ndarray  # (n−1,) indices of z₁…z_{n−1}, empty if inextensible
 
     @property
     def size(self) -> int:
         return 2 + self.n + self.stretch_index.size
 
     @classmethod
-    def of(cls, p: SailParameters) -> "ChainLayout":
+    def of(cls, p: SailParameters) -> ChainLayout:
         if p.extensible:
             angle = np.array([2] + [3 + 2 * (k - 1) + 1 for k in range(1, p.n)])
             stretch = np.array([3 + 2 * (k - 1) for k in range(1, p.n)])
@@ -141,18 +142,18 @@ def generalized_force(p: SailParameters, layout: ChainLayout):
         c = e.real
         seg = layout.segments(q) if extensible else l
         if ideal:
-            f = i_f0 * (c * c) * e                              # Eq. (11): f₀ cos²θ n
+            f = i_f0 * (c * c) * e  # Eq. (11): f₀ cos²θ n
         else:
             x = q[0] + _exclusive_cumsum(seg * c) + half * c
             fx, fy = loads.radiation_forces(p, x, theta)
             f = fx + 1j * fy
-        carried = acc(f[::-1])[::-1]                            # Σ_{k≥j} f_k
+        carried = acc(f[::-1])[::-1]  # Σ_{k≥j} f_k
         total = carried[0] + tension * (e[-1] - e[0])
         Q[0], Q[1] = total.real, total.imag
-        carried -= f                                            # P_j = Σ_{k>j} f_k + T eₙ
+        carried -= f  # P_j = Σ_{k>j} f_k + T eₙ
         if tension:
             carried += tension * e[-1]
-        local = np.conj(e) * carried                            # P_j in slice j's axes
+        local = np.conj(e) * carried  # P_j in slice j's axes
         torque = seg * local.imag + half * (np.conj(e) * f).imag
         Q[idx] = acc(torque[::-1])[::-1]
         if extensible:

@@ -11,27 +11,27 @@ step factor 0.9·err^(−1/8) bounded to [0.2, 10] (no growth right after a reje
 Output is produced in chunks of sample times (`Dop853.advance`), so the caller can stop at
 failure, show progress and keep memory bounded, at one Python call per chunk.
 """
+
 from __future__ import annotations
 
 import numpy as np
 from numba import njit
-from lightsail_mbs.solvers.reduced import tableaus
 
+from lightsail_mbs.solvers.reduced import tableaus
 from lightsail_mbs.solvers.reduced.dynamics import rhs_into
 
-STAGES = tableaus.DOP853_STAGES                        # 12 stages per step
-A = np.ascontiguousarray(tableaus.DOP853_A)            # (16, 16): 12 step stages + 3 dense-output stages
+STAGES = tableaus.DOP853_STAGES  # 12 stages per step
+A = np.ascontiguousarray(tableaus.DOP853_A)  # (16, 16): 12 step stages + 3 dense-output stages
 B = np.ascontiguousarray(tableaus.DOP853_B)
 C = np.ascontiguousarray(tableaus.DOP853_C)
 E3 = np.ascontiguousarray(tableaus.DOP853_E3)
 E5 = np.ascontiguousarray(tableaus.DOP853_E5)
-D = np.ascontiguousarray(tableaus.DOP853_D)            # (4, 16) interpolation coefficients
-ERROR_EXPONENT = -1.0 / 8.0                             # −1/(error estimator order + 1)
+D = np.ascontiguousarray(tableaus.DOP853_D)  # (4, 16) interpolation coefficients
+ERROR_EXPONENT = -1.0 / 8.0  # −1/(error estimator order + 1)
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0
 
 OK, FINISHED, STEP_TOO_SMALL, NOT_FINITE = 0, 1, 2, 3
-STATUS = {STEP_TOO_SMALL: "required step size is less than spacing between numbers",
-          NOT_FINITE: "non-finite state"}
+STATUS = {STEP_TOO_SMALL: "required step size is less than spacing between numbers", NOT_FINITE: "non-finite state"}
 
 
 @njit(cache=True)
@@ -126,14 +126,14 @@ def advance(k, state, y, f, interp, y_old, t_bound, rtol, atol, max_step, sample
             else:
                 error = abs(h) * e5 / np.sqrt((e5 + 0.01 * e3) * size)
             if error < 1.0:
-                factor = MAX_FACTOR if error == 0.0 else min(MAX_FACTOR, SAFETY * error ** ERROR_EXPONENT)
+                factor = MAX_FACTOR if error == 0.0 else min(MAX_FACTOR, SAFETY * error**ERROR_EXPONENT)
                 if rejected:
                     factor = min(1.0, factor)
                 h_abs *= factor
                 break
             if np.isfinite(error):
-                h_abs *= max(MIN_FACTOR, SAFETY * error ** ERROR_EXPONENT)
-            else:            # overflow in a too-long trial step
+                h_abs *= max(MIN_FACTOR, SAFETY * error**ERROR_EXPONENT)
+            else:  # overflow in a too-long trial step
                 h_abs *= MIN_FACTOR
             rejected = True
         state[2] += 1
@@ -179,9 +179,12 @@ class Dop853:
         self.rtol = float(rtol)
         self.atol = np.broadcast_to(np.asarray(atol, float), self.y.shape).copy()
         self.max_step = float(max_step)
-        h0 = first_step if first_step is not None else initial_step(self.y, self.f, k, self.t_bound,
-                                                                    self.rtol, self.atol, self.max_step, 7)
-        self.state = np.array([0.0, float(h0), 0.0, 2.0, 0.0, 1.0])     # t, |h|, steps, nfev, t_old, h_old
+        h0 = (
+            first_step
+            if first_step is not None
+            else initial_step(self.y, self.f, k, self.t_bound, self.rtol, self.atol, self.max_step, 7)
+        )
+        self.state = np.array([0.0, float(h0), 0.0, 2.0, 0.0, 1.0])  # t, |h|, steps, nfev, t_old, h_old
         self.interp = np.zeros((7, self.y.size))
         self.y_old = self.y.copy()
         self.status = OK
@@ -202,7 +205,24 @@ class Dop853:
         """Integrate past the sample times (increasing, > t); returns the states there as columns
         (fewer columns if the run ended early: self.status is then FINISHED or an error code)."""
         out = np.empty((samples.size, self.y.size))
-        self.status, written = advance(self.k, self.state, self.y, self.f, self.interp, self.y_old, self.t_bound, self.rtol, self.atol,
-                                       self.max_step, np.ascontiguousarray(samples, float), out,
-                                       A, B, C, E3, E5, D)
+        self.status, written = advance(
+            self.k,
+            self.state,
+            self.y,
+            self.f,
+            self.interp,
+            self.y_old,
+            self.t_bound,
+            self.rtol,
+            self.atol,
+            self.max_step,
+            np.ascontiguousarray(samples, float),
+            out,
+            A,
+            B,
+            C,
+            E3,
+            E5,
+            D,
+        )
         return out[:written].T

@@ -14,7 +14,8 @@ and the joints' acceleration constraints, from differentiating r_{i+1} = r_i + a
 Substituting the first into the second gives g(Λ) = g(0) + K Λ with K symmetric positive definite
 and block-tridiagonal (2×2 symmetric blocks, n−1 joints):
 
-    K_ii = (2/m) I + (a_i²/J_G) p_i p_iᵀ + (b²/J_G) p_{i+1} p_{i+1}ᵀ,  K_i,i+1 = −(1/m) I + (b a_{i+1}/J_G) p_{i+1} p_{i+1}ᵀ.
+    K_ii = (2/m) I + (a_i²/J_G) p_i p_iᵀ + (b²/J_G) p_{i+1} p_{i+1}ᵀ,
+    K_i,i+1 = −(1/m) I + (b a_{i+1}/J_G) p_{i+1} p_{i+1}ᵀ.
 
 Inextensible chains (z ≡ 0): g = 0, so K Λ = −g(0), solved by block LDLᵀ (block Thomas) elimination
 in O(n). Extensible TnT chain (Eqs 29–31, l_s = 0): the massless spring fixes the axial part,
@@ -26,6 +27,7 @@ Loads (the compiled twin of loads.applied_forces, tested against it): radiation
 f_i = (I(x_i) l W / c) cos θ_i [2R cos θ_i n_i + α ŷ] (Eq. 11 for R = 1, α = 0), the frame force −m g₀ ŷ,
 and the follower end tensions −T e₁, T eₙ (Eq. 32). Torsion springs/dampers act on θ_{i+1} − θ_i (Eq. 23).
 """
+
 from __future__ import annotations
 
 import math
@@ -37,8 +39,26 @@ from lightsail_mbs.model.parameters import SPEED_OF_LIGHT
 from lightsail_mbs.solvers.reduced.kinematics import ChainModel
 
 # layout of the constants vector of one chain (read by the compiled kernels)
-N, MASS, INERTIA, HALF, K_T, C_T, K_S, C_S, TENSION, INTENSITY, AREA_C, WAIST, CENTER, REFL, ABSORB, FRAME, \
-    EXTENSIBLE, UNIFORM = range(18)
+(
+    N,
+    MASS,
+    INERTIA,
+    HALF,
+    K_T,
+    C_T,
+    K_S,
+    C_S,
+    TENSION,
+    INTENSITY,
+    AREA_C,
+    WAIST,
+    CENTER,
+    REFL,
+    ABSORB,
+    FRAME,
+    EXTENSIBLE,
+    UNIFORM,
+) = range(18)
 N_CONSTANTS = 18
 
 
@@ -91,10 +111,10 @@ def _solve_joint_forces(rx, ry, a, c, s, k, lx, ly):
     """Solve K Λ = r (2×2 block-tridiagonal SPD, symmetric blocks) by block LDLᵀ elimination."""
     joints = rx.size
     m, J, b = k[MASS], k[INERTIA], k[HALF]
-    inv_xx = np.empty(joints)        # (pivot block)⁻¹, symmetric
+    inv_xx = np.empty(joints)  # (pivot block)⁻¹, symmetric
     inv_xy = np.empty(joints)
     inv_yy = np.empty(joints)
-    u_xx = np.empty(joints)          # coupling block K_i,i+1 (symmetric)
+    u_xx = np.empty(joints)  # coupling block K_i,i+1 (symmetric)
     u_xy = np.empty(joints)
     u_yy = np.empty(joints)
     for i in range(joints):
@@ -104,7 +124,7 @@ def _solve_joint_forces(rx, ry, a, c, s, k, lx, ly):
         d_xy = wa * pxi * pyi + wb * pxj * pyj
         d_yy = 2 / m + wa * pyi * pyi + wb * pyj * pyj
         r_x, r_y = rx[i], ry[i]
-        if i > 0:    # eliminate joint i−1: D −= U W, r −= W r', W = U D'⁻¹ (U symmetric)
+        if i > 0:  # eliminate joint i−1: D −= U W, r −= W r', W = U D'⁻¹ (U symmetric)
             ux, uxy, uy = u_xx[i - 1], u_xy[i - 1], u_yy[i - 1]
             w11 = ux * inv_xx[i - 1] + uxy * inv_xy[i - 1]
             w12 = ux * inv_xy[i - 1] + uxy * inv_yy[i - 1]
@@ -117,7 +137,7 @@ def _solve_joint_forces(rx, ry, a, c, s, k, lx, ly):
             r_y -= w21 * lx[i - 1] + w22 * ly[i - 1]
         det = d_xx * d_yy - d_xy * d_xy
         inv_xx[i], inv_xy[i], inv_yy[i] = d_yy / det, -d_xy / det, d_xx / det
-        lx[i], ly[i] = r_x, r_y      # r' (the eliminated right-hand side), overwritten below
+        lx[i], ly[i] = r_x, r_y  # r' (the eliminated right-hand side), overwritten below
         if i < joints - 1:
             coupling = b * a[i + 1] / J
             u_xx[i] = -1 / m + coupling * pxj * pxj
@@ -140,7 +160,7 @@ def _solve_normal_forces(r, a, c, s, k, mu):
     pivot = np.empty(joints)
     off = np.empty(joints)
     for i in range(joints):
-        cos_rel = c[i] * c[i + 1] + s[i] * s[i + 1]            # p_i · p_{i+1}
+        cos_rel = c[i] * c[i + 1] + s[i] * s[i + 1]  # p_i · p_{i+1}
         d = 2 / m + (a[i] * a[i] + b * b * cos_rel * cos_rel) / J
         ri = r[i]
         if i > 0:
@@ -150,7 +170,7 @@ def _solve_normal_forces(r, a, c, s, k, mu):
         pivot[i] = d
         mu[i] = ri
         if i < joints - 1:
-            off[i] = cos_rel * (b * a[i + 1] / J - 1 / m)      # p_iᵀ K_i,i+1 p_{i+1}
+            off[i] = cos_rel * (b * a[i + 1] / J - 1 / m)  # p_iᵀ K_i,i+1 p_{i+1}
     for i in range(joints - 1, -1, -1):
         ri = mu[i]
         if i < joints - 1:
@@ -165,15 +185,15 @@ def accelerations_into(q, qd, k, qdd):
     b = k[HALF]
     extensible = k[EXTENSIBLE] != 0.0
     joints = n - 1
-    th = q[2:n + 2]
-    om = qd[2:n + 2]
+    th = q[2 : n + 2]
+    om = qd[2 : n + 2]
     c = np.cos(th)
     s = np.sin(th)
     a = np.full(joints, b)
     zd = np.zeros(joints)
     if extensible:
-        a += q[n + 2:]
-        zd[:] = qd[n + 2:]
+        a += q[n + 2 :]
+        zd[:] = qd[n + 2 :]
     # loads at the centres (x only matters for a non-uniform beam)
     fx = np.empty(n)
     fy = np.empty(n)
@@ -224,7 +244,7 @@ def accelerations_into(q, qd, k, qdd):
     if extensible:
         rhs = np.empty(joints)
         for i in range(joints):
-            rhs[i] = s[i] * gx[i] - c[i] * gy[i]           # −p_i · g_i
+            rhs[i] = s[i] * gx[i] - c[i] * gy[i]  # −p_i · g_i
         mu = np.empty(joints)
         _solve_normal_forces(rhs, a, c, s, k, mu)
         for i in range(joints):
@@ -238,11 +258,11 @@ def accelerations_into(q, qd, k, qdd):
     _slice_accelerations(lx, ly, fx, fy, tau, a, c, s, k, ax, ay, al)
     qdd[0] = ax[0]
     qdd[1] = ay[0]
-    qdd[2:n + 2] = al
+    qdd[2 : n + 2] = al
     if extensible:
         _constraint_residual(ax, ay, al, wx, wy, a, c, s, b, gx, gy)
         for i in range(joints):
-            qdd[n + 2 + i] = c[i] * gx[i] + s[i] * gy[i]   # z̈_i = e_i · g_i
+            qdd[n + 2 + i] = c[i] * gx[i] + s[i] * gy[i]  # z̈_i = e_i · g_i
 
 
 @njit(cache=True)

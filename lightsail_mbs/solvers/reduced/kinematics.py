@@ -15,6 +15,7 @@ and the generalized forces Q(q, q̇) (Eqs 15, 32 plus −∂V/∂q and the dampe
 M q̈ + c = Q. The O(n) solver in reduced.py never forms them. All functions accept a batch
 of states along trailing axes of θ (shape (n, …)).
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -31,24 +32,31 @@ class ChainModel:
 
     params: SailParameters
     n: int
-    half_length: float          # b = l/2
-    mass: float                 # m
-    inertia: float              # J_G = m l²/12
+    half_length: float  # b = l/2
+    mass: float  # m
+    inertia: float  # J_G = m l²/12
     torsional_stiffness: float  # k_T
-    torsional_damping: float    # c_T + β k_T
-    axial_stiffness: float      # k_s (0 when inextensible: not used)
-    axial_damping: float        # c_s + β k_s
-    tension: float              # T, follower end tension (Eq. 32)
+    torsional_damping: float  # c_T + β k_T
+    axial_stiffness: float  # k_s (0 when inextensible: not used)
+    axial_damping: float  # c_s + β k_s
+    tension: float  # T, follower end tension (Eq. 32)
     extensible: bool
 
     @classmethod
-    def from_params(cls, p: SailParameters) -> "ChainModel":
-        return cls(params=p, n=p.n, half_length=0.5 * p.slice_length, mass=p.slice_mass,
-                   inertia=p.slice_inertia, torsional_stiffness=p.torsional_stiffness,
-                   torsional_damping=p.total_torsional_damping,
-                   axial_stiffness=p.axial_stiffness if p.extensible else 0.0,
-                   axial_damping=p.total_axial_damping,
-                   tension=p.tension if p.model == "tnt" else 0.0, extensible=p.extensible)
+    def from_params(cls, p: SailParameters) -> ChainModel:
+        return cls(
+            params=p,
+            n=p.n,
+            half_length=0.5 * p.slice_length,
+            mass=p.slice_mass,
+            inertia=p.slice_inertia,
+            torsional_stiffness=p.torsional_stiffness,
+            torsional_damping=p.total_torsional_damping,
+            axial_stiffness=p.axial_stiffness if p.extensible else 0.0,
+            axial_damping=p.total_axial_damping,
+            tension=p.tension if p.model == "tnt" else 0.0,
+            extensible=p.extensible,
+        )
 
     @property
     def dof(self) -> int:
@@ -58,8 +66,8 @@ class ChainModel:
     def split(self, q: np.ndarray):
         """(x₁, y₁, θ (n, …), z (n−1, …)) from q (dof, …); z is zeros when inextensible."""
         n = self.n
-        z = q[n + 2:] if self.extensible else np.zeros((n - 1,) + q.shape[1:])
-        return q[0], q[1], q[2:n + 2], z
+        z = q[n + 2 :] if self.extensible else np.zeros((n - 1,) + q.shape[1:])
+        return q[0], q[1], q[2 : n + 2], z
 
     def pack(self, x1, y1, theta, z) -> np.ndarray:
         parts = [np.atleast_1d(x1), np.atleast_1d(y1), theta] + ([z] if self.extensible else [])
@@ -104,16 +112,16 @@ def centre_jacobian(model: ChainModel, q: np.ndarray) -> np.ndarray:
     k = np.arange(n)[None, :]
     arm_a = np.where(k < j, np.append(a, 0.0)[None, :], 0.0)
     arm_b = np.where((k >= 1) & (k <= j), b, 0.0)
-    coef = arm_a + arm_b                                   # c_jk
+    coef = arm_a + arm_b  # c_jk
     jac = np.zeros((n, 2, model.dof))
     jac[:, 0, 0] = 1.0
     jac[:, 1, 1] = 1.0
-    jac[:, 0, 2:n + 2] = -coef * np.sin(th)[None, :]
-    jac[:, 1, 2:n + 2] = coef * np.cos(th)[None, :]
+    jac[:, 0, 2 : n + 2] = -coef * np.sin(th)[None, :]
+    jac[:, 1, 2 : n + 2] = coef * np.cos(th)[None, :]
     if model.extensible:
-        below = (np.arange(n - 1)[None, :] < j)
-        jac[:, 0, n + 2:] = below * np.cos(th[:-1])[None, :]
-        jac[:, 1, n + 2:] = below * np.sin(th[:-1])[None, :]
+        below = np.arange(n - 1)[None, :] < j
+        jac[:, 0, n + 2 :] = below * np.cos(th[:-1])[None, :]
+        jac[:, 1, n + 2 :] = below * np.sin(th[:-1])[None, :]
     return jac
 
 
@@ -181,9 +189,9 @@ def generalized_forces(model: ChainModel, q: np.ndarray, qd: np.ndarray) -> np.n
     _, _, om, zd = model.split(qd)
     fx, fy = body_forces(model, x, th)
     gen = np.einsum("jai,ja->i", centre_jacobian(model, q), np.stack([fx, fy], axis=1))
-    gen[2:model.n + 2] += torsion_torques(model, th, om)
+    gen[2 : model.n + 2] += torsion_torques(model, th, om)
     if model.extensible:
-        gen[model.n + 2:] += axial_forces(model, z, zd)
+        gen[model.n + 2 :] += axial_forces(model, z, zd)
     return gen
 
 

@@ -12,14 +12,15 @@ forward-difference Jacobian of reduced_dynamics (dense: q̈ depends on every coo
 joint-force solve, so the Jacobian of the minimal-coordinate form is dense; its cost is
 O(n²) and the factorisation O(n³), refreshed only when Newton converges slowly).
 """
+
 from __future__ import annotations
 
 import numpy as np
 from numba import njit
 
 from lightsail_mbs.solvers.reduced import tableaus
-from lightsail_mbs.solvers.reduced.dynamics import jacobian_into, rhs_into
 from lightsail_mbs.solvers.reduced.dop853 import FINISHED, NOT_FINITE, OK, STEP_TOO_SMALL, initial_step
+from lightsail_mbs.solvers.reduced.dynamics import jacobian_into, rhs_into
 
 C = np.ascontiguousarray(tableaus.RADAU_C)
 E = np.ascontiguousarray(tableaus.RADAU_E)
@@ -32,8 +33,7 @@ NEWTON_MAXITER = tableaus.RADAU_NEWTON_MAXITER
 MIN_FACTOR, MAX_FACTOR = 0.2, 10.0
 
 # the integrator's scalar state (a float vector kept between calls)
-(T_NOW, H_ABS, H_ABS_OLD, ERROR_OLD, CURRENT_JAC, LU_VALID, HAS_SOL, T_OLD, H_OLD, STEPS, NFEV, NJEV,
- NLU) = range(13)
+(T_NOW, H_ABS, H_ABS_OLD, ERROR_OLD, CURRENT_JAC, LU_VALID, HAS_SOL, T_OLD, H_OLD, STEPS, NFEV, NJEV, NLU) = range(13)
 
 
 @njit(cache=True)
@@ -128,8 +128,12 @@ def _collocation(k, t, y, h, Z, scale, tol, lu_real, piv_real, lu_complex, piv_c
             return False, iterations, rate
         for i in range(size):
             real[i] = TI[0, 0] * F[0, i] + TI[0, 1] * F[1, i] + TI[0, 2] * F[2, i] - m_real * W[0, i]
-            cplx[i] = ((TI[1, 0] + 1j * TI[2, 0]) * F[0, i] + (TI[1, 1] + 1j * TI[2, 1]) * F[1, i]
-                       + (TI[1, 2] + 1j * TI[2, 2]) * F[2, i] - m_complex * (W[1, i] + 1j * W[2, i]))
+            cplx[i] = (
+                (TI[1, 0] + 1j * TI[2, 0]) * F[0, i]
+                + (TI[1, 1] + 1j * TI[2, 1]) * F[1, i]
+                + (TI[1, 2] + 1j * TI[2, 2]) * F[2, i]
+                - m_complex * (W[1, i] + 1j * W[2, i])
+            )
         lu_solve(lu_real, piv_real, real)
         lu_solve(lu_complex, piv_complex, cplx)
         dW[0] = real
@@ -158,7 +162,7 @@ def _predict_factor(h_abs, h_abs_old, error, error_old):
         multiplier = h_abs / h_abs_old * (error_old / error) ** 0.25
     if error == 0:
         return np.inf
-    return min(1.0, multiplier) * error ** -0.25
+    return min(1.0, multiplier) * error**-0.25
 
 
 @njit(cache=True)
@@ -172,14 +176,32 @@ def _dense(Z, y_old, x, out):
 
 
 @njit(cache=True)
-def advance(k, state, y, f, jac, lu_real, piv_real, lu_complex, piv_complex, Z, y_old, jac_scales,
-            t_bound, rtol, atol, max_step, samples, out):
+def advance(
+    k,
+    state,
+    y,
+    f,
+    jac,
+    lu_real,
+    piv_real,
+    lu_complex,
+    piv_complex,
+    Z,
+    y_old,
+    jac_scales,
+    t_bound,
+    rtol,
+    atol,
+    max_step,
+    samples,
+    out,
+):
     """Step (scipy Radau's algorithm) until every time in `samples` is passed; interpolated states
     go to the rows of out. All arrays and the scalar state persist between calls.
     Returns (status, number of samples written)."""
     size = y.size
     written = 0
-    newton_tol = max(10 * np.finfo(np.float64).eps / rtol, min(0.03, rtol ** 0.5))
+    newton_tol = max(10 * np.finfo(np.float64).eps / rtol, min(0.03, rtol**0.5))
     if not (np.all(np.isfinite(y)) and np.all(np.isfinite(f))):
         return NOT_FINITE, written
     while written < samples.size and samples[written] <= state[T_NOW]:
@@ -222,8 +244,9 @@ def advance(k, state, y, f, jac, lu_real, piv_real, lu_complex, piv_complex, Z, 
                     state[NLU] += 2
                     state[LU_VALID] = 1
                 Znew = Z0.copy()
-                converged, iterations, rate = _collocation(k, t, y, h, Znew, scale, newton_tol, lu_real,
-                                                           piv_real, lu_complex, piv_complex, state)
+                converged, iterations, rate = _collocation(
+                    k, t, y, h, Znew, scale, newton_tol, lu_real, piv_real, lu_complex, piv_complex, state
+                )
                 if not converged:
                     if state[CURRENT_JAC] != 0:
                         break
@@ -304,8 +327,11 @@ class Radau:
         self.atol = np.broadcast_to(np.asarray(atol, float), self.y.shape).copy()
         self.max_step = float(max_step)
         self.jac_scales = np.ascontiguousarray(jac_scales, float)
-        h0 = first_step if first_step is not None else initial_step(self.y, self.f, k, self.t_bound, self.rtol,
-                                                                    self.atol, self.max_step, 3)
+        h0 = (
+            first_step
+            if first_step is not None
+            else initial_step(self.y, self.f, k, self.t_bound, self.rtol, self.atol, self.max_step, 3)
+        )
         self.jac = np.empty((size, size))
         jacobian_into(self.y, k, self.jac_scales, self.jac)
         self.lu_real = np.empty((size, size))
@@ -343,8 +369,24 @@ class Radau:
         """Integrate past the sample times (increasing); returns the states there as columns
         (fewer if the run ended early: self.status is then FINISHED or an error code)."""
         out = np.empty((samples.size, self.y.size))
-        self.status, written = advance(self.k, self.state, self.y, self.f, self.jac, self.lu_real, self.piv_real,
-                                       self.lu_complex, self.piv_complex, self.Z, self.y_old, self.jac_scales,
-                                       self.t_bound, self.rtol, self.atol, self.max_step,
-                                       np.ascontiguousarray(samples, float), out)
+        self.status, written = advance(
+            self.k,
+            self.state,
+            self.y,
+            self.f,
+            self.jac,
+            self.lu_real,
+            self.piv_real,
+            self.lu_complex,
+            self.piv_complex,
+            self.Z,
+            self.y_old,
+            self.jac_scales,
+            self.t_bound,
+            self.rtol,
+            self.atol,
+            self.max_step,
+            np.ascontiguousarray(samples, float),
+            out,
+        )
         return out[:written].T

@@ -2,6 +2,7 @@
 scales of the state, the adapters that hand the run skeleton (solvers.skeleton.collect_samples) the
 states at the output times, and the Result assembled from those states.
 """
+
 from __future__ import annotations
 
 import math
@@ -18,7 +19,7 @@ from lightsail_mbs.solvers.reduced.kinematics import ChainModel, centre_velociti
 from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.solvers.skeleton import FINISHED, FailureMonitor, collect_samples
 
-CHUNK = 50      # output samples per call of a compiled integrator (failure check and progress in between)
+CHUNK = 50  # output samples per call of a compiled integrator (failure check and progress in between)
 SOLVER_ERRORS = (np.linalg.LinAlgError, ValueError, FloatingPointError)
 
 
@@ -37,7 +38,7 @@ def state_scales(model: ChainModel, waves: float) -> np.ndarray:
     position = p.displacement_scale
     bending = p.youngs_modulus * p.second_moment_of_area if model.torsional_stiffness else 0.0
     if p.tip_load and bending:
-        position = max(position, abs(p.tip_load) * p.length ** 3 / (3 * bending))
+        position = max(position, abs(p.tip_load) * p.length**3 / (3 * bending))
     rate = 1e3
     if model.torsional_stiffness:
         rate = max(rate, math.sqrt(model.torsional_stiffness / model.inertia))
@@ -53,6 +54,7 @@ def state_scales(model: ChainModel, waves: float) -> np.ndarray:
 
 def compiled_advance(method: str, integrator):
     """Adapter of a compiled integrator (dop853.Dop853, radau.Radau) for collect_samples."""
+
     def advance(times):
         batch = integrator.advance(times)
         status = None
@@ -61,6 +63,7 @@ def compiled_advance(method: str, integrator):
         elif integrator.status == DONE:
             status = FINISHED
         return batch, integrator.t, status
+
     return advance
 
 
@@ -75,25 +78,36 @@ def stepper_advance(method: str, integrator, size: int):
             message = integrator.step()
             integrator.steps += 1
             if integrator.status == "failed" or not np.all(np.isfinite(integrator.y)):
-                return nothing, integrator.t, f"{method} failed at t = {integrator.t:.6g} s: " \
-                                              f"{message or 'non-finite state'}"
+                return (
+                    nothing,
+                    integrator.t,
+                    f"{method} failed at t = {integrator.t:.6g} s: {message or 'non-finite state'}",
+                )
             stop = int(np.searchsorted(times, integrator.t, side="right"))
             batch = integrator.dense_output()(times[:stop]) if stop else nothing
         except SOLVER_ERRORS as exc:
             return nothing, integrator.t, f"{method} failed at t = {integrator.t:.6g} s: {exc}"
         return batch, integrator.t, FINISHED if integrator.status == "finished" else None
+
     return advance
 
 
-def sampled_run(model: ChainModel, y0: np.ndarray, initial_amplitude: float, settings: RunSettings, advance,
-                chunk: int, progress: bool):
+def sampled_run(
+    model: ChainModel,
+    y0: np.ndarray,
+    initial_amplitude: float,
+    settings: RunSettings,
+    advance,
+    chunk: int,
+    progress: bool,
+):
     """Run the skeleton's sampling loop from y0 with the chain's failure monitor; returns
     (states (size, k), error, wall time)."""
     start = clock.perf_counter()
     monitor = FailureMonitor(initial_amplitude, settings)
 
     def amplitude_of(batch):
-        x, y = centres(model, batch[:model.dof])
+        x, y = centres(model, batch[: model.dof])
         return analysis.amplitude(x.T, y.T)
 
     bar = Progress(settings.t_final, progress, label="reduced")
@@ -104,15 +118,29 @@ def sampled_run(model: ChainModel, y0: np.ndarray, initial_amplitude: float, set
     return np.concatenate(states, axis=1), error, clock.perf_counter() - start
 
 
-def trajectory_result(model: ChainModel, settings: RunSettings, states: np.ndarray, *, wall_time: float,
-                      error: str | None, info: dict) -> Result:
+def trajectory_result(
+    model: ChainModel, settings: RunSettings, states: np.ndarray, *, wall_time: float, error: str | None, info: dict
+) -> Result:
     """The Result of sampled states y = (q, q̇) (columns on settings.sample_times())."""
-    q, qd = states[:model.dof], states[model.dof:]
+    q, qd = states[: model.dof], states[model.dof :]
     x, y = centres(model, q)
     vx, vy = centre_velocities(model, q, qd)
     _, _, theta, z = model.split(q)
     _, _, omega, z_rate = model.split(qd)
     return Result.from_trajectory(
-        model.params, "reduced", settings.sample_times()[:states.shape[1]], x.T, y.T, theta.T, vx.T, vy.T, omega.T,
-        z=z.T if model.extensible else None, z_rate=z_rate.T if model.extensible else None,
-        wall_time=wall_time, error=error, info=info, settings=settings)
+        model.params,
+        "reduced",
+        settings.sample_times()[: states.shape[1]],
+        x.T,
+        y.T,
+        theta.T,
+        vx.T,
+        vy.T,
+        omega.T,
+        z=z.T if model.extensible else None,
+        z_rate=z_rate.T if model.extensible else None,
+        wall_time=wall_time,
+        error=error,
+        info=info,
+        settings=settings,
+    )

@@ -17,6 +17,7 @@ Output is sampled from the integrator's dense output on settings.sample_times() 
 sample whose amplitude reaches settings.failure_ratio × initial when settings.stop_at_failure. A failed
 step or a non-finite state ends the run and is recorded in Result.error with the trajectory up to there.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -31,12 +32,18 @@ from lightsail_mbs.solvers.reduced.dop853 import Dop853
 from lightsail_mbs.solvers.reduced.dynamics import ChainDynamics
 from lightsail_mbs.solvers.reduced.kinematics import ChainModel
 from lightsail_mbs.solvers.reduced.radau import Radau as CompiledRadau
-from lightsail_mbs.solvers.reduced.sampling import (CHUNK, compiled_advance, sampled_run, state_scales,
-                                                    stepper_advance, trajectory_result)
+from lightsail_mbs.solvers.reduced.sampling import (
+    CHUNK,
+    compiled_advance,
+    sampled_run,
+    state_scales,
+    stepper_advance,
+    trajectory_result,
+)
 from lightsail_mbs.solvers.settings import RunSettings
 
-COMPILED = {"DOP853": Dop853, "Radau": CompiledRadau}          # numba step loops
-METHODS = {**COMPILED, "RK45": RK45, "BDF": BDF, "LSODA": LSODA}   # the others: scipy's steppers
+COMPILED = {"DOP853": Dop853, "Radau": CompiledRadau}  # numba step loops
+METHODS = {**COMPILED, "RK45": RK45, "BDF": BDF, "LSODA": LSODA}  # the others: scipy's steppers
 IMPLICIT = ("Radau", "BDF", "LSODA")
 # Convergence study (validation/reduced_scaling.py --tolerances): failure times of the soft paper cases
 # move < 2e-4 (DOP853) and < 4e-5 (Radau) relative from rtol 1e-6 to 1e-9. DOP853 runs at 1e-9, where
@@ -51,15 +58,23 @@ def default_method(p: SailParameters) -> str:
     return "Radau" if p.extensible else "DOP853"
 
 
-def run(params: SailParameters, settings: RunSettings, *, progress: bool = False, rtol: float | None = None,
-        atol=None, method: str | None = None, **options) -> Result:
+def run(
+    params: SailParameters,
+    settings: RunSettings,
+    *,
+    progress: bool = False,
+    rtol: float | None = None,
+    atol=None,
+    method: str | None = None,
+    **options,
+) -> Result:
     """Integrate one case in minimal coordinates and return its Result (solver "reduced").
 
     rtol: relative tolerance (default DEFAULT_RTOL[method], 1e-6 for scipy's methods); atol: absolute tolerance,
     a scalar or one value per state entry (default rtol × state_scales(model, ν)); method: DOP853, RK45,
     Radau, BDF or LSODA (default: default_method(params)); options: max_step, first_step.
     """
-    if supports.needs_boundary(params):      # supports or a tip load (validations): dense constrained chain
+    if supports.needs_boundary(params):  # supports or a tip load (validations): dense constrained chain
         return supports.run(params, settings, progress=progress, rtol=rtol, atol=atol, method=method, **options)
     unknown = sorted(set(options) - set(OPTIONS))
     if unknown:
@@ -83,9 +98,16 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     if method in COMPILED:
         atol = np.broadcast_to(np.asarray(atol, float), y0.shape)
         extra = dict(jac_scales=np.maximum(atol / rtol, 1e-300)) if method == "Radau" else {}
-        integrator = COMPILED[method](dynamics.constants, y0, settings.t_final, rtol, atol,
-                                      max_step=options.get("max_step", np.inf),
-                                      first_step=options.get("first_step"), **extra)
+        integrator = COMPILED[method](
+            dynamics.constants,
+            y0,
+            settings.t_final,
+            rtol,
+            atol,
+            max_step=options.get("max_step", np.inf),
+            first_step=options.get("first_step"),
+            **extra,
+        )
         advance, chunk = compiled_advance(method, integrator), CHUNK
     else:
         kwargs = dict(rtol=rtol, atol=atol, **options)
@@ -94,9 +116,18 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
             kwargs["jac"] = lambda t, y: dynamics.jacobian(t, y, scales)
         integrator = METHODS[method](dynamics.rhs, 0.0, y0, settings.t_final, **kwargs)
         advance, chunk = stepper_advance(method, integrator, y0.size), settings.sample_times().size
-    states, error, wall = sampled_run(model, y0, analysis.amplitude(start.x, start.y), settings, advance, chunk,
-                                      progress)
-    info = dict(method=method, rtol=rtol, atol=float(np.min(atol)), steps=integrator.steps, nfev=integrator.nfev,
-                njev=getattr(integrator, "njev", 0), nlu=getattr(integrator, "nlu", 0), coordinates=model.dof,
-                formulation="minimal coordinates, O(n) joint-force recursion (block LDLT), compiled")
+    states, error, wall = sampled_run(
+        model, y0, analysis.amplitude(start.x, start.y), settings, advance, chunk, progress
+    )
+    info = dict(
+        method=method,
+        rtol=rtol,
+        atol=float(np.min(atol)),
+        steps=integrator.steps,
+        nfev=integrator.nfev,
+        njev=getattr(integrator, "njev", 0),
+        nlu=getattr(integrator, "nlu", 0),
+        coordinates=model.dof,
+        formulation="minimal coordinates, O(n) joint-force recursion (block LDLT), compiled",
+    )
     return trajectory_result(model, settings, states, wall_time=wall, error=error, info=info)

@@ -22,6 +22,7 @@ run() integrates these chains with scipy's implicit steppers (Radau by default: 
 tensioned chains are stiff), sampling the dense output like the free chain (sampling.py); solver.run hands every
 case with supports or a tip load over to it.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -33,8 +34,14 @@ from lightsail_mbs.model import shapes
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.reduced.dynamics import ChainDynamics
-from lightsail_mbs.solvers.reduced.kinematics import (ChainModel, axial_forces, body_forces, centre_jacobian,
-                                                      centres, torsion_torques)
+from lightsail_mbs.solvers.reduced.kinematics import (
+    ChainModel,
+    axial_forces,
+    body_forces,
+    centre_jacobian,
+    centres,
+    torsion_torques,
+)
 from lightsail_mbs.solvers.reduced.sampling import sampled_run, state_scales, stepper_advance, trajectory_result
 from lightsail_mbs.solvers.settings import RunSettings
 
@@ -50,8 +57,9 @@ def needs_boundary(p) -> bool:
 
 def _cholesky_solve(lower: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     """x with L Lᵀ x = rhs."""
-    return solve_triangular(lower.T, solve_triangular(lower, rhs, lower=True, check_finite=False),
-                            lower=False, check_finite=False)
+    return solve_triangular(
+        lower.T, solve_triangular(lower, rhs, lower=True, check_finite=False), lower=False, check_finite=False
+    )
 
 
 def _bias_accelerations(model: ChainModel, th, om, z, zd):
@@ -84,7 +92,7 @@ class BoundedChainDynamics:
         """(x, y) of hinge 0 and y of hinge n."""
         m = self.model
         b, n = m.half_length, m.n
-        th = q[2:n + 2]
+        th = q[2 : n + 2]
         _, y = centres(m, q[:, None])
         return np.array([q[0] - b * np.cos(th[0]), q[1] - b * np.sin(th[0]), y[-1, 0] + b * np.sin(th[-1])])
 
@@ -92,7 +100,7 @@ class BoundedChainDynamics:
         """G = ∂g/∂q (3 × dof) from the centre Jacobian jac (n, 2, dof)."""
         m = self.model
         b, n = m.half_length, m.n
-        th = q[2:n + 2]
+        th = q[2 : n + 2]
         G = np.zeros((3, m.dof))
         G[0, 0] = 1.0
         G[0, 2] = b * np.sin(th[0])
@@ -110,8 +118,9 @@ class BoundedChainDynamics:
         _, _, th, z = m.split(q)
         _, _, om, zd = m.split(qd)
         _, ay = _bias_accelerations(m, th, om, z, zd)
-        return np.array([b * om[0] ** 2 * np.cos(th[0]), b * om[0] ** 2 * np.sin(th[0]),
-                         ay[-1] - b * om[-1] ** 2 * np.sin(th[-1])])
+        return np.array(
+            [b * om[0] ** 2 * np.cos(th[0]), b * om[0] ** 2 * np.sin(th[0]), ay[-1] - b * om[-1] ** 2 * np.sin(th[-1])]
+        )
 
     def constraint_violation(self, q: np.ndarray) -> np.ndarray:
         """|g(q)| for states q (dof, k): drift of the pinned chain's supports (zeros otherwise)."""
@@ -133,9 +142,9 @@ class BoundedChainDynamics:
         fx, fy = body_forces(m, x[:, 0], th)
         ax, ay = _bias_accelerations(m, th, om, z, zd)
         force = np.einsum("jai,ja->i", jac, np.stack([fx - m.mass * ax, fy - m.mass * ay], axis=1))
-        force[2:n + 2] += torsion_torques(m, th, om)
+        force[2 : n + 2] += torsion_torques(m, th, om)
         if m.extensible:
-            force[n + 2:] += axial_forces(m, z, zd)
+            force[n + 2 :] += axial_forces(m, z, zd)
         if p.tip_load:
             force += p.tip_force(t) * jac[self._tip, 1]
         flat = jac.reshape(2 * n, m.dof)
@@ -147,7 +156,7 @@ class BoundedChainDynamics:
         free_acc = _cholesky_solve(lower, force[f])
         if self.pinned:
             G = self.constraint_jacobian(q, jac)[:, f]
-            response = _cholesky_solve(lower, G.T)                    # M⁻¹ Gᵀ
+            response = _cholesky_solve(lower, G.T)  # M⁻¹ Gᵀ
             lam = np.linalg.solve(G @ response, -self.constraint_rates(q, qd) - G @ free_acc)
             free_acc = free_acc + response @ lam
         qdd[f] = free_acc
@@ -177,8 +186,16 @@ def dynamics_of(p: SailParameters):
     return BoundedChainDynamics(model, model.pack(start.x[0], start.y[0], start.theta, start.z)), model
 
 
-def run(params: SailParameters, settings: RunSettings, *, progress: bool = False, rtol: float | None = None,
-        atol=None, method: str | None = None, **options) -> Result:
+def run(
+    params: SailParameters,
+    settings: RunSettings,
+    *,
+    progress: bool = False,
+    rtol: float | None = None,
+    atol=None,
+    method: str | None = None,
+    **options,
+) -> Result:
     """Integrate a chain with supports or a tip load (module docstring) and return its Result.
 
     rtol: relative tolerance (default 1e-6); atol: absolute tolerance, scalar or per state entry
@@ -190,8 +207,10 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         raise ParameterError(f"option {unknown[0]!r} is invalid: allowed {', '.join(OPTIONS)}")
     method = method or "Radau"
     if method not in METHODS:
-        raise ParameterError(f"method={method!r} is invalid with supports or a tip load: allowed one of "
-                             f"{', '.join(METHODS)} (the supported chains are stiff)")
+        raise ParameterError(
+            f"method={method!r} is invalid with supports or a tip load: allowed one of "
+            f"{', '.join(METHODS)} (the supported chains are stiff)"
+        )
     rtol = DEFAULT_RTOL if rtol is None else float(rtol)
     if not 0 < rtol < 1:
         raise ParameterError(f"rtol={rtol!r} is invalid: allowed 0 < rtol < 1")
@@ -201,14 +220,30 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     start = shapes.initial_state(params)
     q0 = model.pack(start.x[0], start.y[0], start.theta, start.z)
     y0 = np.concatenate([q0, np.zeros_like(q0)])
-    integrator = METHODS[method](dynamics.rhs, 0.0, y0, settings.t_final, rtol=rtol, atol=atol,
-                                 vectorized=method != "LSODA", **options)
-    states, error, wall = sampled_run(model, y0, analysis.amplitude(start.x, start.y), settings,
-                                      stepper_advance(method, integrator, y0.size), settings.sample_times().size,
-                                      progress)
-    q = states[:model.dof]
-    info = dict(method=method, rtol=rtol, atol=float(np.min(atol)), steps=integrator.steps, nfev=integrator.nfev,
-                njev=integrator.njev, nlu=integrator.nlu, coordinates=model.dof, boundary=params.boundary,
-                constraint_drift=float(np.max(dynamics.constraint_violation(q))),
-                formulation="minimal coordinates, dense M(q) with supports (reduced_boundary)")
+    integrator = METHODS[method](
+        dynamics.rhs, 0.0, y0, settings.t_final, rtol=rtol, atol=atol, vectorized=method != "LSODA", **options
+    )
+    states, error, wall = sampled_run(
+        model,
+        y0,
+        analysis.amplitude(start.x, start.y),
+        settings,
+        stepper_advance(method, integrator, y0.size),
+        settings.sample_times().size,
+        progress,
+    )
+    q = states[: model.dof]
+    info = dict(
+        method=method,
+        rtol=rtol,
+        atol=float(np.min(atol)),
+        steps=integrator.steps,
+        nfev=integrator.nfev,
+        njev=integrator.njev,
+        nlu=integrator.nlu,
+        coordinates=model.dof,
+        boundary=params.boundary,
+        constraint_drift=float(np.max(dynamics.constraint_violation(q))),
+        formulation="minimal coordinates, dense M(q) with supports (reduced_boundary)",
+    )
     return trajectory_result(model, settings, states, wall_time=wall, error=error, info=info)

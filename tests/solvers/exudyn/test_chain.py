@@ -1,5 +1,6 @@
 """The Exudyn solver: kinematics and loads against Exudyn's own evaluation, equilibrium of the
 flat sail, energy conservation and step convergence in free vibration, the paper's verdicts."""
+
 import numpy as np
 import pytest
 
@@ -15,11 +16,11 @@ rng = np.random.default_rng(11)
 CASES = {
     "rigid": SailParameters(model="rigid", n=7, intensity=1e9),
     "torsion": SailParameters(n=6, youngs_modulus=4.5e9, intensity=1e9),
-    "tnt-extensible": SailParameters(model="tnt", n=5, tension=1e-3, youngs_modulus=1e11, bending=True,
-                                     intensity=1e9),
+    "tnt-extensible": SailParameters(model="tnt", n=5, tension=1e-3, youngs_modulus=1e11, bending=True, intensity=1e9),
     "tnt-inextensible": SailParameters(model="tnt", n=6, tension=1e-3, axial_springs=False, intensity=1e9),
-    "gaussian-absorbing": SailParameters(n=6, youngs_modulus=4.5e9, intensity=1e9, beam_waist=0.4,
-                                         reflectivity=0.7, absorptivity=0.2),
+    "gaussian-absorbing": SailParameters(
+        n=6, youngs_modulus=4.5e9, intensity=1e9, beam_waist=0.4, reflectivity=0.7, absorptivity=0.2
+    ),
 }
 
 
@@ -36,9 +37,17 @@ def exudyn_state(p, q):
     SC, mbs, layout, _, _ = exudyn_chain.build(p)
     links = layout.angle_index
     centre = [0.5 * p.slice_length, 0.0, 0.0]
-    sensors = [[mbs.AddSensor(SensorKinematicTree(objectNumber=0, linkNumber=int(k), localPosition=centre,
-                                                  storeInternal=True, outputVariableType=kind))
-                for k in links] for kind in (exu.OutputVariableType.Position, exu.OutputVariableType.Rotation)]
+    sensors = [
+        [
+            mbs.AddSensor(
+                SensorKinematicTree(
+                    objectNumber=0, linkNumber=int(k), localPosition=centre, storeInternal=True, outputVariableType=kind
+                )
+            )
+            for k in links
+        ]
+        for kind in (exu.OutputVariableType.Position, exu.OutputVariableType.Rotation)
+    ]
     mbs.Assemble()
     solver = exu.MainSolverImplicitSecondOrder()
     solver.InitializeSolver(mbs, exudyn_chain.simulation_settings(RunSettings().t_final, 1e-4, 1e-10, 1e-15))
@@ -54,6 +63,7 @@ def exudyn_state(p, q):
 def virtual_work_forces(p, layout, q, eps=1e-7):
     """Q_j = Σ F·∂r/∂q_j of applied_forces at the centres and the end tensions (central differences),
     minus the springs' −k q."""
+
     def points(q):
         x, y, th, _ = layout.positions(q)
         h = 0.5 * p.slice_length
@@ -127,8 +137,9 @@ def test_flat_sail_stays_flat_and_put():
 def test_free_vibration_conserves_energy_and_converges(model):
     """I₀ = 0, no damping, no tension: ½mΣv² + ½JΣω² + ½k_TΣΔθ² (+ ½k_sΣz²) is constant, and
     its drift (generalized-α, ρ∞ = 0.9) shrinks with the step size."""
-    p = SailParameters(model=model, n=8, intensity=0.0, defect_amplitude=5e-3, defect_mode=1.5,
-                       youngs_modulus=4.5e13, bending=True)
+    p = SailParameters(
+        model=model, n=8, intensity=0.0, defect_amplitude=5e-3, defect_mode=1.5, youngs_modulus=4.5e13, bending=True
+    )
     settings = RunSettings(t_final=0.2, output_interval=1e-3, stop_at_failure=False)
     drift = []
     for h in (4e-4, 2e-4):
@@ -138,7 +149,7 @@ def test_free_vibration_conserves_energy_and_converges(model):
         assert energy.max() > 0
         drift.append(np.abs(energy - energy[0]).max() / energy.max())
     assert drift[0] < 1e-6
-    assert drift[1] < 0.5 * drift[0]          # second order: ≈ 1/4
+    assert drift[1] < 0.5 * drift[0]  # second order: ≈ 1/4
 
 
 def test_soft_torsion_fails_near_two_seconds():
@@ -146,7 +157,7 @@ def test_soft_torsion_fails_near_two_seconds():
     r = solve(paper_case("torsion-soft"), "exudyn", paper_settings("torsion-soft"))
     assert r.error is None
     assert 1.5 <= r.failure_time <= 2.3
-    assert r.time[-1] < 2.5                    # the run stopped at failure
+    assert r.time[-1] < 2.5  # the run stopped at failure
 
 
 def test_runs_on_past_failure_when_asked():
@@ -204,11 +215,13 @@ def test_rigid_modes_fail_at_troughs(mode):
 @pytest.mark.slow
 @pytest.mark.parametrize("modulus, springs", [(1e11, True), (1e10, True), (1e11, False)])
 def test_tnt_verdicts_do_not_hinge_on_modulus(modulus, springs):
-    stable = solve(paper_case("tnt-stable", youngs_modulus=modulus, axial_springs=springs), "exudyn",
-                   paper_settings("tnt-stable"))
+    stable = solve(
+        paper_case("tnt-stable", youngs_modulus=modulus, axial_springs=springs), "exudyn", paper_settings("tnt-stable")
+    )
     assert stable.error is None and not stable.failed and stable.time[-1] == pytest.approx(6.0)
-    soft = solve(paper_case("tnt-soft", youngs_modulus=modulus, axial_springs=springs), "exudyn",
-                 paper_settings("tnt-soft"))
+    soft = solve(
+        paper_case("tnt-soft", youngs_modulus=modulus, axial_springs=springs), "exudyn", paper_settings("tnt-soft")
+    )
     assert soft.error is None and 1.5 <= soft.failure_time <= 2.5
 
 
@@ -218,6 +231,12 @@ def test_soft_torsion_failure_time_converges():
     p, settings = paper_case("torsion-soft"), paper_settings("torsion-soft")
     h = exudyn_chain.default_step_size(p, settings)
     coarse = solve(p, "exudyn", settings)
-    fine = solve(p, "exudyn", settings, step_size=h / 2, newton_rel_tol=exudyn_chain.NEWTON_REL_TOL / 2,
-                 newton_abs_tol=exudyn_chain.default_abs_tol(p) / 2)
+    fine = solve(
+        p,
+        "exudyn",
+        settings,
+        step_size=h / 2,
+        newton_rel_tol=exudyn_chain.NEWTON_REL_TOL / 2,
+        newton_abs_tol=exudyn_chain.default_abs_tol(p) / 2,
+    )
     assert fine.failure_time == pytest.approx(coarse.failure_time, rel=1e-2)

@@ -1,5 +1,6 @@
 """The compiled O(n) joint-force recursion (ChainDynamics) against the dense Lagrangian solution M⁻¹(Q − c),
 and its linear cost in n."""
+
 import numpy as np
 import pytest
 
@@ -22,15 +23,16 @@ def test_recursive_accelerations_equal_dense_solution(p):
     batch = dyn.accelerations(np.stack([s[0] for s in states], 1), np.stack([s[1] for s in states], 1))
     np.testing.assert_allclose(batch, dense, rtol=0, atol=1e-11 * scale)
     stacked = dyn.rhs(0.0, np.concatenate([np.stack([s[0] for s in states], 1), np.stack([s[1] for s in states], 1)]))
-    np.testing.assert_allclose(stacked[model.dof:], dense, rtol=0, atol=1e-11 * scale)
+    np.testing.assert_allclose(stacked[model.dof :], dense, rtol=0, atol=1e-11 * scale)
     for k, (q, qd) in enumerate(states):
-        single = dyn.rhs(0.0, np.concatenate([q, qd]))[model.dof:]
+        single = dyn.rhs(0.0, np.concatenate([q, qd]))[model.dof :]
         np.testing.assert_allclose(single, dense[:, k], rtol=0, atol=1e-11 * scale)
 
 
 def test_rhs_cost_grows_linearly_with_n():
     """No dense algebra in the right-hand side: 30× more slices cost far less than 30²×."""
     import timeit
+
     cost = {}
     for n in (100, 3000):
         model = ChainModel.from_params(SailParameters(n=n, defect_amplitude=1e-6))

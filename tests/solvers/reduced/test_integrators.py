@@ -1,4 +1,5 @@
 """The reduced solver's compiled integrators (dop853, radau) are scipy's methods: same steps, same states."""
+
 import numpy as np
 
 from lightsail_mbs import RunSettings, paper_case, solve
@@ -20,11 +21,17 @@ def test_compiled_dop853_takes_scipys_steps():
     r = solve(p, "reduced", settings, rtol=1e-6)
     model = ChainModel.from_params(p)
     q0 = model.pack(r.x[0, 0], r.y[0, 0], r.theta[0], np.zeros(0))
-    ref = solve_ivp(ChainDynamics(model).rhs, (0, settings.t_final), np.concatenate([q0, np.zeros_like(q0)]),
-                    method="DOP853", rtol=r.info["rtol"],
-                    atol=r.info["rtol"] * state_scales(model, p.defect_mode), t_eval=r.time)
+    ref = solve_ivp(
+        ChainDynamics(model).rhs,
+        (0, settings.t_final),
+        np.concatenate([q0, np.zeros_like(q0)]),
+        method="DOP853",
+        rtol=r.info["rtol"],
+        atol=r.info["rtol"] * state_scales(model, p.defect_mode),
+        t_eval=r.time,
+    )
     assert r.info["nfev"] == ref.nfev
-    theta = ref.y[2:p.n + 2].T
+    theta = ref.y[2 : p.n + 2].T
     np.testing.assert_allclose(r.theta, theta, rtol=0, atol=1e-12 * np.abs(theta).max())
 
 

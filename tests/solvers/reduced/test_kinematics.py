@@ -1,5 +1,6 @@
 """The reduced chain's Lagrangian terms: M(q) against the paper's rigid-model coefficients, M, c and Q
 against a finite-difference Lagrangian."""
+
 import numpy as np
 import pytest
 
@@ -40,11 +41,13 @@ def paper_rigid_rows(n, l, theta):
         rows[k + 1, 0] = -lever * np.sin(theta[k - 1])
         rows[k + 1, 1] = lever * np.cos(theta[k - 1])
         if k == 1:
-            a = np.where(j == 1, 3 * (n - 1) * l ** 2 + l ** 2, 3 * (2 * n - 2 * j + 1) * l ** 2)
+            a = np.where(j == 1, 3 * (n - 1) * l**2 + l**2, 3 * (2 * n - 2 * j + 1) * l**2)
         else:
-            a = np.select([j == 1, j < k, j == k], [3 * (2 * n - 2 * k + 1) * l ** 2, 6 * (2 * n - 2 * k + 1) * l ** 2,
-                                                      12 * (n - k) * l ** 2 + 4 * l ** 2],
-                          6 * (2 * n - 2 * j + 1) * l ** 2)
+            a = np.select(
+                [j == 1, j < k, j == k],
+                [3 * (2 * n - 2 * k + 1) * l**2, 6 * (2 * n - 2 * k + 1) * l**2, 12 * (n - k) * l**2 + 4 * l**2],
+                6 * (2 * n - 2 * j + 1) * l**2,
+            )
         rows[k + 1, 2:] = a * np.cos(theta[k - 1] - theta)
     return rows
 
@@ -58,8 +61,9 @@ def test_mass_matrix_equals_paper_rigid_coefficients(n):
     for _ in range(3):
         q = random_state(model)[0]
         expected = paper_rigid_rows(n, p.slice_length, q[2:])
-        np.testing.assert_allclose(scale * mass_matrix(model, q), expected, rtol=1e-12,
-                                   atol=1e-13 * np.abs(expected).max())
+        np.testing.assert_allclose(
+            scale * mass_matrix(model, q), expected, rtol=1e-12, atol=1e-13 * np.abs(expected).max()
+        )
 
 
 # ---- finite-difference Lagrangian -----------------------------------------------------------
@@ -84,9 +88,14 @@ def end_points(model):
 
     def ends(q):
         x, y = centres(model, q)
-        th = q[2:n + 2]
-        return np.array([[x[0] - b * np.cos(th[0]), y[0] - b * np.sin(th[0])],
-                         [x[-1] + b * np.cos(th[-1]), y[-1] + b * np.sin(th[-1])]])
+        th = q[2 : n + 2]
+        return np.array(
+            [
+                [x[0] - b * np.cos(th[0]), y[0] - b * np.sin(th[0])],
+                [x[-1] + b * np.cos(th[-1]), y[-1] + b * np.sin(th[-1])],
+            ]
+        )
+
     return ends
 
 
@@ -114,19 +123,19 @@ def fd_generalized_forces(model, q, qd, eps=1e-7):
     """Q_k = Σ F_j·∂r_j/∂q_k + T-end virtual work − ∂V/∂q_k − ∂R/∂q̇_k (V: springs, R: Rayleigh dampers)."""
     p, n = model.params, model.n
     x, _ = centres(model, q)
-    th = q[2:n + 2]
+    th = q[2 : n + 2]
     fx, fy = loads.applied_forces(p, x, th)
     gen = np.einsum("jai,ja->i", fd_jacobian(model, q, centre_points(model)), np.stack([fx, fy], axis=1))
     tension = model.tension * np.array([[-np.cos(th[0]), -np.sin(th[0])], [np.cos(th[-1]), np.sin(th[-1])]])
     gen += np.einsum("jai,ja->i", fd_jacobian(model, q, end_points(model)), tension)
 
     def potential(q):
-        v = 0.5 * model.torsional_stiffness * np.sum(np.diff(q[2:n + 2]) ** 2)
-        return v + 0.5 * model.axial_stiffness * np.sum(q[n + 2:] ** 2)
+        v = 0.5 * model.torsional_stiffness * np.sum(np.diff(q[2 : n + 2]) ** 2)
+        return v + 0.5 * model.axial_stiffness * np.sum(q[n + 2 :] ** 2)
 
     def rayleigh(qd):
-        r = 0.5 * model.torsional_damping * np.sum(np.diff(qd[2:n + 2]) ** 2)
-        return r + 0.5 * model.axial_damping * np.sum(qd[n + 2:] ** 2)
+        r = 0.5 * model.torsional_damping * np.sum(np.diff(qd[2 : n + 2]) ** 2)
+        return r + 0.5 * model.axial_damping * np.sum(qd[n + 2 :] ** 2)
 
     for k in range(model.dof):
         dq = np.zeros(model.dof)
@@ -146,5 +155,4 @@ def test_mass_matrix_and_forces_match_finite_difference_lagrangian(p):
         c = velocity_terms(model, q, qd)
         np.testing.assert_allclose(c, fd_velocity_terms(model, q, qd), rtol=1e-6, atol=1e-7 * np.abs(c).max())
         gen = generalized_forces(model, q, qd)
-        np.testing.assert_allclose(gen, fd_generalized_forces(model, q, qd), rtol=1e-6,
-                                   atol=1e-7 * np.abs(gen).max())
+        np.testing.assert_allclose(gen, fd_generalized_forces(model, q, qd), rtol=1e-6, atol=1e-7 * np.abs(gen).max())

@@ -1,5 +1,6 @@
 """Runs of the reduced-Lagrangian solver: sampling and options, failures of the method recorded, energy
 conservation, the stop rule, the paper's verdicts."""
+
 import numpy as np
 import pytest
 
@@ -45,6 +46,7 @@ def test_divergence_is_recorded_not_raised(monkeypatch, method):
     def poisoned_rhs(self, t, y):
         out = original_rhs(self, t, y)
         return out * np.nan if t > 0.03 else out
+
     monkeypatch.setattr(reduced_integrator.Dop853, "advance", poisoned_advance)
     monkeypatch.setattr(ChainDynamics, "rhs", poisoned_rhs)
     r = solve(p, "reduced", RunSettings(t_final=0.1, output_interval=0.001), method=method)
@@ -52,10 +54,14 @@ def test_divergence_is_recorded_not_raised(monkeypatch, method):
     assert 0.02 < r.time[-1] < 0.1 and np.all(np.isfinite(r.theta))
 
 
-@pytest.mark.parametrize("p, settings", [
-    (SailParameters(n=12, intensity=0.0, youngs_modulus=4.5e13), RunSettings(t_final=0.5)),
-    (crosscheck.free_tnt(), crosscheck.CASES["free-tnt"].settings),
-], ids=["torsion", "tnt-T0"])
+@pytest.mark.parametrize(
+    "p, settings",
+    [
+        (SailParameters(n=12, intensity=0.0, youngs_modulus=4.5e13), RunSettings(t_final=0.5)),
+        (crosscheck.free_tnt(), crosscheck.CASES["free-tnt"].settings),
+    ],
+    ids=["torsion", "tnt-T0"],
+)
 def test_free_vibration_conserves_energy(p, settings):
     """Zero intensity, no damping: the Lagrangian conserves kinetic + elastic energy (Eqs 23, 29);
     the drift is integration error, below 1e-8 at a tight tolerance and shrinking with it.
@@ -66,7 +72,7 @@ def test_free_vibration_conserves_energy(p, settings):
     r = solve(p, "reduced", settings, rtol=1e-9, method=method)
     assert r.error is None and r.time[-1] == pytest.approx(settings.t_final)
     energy = analysis.mechanical_energy(r)
-    assert energy[0] > 0 and np.ptp(r.theta[:, 0]) > 0.5 * abs(r.theta[0, 0])      # it really vibrates
+    assert energy[0] > 0 and np.ptp(r.theta[:, 0]) > 0.5 * abs(r.theta[0, 0])  # it really vibrates
     drift = np.abs(energy / energy[0] - 1).max()
     assert drift < 1e-8
     assert drift < np.abs(analysis.mechanical_energy(loose) / energy[0] - 1).max()

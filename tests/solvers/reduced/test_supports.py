@@ -1,4 +1,5 @@
 """The reduced solver's supported chains (solvers.reduced.supports) against the reference dense Lagrangian terms."""
+
 import numpy as np
 import pytest
 
@@ -9,9 +10,9 @@ from lightsail_mbs.studies import classic
 
 def random_state(model, rng, scale=0.05):
     q = np.zeros(model.dof)
-    q[2:model.n + 2] = scale * rng.standard_normal(model.n)
+    q[2 : model.n + 2] = scale * rng.standard_normal(model.n)
     if model.extensible:
-        q[model.n + 2:] = model.params.tension / model.axial_stiffness * (1 + 0.1 * rng.standard_normal(model.n - 1))
+        q[model.n + 2 :] = model.params.tension / model.axial_stiffness * (1 + 0.1 * rng.standard_normal(model.n - 1))
     qd = 10 * scale * rng.standard_normal(model.dof)
     return q, qd
 
@@ -50,8 +51,10 @@ def test_pinned_accelerations_keep_the_supports(springs):
     qdd = dyn.accelerations(0.0, q, qd)
     G = dyn.constraint_jacobian(q, centre_jacobian(model, q))
     eps = 1e-6
-    gamma = (dyn.constraint_jacobian(q + eps * qd, centre_jacobian(model, q + eps * qd)) @ qd
-             - dyn.constraint_jacobian(q - eps * qd, centre_jacobian(model, q - eps * qd)) @ qd) / (2 * eps)
+    gamma = (
+        dyn.constraint_jacobian(q + eps * qd, centre_jacobian(model, q + eps * qd)) @ qd
+        - dyn.constraint_jacobian(q - eps * qd, centre_jacobian(model, q - eps * qd)) @ qd
+    ) / (2 * eps)
     assert np.allclose(gamma, dyn.constraint_rates(q, qd), rtol=1e-6, atol=1e-9 * np.abs(gamma).max())
     assert np.allclose(G @ qdd, -gamma, rtol=1e-6, atol=1e-9 * np.abs(G @ qdd).max())
     residual = mass_matrix(model, q) @ qdd - generalized_forces(model, q, qd) + velocity_terms(model, q, qd)
