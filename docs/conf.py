@@ -65,12 +65,25 @@ myst_dmath_double_inline = True
 # -- API reference ---------------------------------------------------------------------------------
 autosummary_generate = not SKIP_API
 autosummary_imported_members = False
-autodoc_default_options = {"members": True, "show-inheritance": True}
+# members defined in each module only (a package's re-exports are documented where they are defined)
+autodoc_default_options = {"members": True, "show-inheritance": True, "ignore-module-all": True}
 autodoc_member_order = "bysource"
 autodoc_typehints = "description"
 napoleon_google_docstring = False
 napoleon_numpy_docstring = True
 napoleon_use_rtype = False
+
+SECTION_HEADERS = ("Parameters", "Returns", "Raises", "Attributes", "Examples", "Notes")
+
+
+def _plain_docstrings(app, what, name, obj, options, lines):
+    """Show docstrings written as plain text (Unicode equations, aligned formulas, indented lists) as
+    preformatted text; docstrings with numpydoc sections are left to napoleon."""
+    text = "\n".join(lines)
+    if not text.strip() or any(f"{h}\n{'-' * len(h)}" in text for h in SECTION_HEADERS):
+        return
+    lines[:] = ["::", ""] + ["    " + line for line in lines] + [""]
+
 
 if SKIP_API:
     exclude_patterns.append("_api")  # stubs left by an earlier full build
@@ -82,6 +95,11 @@ if SKIP_API:
 
     def setup(app):
         app.connect("source-read", _placeholder_api)
+        app.connect("autodoc-process-docstring", _plain_docstrings, priority=400)
+else:
+
+    def setup(app):
+        app.connect("autodoc-process-docstring", _plain_docstrings, priority=400)
 
 
 # -- output ----------------------------------------------------------------------------------------

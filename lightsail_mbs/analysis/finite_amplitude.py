@@ -296,7 +296,7 @@ class OneModeModel:
         return max(-lo, hi) >= failure_ratio
 
     def critical_ratio(self, failure_ratio: float = 2.0, lo: float = 1e-4, hi: float = 1e4) -> float:
-        """The smallest stiffness ratio whose one-mode orbit stays within |a| < failure_ratio·a₀."""
+        """The smallest stiffness ratio whose one-mode orbit stays within abs(a) < failure_ratio·a₀."""
         if not self.fails(lo, failure_ratio) or self.fails(hi, failure_ratio):
             return float("nan")
         lo, hi = log_bisect(lambda r: self.fails(r, failure_ratio), lo, hi, 1.001)

@@ -190,7 +190,7 @@ def load_rate_scale(p: SailParameters) -> float:
 
 
 def load_shift(p: SailParameters, solver: str = "reduced", **options) -> dict:
-    """Compare the lit and unlit spectra of one sail: the largest |Δω²| over all modes, relative to
+    """Compare the lit and unlit spectra of one sail: the largest abs(Δω²) over all modes, relative to
     the larger of max ω² and the load scale g₀k, and the growth rates of both."""
     lit, dark = linear_spectrum(p, solver, **options), linear_spectrum(unlit(p), solver, **options)
     scale = max(float(np.abs(dark.omega_squared).max()), load_rate_scale(p))

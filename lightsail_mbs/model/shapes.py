@@ -35,7 +35,7 @@ def sine_profile(p: SailParameters):
 def multimode_coefficients(p: SailParameters) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Modes ν_k = k/2 (k = 1…K), amplitudes a_k and phases φ_k of a random defect.
 
-    a_k = ν_k^(−β) |g_k| with g_k standard normal and φ_k uniform in [0, 2π), drawn from
+    a_k = ν_k^(−β) abs(g_k) with g_k standard normal and φ_k uniform in [0, 2π), drawn from
     numpy's default generator seeded with params.defect_seed, then scaled so that the RMS
     of w over 0 ≤ x ≤ L equals a₀/√2, the RMS of the paper's sine of amplitude a₀.
     """

@@ -5,7 +5,7 @@ Two registers of pipeline modules ``lightsail_mbs.paper.<module>``:
 * ``PIPELINES`` (paper figure number -> module): the paper's figures (Figs 5–12, 18–23). Each module
   has ``FIGURES``, the figure numbers it draws.
 * ``SCENARIOS`` (name -> module): the studies beyond the paper — beam profile and optics, material
-  damping, random defects, linear and finite-amplitude stability, failure-time law, the README's
+  damping, random defects, linear and finite-amplitude stability, failure-time law, the documentation's
   animations.
 
 Every pipeline has ``run(out, *, solver, workers, scheduler, quick, store, progress, **options) -> dict``:

@@ -1,4 +1,4 @@
-"""The README's animations: the soft torsion sail (paper Fig. 7) and the rigid ν = 3/2 sail failing at
+"""Animations for the documentation: the soft torsion sail (paper Fig. 7) and the rigid ν = 3/2 sail failing at
 its trough (paper Fig. 5), as GIF movies.
 
 Each case is simulated past failure (soft torsion, 3 s: it fails at ≈ 2.1 s; rigid, 10 ms: ≈ 6.8 ms) or

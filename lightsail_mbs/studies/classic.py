@@ -91,7 +91,7 @@ def fitted_order(n, error) -> float:
 
 
 def paper_error(p: SailParameters, x: np.ndarray, y: np.ndarray) -> float:
-    """Paper Eq. (44): max_i |δ(x_i) − y_i| with δ the Euler–Bernoulli deflection of Eq. (42) under P₀
+    """Paper Eq. (44): max_i abs(δ(x_i) − y_i) with δ the Euler–Bernoulli deflection of Eq. (42) under P₀
     at the tip x = L, at the slice centres of one state."""
     delta = ct.euler_bernoulli_cantilever(p.tip_load, p.length, bending_stiffness(p), x)
     return float(np.max(np.abs(delta - y)))

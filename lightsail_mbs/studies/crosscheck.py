@@ -1,11 +1,11 @@
 """Cross-validation of the two solvers: Exudyn's implicit chain vs the reduced-Lagrangian chain.
 
 For each case both solvers run the same SailParameters; the report gives the largest angle
-difference max |Δθ| over the samples where both amplitudes are below 1.5× their initial value
+difference max abs(Δθ) over the samples where both amplitudes are below 1.5× their initial value
 (the instability amplifies any difference by e every ~0.1 s after that), each solver's failure
 verdict and time, their relative difference, the wall times and, for free vibration (I₀ = 0), the
 reduced solver's energy drift. Plots (viz.plots.crosscheck_figure): θ of three slices from both
-solvers and |Δθ| on a log scale.
+solvers and abs(Δθ) on a log scale.
 """
 
 from __future__ import annotations

@@ -21,7 +21,7 @@ from lightsail_mbs.result import Result
 from lightsail_mbs.viz.scene import Layout, build_scene, frame_exaggeration, make_style
 
 RENDERERS = ("auto", "matplotlib", "exudyn")
-# "auto": the faster of the two for 200 frames at 800×400 on the 2-core reference machine (README), then the other
+# "auto": the faster of the two for 200 frames at 800×400 (scenarios/render_benchmark.py), then the other
 AUTO_ORDER = ("exudyn", "matplotlib")
 DEFAULT_FRAMES = 100
 

@@ -100,7 +100,7 @@ def plot_map(
 
 def crosscheck_figure(exudyn: Result, reduced: Result, ie, ir, title: str, angle_limit: float, path) -> Path:
     """θ of slices 1, n/2, n from both solvers (samples ie of exudyn, ir of reduced, the same times), and
-    |Δθ| on a log scale with the angle limit, over time."""
+    abs(Δθ) on a log scale with the angle limit, over time."""
     n = reduced.params.n
     t = reduced.time[ir]
     fig, ax = new_figure(2, 1, size=(8, 6))

@@ -5,7 +5,7 @@ scipy.integrate.DOP853 (Hairer, Nørsett & Wanner, *Solving ODEs I*, Sec. II.10;
 tableau, error and interpolation coefficients are in tableaus.py), but the whole step loop
 runs in numba-compiled code calling the compiled right-hand side (reduced_dynamics.rhs_into):
 no Python work per step. Error norm: RMS of the 5th-order estimate scaled by
-atol + rtol·max(|y|, |y_new|), combined with the 3rd-order one as err5²/√(err5² + 0.01 err3²);
+atol + rtol·max(abs(y), abs(y_new)), combined with the 3rd-order one as err5²/√(err5² + 0.01 err3²);
 step factor 0.9·err^(−1/8) bounded to [0.2, 10] (no growth right after a rejection).
 
 Output is produced in chunks of sample times (`Dop853.advance`), so the caller can stop at
@@ -69,7 +69,7 @@ def _interpolate(interp, y_old, x, out):
 
 @njit(cache=True)
 def advance(k, state, y, f, interp, y_old, t_bound, rtol, atol, max_step, samples, out, A, B, C, E3, E5, D):
-    """Step from state = [t, |h|, steps, nfev, t_old, h_old] (updated in place, with y, its
+    """Step from state = [t, abs(h), steps, nfev, t_old, h_old] (updated in place, with y, its
     derivative f and the interpolant of the last step, interp and y_old) until every time in
     `samples` (increasing) is passed, writing the interpolated states into the rows of out.
     Samples inside the last step of the previous call come from its stored interpolant.

@@ -283,7 +283,7 @@ def _batch_accelerations(q, qd, k):
 
 @njit(cache=True)
 def jacobian_into(y, k, scales, jac):
-    """∂ẏ/∂y into jac by forward differences (step √ε·max(|y_j|, scale_j)); the q̇ rows are exact (0 | I)."""
+    """∂ẏ/∂y into jac by forward differences (step √ε·max(abs(y_j), scale_j)); the q̇ rows are exact (0 | I)."""
     size = y.size
     dof = size // 2
     jac[:dof] = 0.0
@@ -331,7 +331,7 @@ class ChainDynamics:
         return out
 
     def jacobian(self, t: float, y: np.ndarray, scales: np.ndarray) -> np.ndarray:
-        """∂ẏ/∂y (dense, 2 dof + 1 right-hand-side calls, compiled); scales: typical |y_j| (difference steps)."""
+        """∂ẏ/∂y (dense, 2 dof + 1 right-hand-side calls, compiled); scales: typical abs(y_j) (difference steps)."""
         y = np.ascontiguousarray(y, dtype=float)
         jac = np.empty((y.size, y.size))
         jacobian_into(y, self.constants, np.ascontiguousarray(scales, float), jac)

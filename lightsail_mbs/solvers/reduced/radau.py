@@ -314,7 +314,7 @@ def advance(
 
 class Radau:
     """The compiled Radau IIA integrator for one chain (constants k) from y0 at t = 0 to t_bound.
-    jac_scales: typical |y_j| for the difference steps of the Jacobian."""
+    jac_scales: typical abs(y_j) for the difference steps of the Jacobian."""
 
     def __init__(self, k, y0, t_bound, rtol, atol, jac_scales, max_step=np.inf, first_step=None):
         self.k = k
