@@ -145,7 +145,8 @@ class OpticalTable:
         object.__setattr__(self, "theta", theta)
         object.__setattr__(self, "normal_constant", finite("normal_constant", self.normal_constant))
         object.__setattr__(self, "tangential_constant", finite("tangential_constant", self.tangential_constant))
-        check("polarization", self.polarization, self.polarization in (*TABLE_POLARIZATIONS, "any"), "TE, TM, mean, any")
+        allowed = (*TABLE_POLARIZATIONS, "any")
+        check("polarization", self.polarization, self.polarization in allowed, ", ".join(allowed))
 
     # ---- construction ---------------------------------------------------------------------------
     @classmethod

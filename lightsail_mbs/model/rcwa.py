@@ -115,6 +115,8 @@ class Bar:
         for attr in ("start", "end"):
             finite(f"bar {attr}", getattr(self, attr))
         check("bar", (self.start, self.end), 0 <= self.start < self.end <= 1, "0 ≤ start < end ≤ 1 (period fractions)")
+        for attr in ("start", "end"):  # edges to 1e-12 of the period, so that 1 − (1 − x) is x again
+            object.__setattr__(self, attr, round(float(getattr(self, attr)), 12))
         object.__setattr__(self, "index", refractive_index(self.index, name="bar index"))
 
 
@@ -224,10 +226,11 @@ class Grating:
 
     def filled(self, index: complex) -> Grating:
         """The stack with its patterned layers filled with `index`, bars and gaps alike (zero contrast)."""
-        layers = tuple(
-            Layer(layer.thickness, index, tuple(Bar(b.start, b.end, index) for b in layer.bars)) if layer.bars else layer
-            for layer in self.layers
-        )
+
+        def fill(layer):
+            return Layer(layer.thickness, index, tuple(Bar(b.start, b.end, index) for b in layer.bars))
+
+        layers = tuple(fill(layer) if layer.bars else layer for layer in self.layers)
         return Grating(self.wavelength, self.period, layers, f"{self.name} (filled)")
 
     @property
@@ -321,7 +324,7 @@ def _grcwa_orders(g: Grating, theta: float, pol: str, harmonics: int) -> Orders:
     try:
         import grcwa
     except ImportError:
-        raise ParameterError("backend='grcwa' is invalid: allowed only with grcwa installed (pip install grcwa)") from None
+        raise ParameterError("backend='grcwa' is invalid: allowed with grcwa installed (pip install grcwa)") from None
     grcwa.set_backend("numpy")
     # lengths in units of the period; a tiny second lattice period keeps only the orders along the grating vector
     obj = grcwa.obj(2 * harmonics + 1, [1.0, 0.0], [0.0, 1e-4], g.period / g.wavelength, theta, 0.0, verbose=0)
@@ -345,7 +348,7 @@ def _grcwa_orders(g: Grating, theta: float, pol: str, harmonics: int) -> Orders:
         obj.MakeExcitationPlanewave(1.0, 0.0, 0.0, 0.0, order=0)
     R, T = obj.RT_Solve(normalize=1, byorder=1)
     if np.any(obj.G[:, 1] != 0):
-        raise ParameterError(f"harmonics={harmonics} is invalid for grcwa: allowed fewer (orders left the grating line)")
+        raise ParameterError(f"harmonics={harmonics} is invalid for grcwa: allowed fewer (orders off the grating line)")
     m = np.asarray(obj.G[:, 0])
     order = np.argsort(m)
     sigma = math.sin(theta) + m[order] * g.wavelength / g.period
