@@ -90,8 +90,13 @@ def _material_index(text: str, wavelength: float, name: str) -> complex:
 
     table = meent.read_material_table()
     key = MATERIAL_ALIASES.get(text.lower(), text.upper())
-    names = sorted(m["name"] for m in meent.list_materials())
-    check(name, text, key in table, f"a number, eps=…, or a material: {', '.join(MATERIAL_ALIASES)} or {names}")
+    check(
+        name,
+        text,
+        key in table,
+        f"a number, eps=…, or a material: {', '.join(MATERIAL_ALIASES)} or a name that meent.list_materials() "
+        "shows (e.g. SI_GREEN-2008, AU_JOHNSON)",
+    )
     info = next(m for m in meent.list_materials() if m["name"] == key)
     check(
         "wavelength",
