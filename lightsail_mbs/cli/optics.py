@@ -56,6 +56,13 @@ def register(sub) -> None:
     tab.add_argument("--harmonics", type=int, default=60, help="orders −N…N kept in the RCWA [60]")
     tab.add_argument("--theta-max", type=float, default=85.0, help="table range ±θ_max (degrees) [85]")
     tab.add_argument("--step", type=float, default=0.25, help="largest node spacing (degrees) [0.25]")
+    tab.add_argument(
+        "--tolerance",
+        type=float,
+        default=1e-4,
+        help="refine where an interval's midpoint is off the spline by more than this (0: no refinement) [1e-4]",
+    )
+    tab.add_argument("--grade", type=int, default=12, help="nodes at step/2^k, k ≤ GRADE, beside each anomaly [12]")
     tab.add_argument("--backend", choices=("meent", "grcwa"), default="meent", help="RCWA package [meent]")
     tab.add_argument("--cache-dir", help="cache folder [$LIGHTSAIL_MBS_CACHE/optics or ~/.cache/lightsail-mbs/optics]")
     tab.add_argument("--no-cache", action="store_true", help="neither read nor write the cache")
@@ -164,7 +171,6 @@ def run_grating(args) -> int:
         bar = tqdm(desc="RCWA", unit="solve", file=sys.stderr, mininterval=0.5)
 
         def progress(i, total):
-            bar.total = total
             bar.n = i
             bar.refresh()
 
@@ -179,6 +185,8 @@ def run_grating(args) -> int:
             backend=args.backend,
             cache_dir=cache,
             progress=progress,
+            tolerance=args.tolerance,
+            grade=args.grade,
         )
     finally:
         if bar is not None:
@@ -194,6 +202,10 @@ def run_grating(args) -> int:
         f"RCWA CPU {summary['rcwa_cpu_seconds']:.1f} s"
     )
     print(f"  c_n(0) = {summary['c_n(0)']:.6f}, c_t(0) = {summary['c_t(0)']:+.6f} (mirror: 2, 0)")
+    print(
+        f"  refinement: {summary['refinement_nodes']} nodes added in {summary['refinement_passes']} passes; "
+        f"last midpoint error {summary['refinement_last_error']:.1e} (tolerance {args.tolerance:g})"
+    )
     anomalies = ", ".join(f"{math.degrees(a):+.3f}°" for a in summary["rayleigh_anomalies"])
     print(f"  Rayleigh anomalies (spline breaks): {anomalies or 'none in range'}")
     if g.lossless:
@@ -243,6 +255,11 @@ def run_info(args) -> int:
             f"  λ = {grating['wavelength']:.6g} m, Λ = {grating['period']:.6g} m, {len(grating['layers'])} layers; "
             f"{summary['backend']} {summary['backend_version']}, {summary['harmonics']} harmonics, "
             f"step {math.degrees(summary['step']):g}°, RCWA CPU {summary['rcwa_cpu_seconds']:.1f} s"
+        )
+        print(
+            f"  refinement: tolerance {summary['tolerance']:g}, {summary['refinement_nodes']} nodes added, last "
+            f"midpoint error {summary['refinement_last_error']:.1e}; {summary['grade']} graded nodes beside each "
+            "Rayleigh anomaly"
         )
         for k, layer in enumerate(grating["layers"]):
             bars = ", ".join(f"[{b['start']:g}, {b['end']:g}) n = {complex(*b['index']):g}" for b in layer["bars"])

@@ -275,7 +275,8 @@ def test_rayleigh_anomalies_are_where_orders_graze():
 def test_grating_table_cached_and_exact_at_nodes(tmp_path):
     g = rcwa.GRATINGS["bigrating"]
     step = math.radians(7.5)
-    first = optics.grating_table(g, "mean", harmonics=FAST, step=step, cache_dir=tmp_path)
+    kw = dict(harmonics=FAST, step=step, cache_dir=tmp_path, tolerance=0.0, grade=0)
+    first = optics.grating_table(g, "mean", **kw)
     assert first.theta.size > 20 and set(first.metadata["rayleigh_anomalies"]) <= set(first.theta)
     k = int(np.argmin(np.abs(first.theta - 0.2)))
     th = float(first.theta[k])
@@ -284,11 +285,33 @@ def test_grating_table_cached_and_exact_at_nodes(tmp_path):
     assert np.max(np.abs(first.extra["A_TE"])) < 1e-10 and np.max(np.abs(first.extra["A_TM"])) < 1e-10
     files = sorted(tmp_path.glob("rcwa-*.npz"))
     assert len(files) == 2  # one per polarisation
-    te = optics.grating_table(g, "TE", harmonics=FAST, step=step, cache_dir=tmp_path)
-    assert sorted(tmp_path.glob("rcwa-*.npz")) == files  # served from the cache
+    stamps = [f.stat().st_mtime_ns for f in files]
+    te = optics.grating_table(g, "TE", **kw)
+    assert sorted(tmp_path.glob("rcwa-*.npz")) == files  # served from the cache, nothing recomputed or rewritten
+    assert [f.stat().st_mtime_ns for f in files] == stamps
     assert te.metadata["cache_keys"][0] == first.metadata["cache_keys"][0]
-    other = optics.grating_table(g, "TE", harmonics=FAST + 1, step=step, cache_dir=tmp_path)
+    other = optics.grating_table(g, "TE", **(kw | {"harmonics": FAST + 1}))
     assert len(list(tmp_path.glob("rcwa-*.npz"))) == 3 and other.metadata["cache_keys"] != te.metadata["cache_keys"]
+
+
+def test_refinement_brings_the_table_within_its_tolerance(tmp_path):
+    """Midpoints off the spline by more than the tolerance become nodes: the error at points that were never
+    sampled (interval quarter points) falls, the node set stays symmetric, the anomalies stay breaks."""
+    g = rcwa.GRATINGS["bigrating"]
+    kw = dict(harmonics=6, theta_max=math.radians(40), step=math.radians(3), cache_dir=tmp_path)
+    plain = optics.grating_table(g, "TE", tolerance=0.0, grade=0, **kw)
+    fine = optics.grating_table(g, "TE", tolerance=1e-4, **kw)
+    assert fine.metadata["refinement_nodes"] > 0 and fine.metadata["refinement_last_error"] <= 1e-4
+    np.testing.assert_array_equal(fine.theta, -fine.theta[::-1])
+    assert set(plain.theta) <= set(fine.theta)
+
+    def quarter_error(table):
+        q = (table.theta[:-1] + 0.25 * np.diff(table.theta))[::2]
+        exact = np.array([rcwa.force_coefficients(rcwa.orders(g, float(t), "TE", 6)) for t in q])
+        cn, ct = table.coefficients(q)
+        return np.maximum(np.abs(exact[:, 0] - cn), np.abs(exact[:, 1] - ct)).max()
+
+    assert quarter_error(fine) < 0.1 * quarter_error(plain)
 
 
 def test_refractive_index_specs():
