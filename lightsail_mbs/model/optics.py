@@ -27,9 +27,11 @@ so that an integrator stops ("non-finite state") rather than extrapolate.
 
 **Interpolation.** s_n and s_t are cubic splines (not-a-knot) in θ on each piece between *breaks*:
 the Rayleigh anomalies, where an order grazes the sail (sin θ + mλ/Λ = ±1) and the coefficients have
-a square-root kink. Each break is a node; nodes are uniform on each piece with spacing ≤ the step;
-a range symmetric about 0 gets an exactly symmetric node set. Stored: the nodes θ_k, the node values
-and the per-interval cubic coefficients (4, N − 1), highest power first (scipy's PPoly layout).
+a square-root kink. Each break is a node; nodes are uniform on each piece with spacing ≤ the step,
+graded towards each break (step·2^(−k)), and refined where RCWA at an interval's midpoint is off the
+spline by more than a tolerance (:func:`grating_table`); a range symmetric about 0 keeps an exactly
+symmetric node set. Stored: the nodes θ_k, the node values and the per-interval cubic coefficients
+(4, N − 1), highest power first (scipy's PPoly layout).
 
 **A slice carrying the table turned over** (t → −t, e.g. the mirrored half of a sail with two
 halves) sees c_n(−θ) and −c_t(−θ): the ``mirrored`` argument.
@@ -50,12 +52,14 @@ halves) sees c_n(−θ) and −c_t(−θ): the ``mirrored`` argument.
 by eye or another program), optional per-node ``extra_*`` arrays (the RCWA totals R, T, A), and
 ``metadata``: one JSON string with ``format`` = "lightsail-mbs optical table", ``format_version``,
 ``kind``, ``polarization``, the constants A_n, A_t, ``bounded`` and, for a grating, its geometry,
-cache key, RCWA backend and version, harmonics, angle range and step, Rayleigh anomalies and CPU time.
+cache keys, RCWA backend and version, harmonics, angle range, step, grading and refinement, Rayleigh
+anomalies and the CPU time of its RCWA.
 
 **Cache.** RCWA samples are cached on disk (:func:`cache_directory`: ``$LIGHTSAIL_MBS_CACHE/optics``
-or ``~/.cache/lightsail-mbs/optics``), one file per grating geometry, polarisation, backend and its
-version, harmonics, node set and the source of model/rcwa.py (a SHA-256 of all of them), so a change
-of any of them computes afresh and nothing stale is served.
+or ``~/.cache/lightsail-mbs/optics``): one file per grating geometry, polarisation, backend and its
+version, harmonics and source of model/rcwa.py (a SHA-256 of all of them) holds every angle computed
+for them, so a change of any of them computes afresh, nothing stale is served, and a table on other
+nodes reuses the angles it shares.
 """
 
 from __future__ import annotations
