@@ -19,7 +19,18 @@ from lightsail_mbs.model.parameters import ParameterError
 from lightsail_mbs.result import RunFileError
 
 # subcommand modules of this package; each defines register(subparsers) and sets `func`
-COMMANDS = ["theory", "simulate", "info", "render", "montecarlo", "reproduce", "crosscheck", "stability", "store"]
+COMMANDS = [
+    "theory",
+    "simulate",
+    "info",
+    "render",
+    "montecarlo",
+    "reproduce",
+    "crosscheck",
+    "stability",
+    "store",
+    "optics",
+]
 
 
 def build_parser() -> argparse.ArgumentParser:

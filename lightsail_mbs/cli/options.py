@@ -23,6 +23,7 @@ CASE_OPTIONS = {
     "--intensity": ("intensity", float, "laser intensity I₀ (W/m²)"),
     "--defect-amplitude": ("defect_amplitude", float, "initial defect amplitude a₀ (m)"),
     "--defect-mode": ("defect_mode", float, "defect mode number ν (wavelengths over L)"),
+    "--billow-radius": ("billow_radius", float, "initial arc radius R_c (m), > 0 concave to the laser; inf = flat"),
     "--beam-waist": ("beam_waist", float, "Gaussian beam waist w (m); inf = uniform beam"),
     "--beam-center": ("beam_center", float, "Gaussian beam axis x_c (m); default L/2"),
     "--reflectivity": ("reflectivity", float, "specular reflectivity R"),

@@ -21,6 +21,9 @@ BOUNDARIES = ("free", "cantilever", "pinned")
 # Fields of the validations that to_dict omits at their defaults (a free, unloaded sail), so that the
 # record of a sail lists only what describes it.
 VALIDATION_DEFAULTS = {"boundary": "free", "tip_load": 0.0, "tip_load_time_constant": 0.0}
+# Fields added after the store's keys were first written, omitted by to_dict at their defaults so that the
+# record (and store key) of every case that does not use them stays what it was.
+LATER_DEFAULTS = {"billow_radius": math.inf}
 # Names under which saved runs and store records written before the current field names hold them.
 LEGACY_NAMES = {"amplitude": "defect_amplitude", "mode": "defect_mode", "defect_modes": "defect_mode_count"}
 # Run control that saved runs of that format kept with the case (now solvers.settings.RunSettings).
@@ -80,6 +83,7 @@ class SailParameters:
     boundary: str = "free"  # end supports, one of BOUNDARIES
     tip_load: float = 0.0  # P₀, N: transverse (+y) dead load at the centre of slice n (Eq. 43)
     tip_load_time_constant: float = 0.0  # τ, s: P(t) = P₀(1 − e^(−t/τ)) (Eq. 43); 0: P₀ from t = 0
+    billow_radius: float = math.inf  # R_c, m: initial circular arc (shapes.py); > 0 concave to the laser; inf: flat
 
     def __post_init__(self):
         check("model", self.model, self.model in MODELS, f"one of {', '.join(MODELS)}")
@@ -159,6 +163,22 @@ class SailParameters:
         finite("tip_load", self.tip_load)
         v = finite("tip_load_time_constant", self.tip_load_time_constant)
         check("tip_load_time_constant", v, v >= 0, "≥ 0 (0: the full load from t = 0)")
+        ok_type = isinstance(self.billow_radius, (int, float)) and not isinstance(self.billow_radius, bool)
+        R = float(self.billow_radius) if ok_type else math.nan
+        r_min = self.slice_length / (2.0 * math.sin(math.pi / (2 * self.n)))
+        check(
+            "billow_radius",
+            self.billow_radius,
+            not math.isnan(R) and abs(R) >= r_min,
+            f"|R_c| ≥ {r_min:.4g} m (the arc of n chords of length l subtends at most 180°), > 0 concave to the "
+            "laser, < 0 convex, inf for a flat sail",
+        )
+        check(
+            "billow_radius",
+            self.billow_radius,
+            math.isinf(R) or self.boundary == "free",
+            "inf (flat) unless boundary='free' (the supports hold a flat chain)",
+        )
         if self.bending is None:
             object.__setattr__(self, "bending", self.model == "torsion")
         check("bending", self.bending, isinstance(self.bending, bool), "True, False or None")
@@ -269,9 +289,9 @@ class SailParameters:
         return self.tip_load * -math.expm1(-t / self.tip_load_time_constant)
 
     def to_dict(self) -> dict:
-        """The fields as a dict (the validation fields omitted at their defaults)."""
+        """The fields as a dict (the validation fields and the later ones omitted at their defaults)."""
         d = dataclasses.asdict(self)
-        for name, default in VALIDATION_DEFAULTS.items():
+        for name, default in {**VALIDATION_DEFAULTS, **LATER_DEFAULTS}.items():
             if d[name] == default:
                 del d[name]
         return d
