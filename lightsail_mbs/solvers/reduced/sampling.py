@@ -1,6 +1,13 @@
 """What the reduced solver's free and supported chains share around their integrators: the tolerance
 scales of the state, the adapters that hand the run skeleton (solvers.skeleton.collect_samples) the
 states at the output times, and the Result assembled from those states.
+
+The per-sample work is compiled (numba), so a run at n in the thousands spends its time integrating:
+`amplitudes` (the failure monitor's analysis.amplitude of each output sample: centres by the joint
+recursion r_{i+1} = r_i + a_i e_i + b e_{i+1} of Eqs 13–14, 30–31, then the spread of their offsets from
+the total-least-squares line) and `trajectory_arrays` (centres, their velocities and the angles of
+every sample, directly in the (samples, n) layout of the Result). Both are tested against the numpy
+forms of kinematics.py and analysis.failure.
 """
 
 from __future__ import annotations
@@ -9,13 +16,13 @@ import math
 import time as clock
 
 import numpy as np
+from numba import njit
 
-from lightsail_mbs import analysis
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.solvers.reduced.dop853 import FINISHED as DONE
 from lightsail_mbs.solvers.reduced.dop853 import STATUS
-from lightsail_mbs.solvers.reduced.kinematics import ChainModel, centre_velocities, centres
+from lightsail_mbs.solvers.reduced.kinematics import ChainModel
 from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.solvers.skeleton import FINISHED, FailureMonitor, collect_samples
 
@@ -102,45 +109,125 @@ def sampled_run(
     progress: bool,
 ):
     """Run the skeleton's sampling loop from y0 with the chain's failure monitor; returns
-    (states (size, k), error, wall time)."""
+    (rows: the sampled states y = (q, q̇) as rows of a (k, size) array, error, wall time)."""
     start = clock.perf_counter()
     monitor = FailureMonitor(initial_amplitude, settings)
 
     def amplitude_of(batch):
-        x, y = centres(model, batch[: model.dof])
-        return analysis.amplitude(x.T, y.T)
+        return amplitudes(np.ascontiguousarray(batch.T), model.n, model.half_length, model.extensible)
 
     bar = Progress(settings.t_final, progress, label="reduced")
     try:
         states, error = collect_samples(advance, y0, settings.sample_times(), monitor, amplitude_of, bar, chunk)
     finally:
         bar.close()
-    return np.concatenate(states, axis=1), error, clock.perf_counter() - start
+    return np.concatenate([batch.T for batch in states]), error, clock.perf_counter() - start
+
+
+@njit(cache=True)
+def _centres_into(state, n, b, extensible, x, y):
+    """Slice centres of the state y = (q, q̇) into x, y."""
+    x[0], y[0] = state[0], state[1]
+    c_prev, s_prev = math.cos(state[2]), math.sin(state[2])
+    for i in range(1, n):
+        c, s = math.cos(state[2 + i]), math.sin(state[2 + i])
+        a = b + state[n + 1 + i] if extensible else b
+        x[i] = x[i - 1] + a * c_prev + b * c
+        y[i] = y[i - 1] + a * s_prev + b * s
+        c_prev, s_prev = c, s
+
+
+@njit(cache=True)
+def amplitudes(rows, n, b, extensible):
+    """analysis.amplitude of the chain in every row of rows (states y = (q, q̇); n slices, half-length b)."""
+    count = rows.shape[0]
+    out = np.empty(count)
+    x = np.empty(n)
+    y = np.empty(n)
+    for col in range(count):
+        _centres_into(rows[col], n, b, extensible, x, y)
+        mx, my = 0.0, 0.0
+        for i in range(n):
+            mx += x[i]
+            my += y[i]
+        mx /= n
+        my /= n
+        sxy = sxx = syy = 0.0
+        for i in range(n):
+            dx, dy = x[i] - mx, y[i] - my
+            sxy += dx * dy
+            sxx += dx * dx
+            syy += dy * dy
+        phi = 0.5 * math.atan2(2.0 * sxy, sxx - syy)
+        sp, cp = math.sin(phi), math.cos(phi)
+        lo, hi = math.inf, -math.inf
+        for i in range(n):
+            off = -sp * (x[i] - mx) + cp * (y[i] - my)
+            lo = min(lo, off)
+            hi = max(hi, off)
+        out[col] = 0.5 * (hi - lo)
+    return out
+
+
+@njit(cache=True)
+def trajectory_arrays(rows, n, b, extensible):
+    """x, y, θ, ẋ, ẏ, θ̇ as (samples, n) arrays and z, ż as (samples, n−1) (or (samples, 0)) from the
+    states y = (q, q̇) in the rows of rows: ṙ_{i+1} − ṙ_i = ż_i e_i + a_i θ̇_i p_i + b θ̇_{i+1} p_{i+1}."""
+    dof = rows.shape[1] // 2
+    count = rows.shape[0]
+    nz = n - 1 if extensible else 0
+    x = np.empty((count, n))
+    y = np.empty((count, n))
+    th = np.empty((count, n))
+    vx = np.empty((count, n))
+    vy = np.empty((count, n))
+    om = np.empty((count, n))
+    z = np.empty((count, nz))
+    zd = np.empty((count, nz))
+    for t in range(count):
+        for i in range(n):
+            th[t, i] = rows[t, 2 + i]
+            om[t, i] = rows[t, dof + 2 + i]
+        for i in range(nz):
+            z[t, i] = rows[t, n + 2 + i]
+            zd[t, i] = rows[t, dof + n + 2 + i]
+        x[t, 0], y[t, 0] = rows[t, 0], rows[t, 1]
+        vx[t, 0], vy[t, 0] = rows[t, dof], rows[t, dof + 1]
+        c_prev, s_prev = math.cos(th[t, 0]), math.sin(th[t, 0])
+        for i in range(1, n):
+            c, s = math.cos(th[t, i]), math.sin(th[t, i])
+            a = b + z[t, i - 1] if extensible else b
+            rate = zd[t, i - 1] if extensible else 0.0
+            x[t, i] = x[t, i - 1] + a * c_prev + b * c
+            y[t, i] = y[t, i - 1] + a * s_prev + b * s
+            vx[t, i] = vx[t, i - 1] + rate * c_prev - a * om[t, i - 1] * s_prev - b * om[t, i] * s
+            vy[t, i] = vy[t, i - 1] + rate * s_prev + a * om[t, i - 1] * c_prev + b * om[t, i] * c
+            c_prev, s_prev = c, s
+    return x, y, th, vx, vy, om, z, zd
 
 
 def trajectory_result(
-    model: ChainModel, settings: RunSettings, states: np.ndarray, *, wall_time: float, error: str | None, info: dict
+    model: ChainModel, settings: RunSettings, rows: np.ndarray, *, wall_time: float, error: str | None, info: dict
 ) -> Result:
-    """The Result of sampled states y = (q, q̇) (columns on settings.sample_times())."""
-    q, qd = states[: model.dof], states[model.dof :]
-    x, y = centres(model, q)
-    vx, vy = centre_velocities(model, q, qd)
-    _, _, theta, z = model.split(q)
-    _, _, omega, z_rate = model.split(qd)
+    """The Result of sampled states y = (q, q̇) (rows, on settings.sample_times())."""
+    rows = np.ascontiguousarray(rows)
+    shape = model.n, model.half_length, model.extensible
+    x, y, theta, vx, vy, omega, z, z_rate = trajectory_arrays(rows, *shape)
     return Result.from_trajectory(
         model.params,
         "reduced",
-        settings.sample_times()[: states.shape[1]],
-        x.T,
-        y.T,
-        theta.T,
-        vx.T,
-        vy.T,
-        omega.T,
-        z=z.T if model.extensible else None,
-        z_rate=z_rate.T if model.extensible else None,
+        settings.sample_times()[: rows.shape[0]],
+        x,
+        y,
+        theta,
+        vx,
+        vy,
+        omega,
+        z=z if model.extensible else None,
+        z_rate=z_rate if model.extensible else None,
         wall_time=wall_time,
         error=error,
         info=info,
         settings=settings,
+        amplitude=amplitudes(rows, *shape),
     )
