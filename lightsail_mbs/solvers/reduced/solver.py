@@ -60,6 +60,7 @@ from lightsail_mbs.solvers.reduced.sampling import (
     stepper_advance,
     trajectory_result,
 )
+from lightsail_mbs.solvers.reduced.warmup import compile_notice
 from lightsail_mbs.solvers.settings import RunSettings
 
 COMPILED = {"DOP853": Dop853, "Radau": CompiledRadau}  # numba step loops
@@ -162,6 +163,30 @@ def run(
     start = shapes.initial_state(params)
     q0 = model.pack(start.x[0], start.y[0], start.theta, start.z)
     y0 = np.concatenate([q0, np.zeros_like(q0)])
+    with compile_notice(method):  # one line on stderr if numba has to compile the kernels
+        integrator, advance, chunk = _integrator(method, dynamics, y0, settings, rtol, atol, options)
+        initial = analysis.amplitude(start.x, start.y)
+        rows, error, wall = sampled_run(model, y0, initial, settings, advance, chunk, progress)
+        info = dict(
+            method=method,
+            method_choice=choice,
+            stiffness_threshold=STIFFNESS_THRESHOLD,
+            **figures,
+            rtol=rtol,
+            atol=float(np.min(atol)),
+            steps=integrator.steps,
+            nfev=integrator.nfev,
+            njev=getattr(integrator, "njev", 0),
+            nlu=getattr(integrator, "nlu", 0),
+            coordinates=model.dof,
+            formulation="minimal coordinates, O(n) joint-force recursion (block LDLT), compiled; implicit: "
+            "O(n) compliant-joint Newton matrix",
+        )
+        return trajectory_result(model, settings, rows, wall_time=wall, error=error, info=info)
+
+
+def _integrator(method, dynamics, y0, settings, rtol, atol, options):
+    """(integrator, its advance adapter for the sampling loop, samples per call) of one run."""
     if method in COMPILED:
         atol = np.broadcast_to(np.asarray(atol, float), y0.shape)
         integrator = COMPILED[method](
@@ -173,30 +198,12 @@ def run(
             max_step=options.get("max_step", np.inf),
             first_step=options.get("first_step"),
         )
-        advance, chunk = compiled_advance(method, integrator), CHUNK
-    else:
-        import scipy.integrate
+        return integrator, compiled_advance(method, integrator), CHUNK
+    import scipy.integrate
 
-        kwargs = dict(rtol=rtol, atol=atol, **options)
-        if method in IMPLICIT:
-            scales = np.maximum(np.broadcast_to(atol, y0.shape) / rtol, 1e-300)
-            kwargs["jac"] = lambda t, y: dynamics.jacobian(t, y, scales)
-        integrator = getattr(scipy.integrate, method)(dynamics.rhs, 0.0, y0, settings.t_final, **kwargs)
-        advance, chunk = stepper_advance(method, integrator, y0.size), settings.sample_times().size
-    rows, error, wall = sampled_run(model, y0, analysis.amplitude(start.x, start.y), settings, advance, chunk, progress)
-    info = dict(
-        method=method,
-        method_choice=choice,
-        stiffness_threshold=STIFFNESS_THRESHOLD,
-        **figures,
-        rtol=rtol,
-        atol=float(np.min(atol)),
-        steps=integrator.steps,
-        nfev=integrator.nfev,
-        njev=getattr(integrator, "njev", 0),
-        nlu=getattr(integrator, "nlu", 0),
-        coordinates=model.dof,
-        formulation="minimal coordinates, O(n) joint-force recursion (block LDLT), compiled; implicit: "
-        "O(n) compliant-joint Newton matrix",
-    )
-    return trajectory_result(model, settings, rows, wall_time=wall, error=error, info=info)
+    kwargs = dict(rtol=rtol, atol=atol, **options)
+    if method in IMPLICIT:
+        scales = np.maximum(np.broadcast_to(atol, y0.shape) / rtol, 1e-300)
+        kwargs["jac"] = lambda t, y: dynamics.jacobian(t, y, scales)
+    integrator = getattr(scipy.integrate, method)(dynamics.rhs, 0.0, y0, settings.t_final, **kwargs)
+    return integrator, stepper_advance(method, integrator, y0.size), settings.sample_times().size
