@@ -97,9 +97,16 @@ def _interpolate(interp, y_old, x, out):
 @njit(cache=True)
 def advance(k, state, y, f, interp, y_old, t_bound, rtol, atol, max_step, samples, out):
     """Step from state = [t, |h|, steps, nfev, t_old, h_old] until every time in `samples` is passed,
-    writing the interpolated states into the rows of out. Returns (status, samples written)."""
+    writing the interpolated states into the rows of out. Returns (status, samples written).
+    The first call (nfev = 0) evaluates f(y₀) and, when |h| = 0, chooses the initial step."""
     size = y.size
     work = workspace(int(k[N]))
+    if state[3] == 0:
+        rhs_into(y, k, work, f)
+        state[3] = 1
+        if state[1] <= 0:
+            state[1] = initial_step(y, f, k, t_bound, rtol, atol, max_step, 7)
+            state[3] += 1
     K = np.empty((16, size))
     y_new = np.empty(size)
     f_new = np.empty(size)
@@ -214,18 +221,13 @@ class Dop853:
     def __init__(self, k, y0, t_bound, rtol, atol, max_step=np.inf, first_step=None):
         self.k = k
         self.y = np.array(y0, float)
-        self.f = np.empty_like(self.y)
-        rhs_into(self.y, k, workspace(int(k[N])), self.f)
+        self.f = np.empty_like(self.y)  # f(y₀) and the initial step: at the first advance (compiled)
         self.t_bound = float(t_bound)
         self.rtol = float(rtol)
         self.atol = np.broadcast_to(np.asarray(atol, float), self.y.shape).copy()
         self.max_step = float(max_step)
-        h0 = (
-            first_step
-            if first_step is not None
-            else initial_step(self.y, self.f, k, self.t_bound, self.rtol, self.atol, self.max_step, 7)
-        )
-        self.state = np.array([0.0, float(h0), 0.0, 2.0, 0.0, 1.0])
+        h0 = 0.0 if first_step is None else float(first_step)
+        self.state = np.array([0.0, h0, 0.0, 0.0, 0.0, 1.0])
         self.interp = np.zeros((7, self.y.size))
         self.y_old = self.y.copy()
         self.status = OK

@@ -386,7 +386,7 @@ class ChainDynamics:
     def __init__(self, model: ChainModel):
         self.model = model
         self.constants = constants(model)
-        self._work = workspace(model.n)
+        self._work = np.empty((WORK_ROWS, model.n))  # workspace(n), without loading a kernel
 
     def accelerations(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
         """q̈ for states q, q̇ of shape (dof,) or (dof, k)."""

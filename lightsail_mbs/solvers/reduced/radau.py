@@ -101,11 +101,20 @@ def _solve(k, sigma, geo, fac, lam, scratch, x):
 @njit(cache=True)
 def advance(k, state, y, f, geo, real_fac, cplx_fac, geometric, Z, y_old, t_bound, rtol, atol, max_step, samples, out):
     """Step (scipy Radau's algorithm, structured linear algebra) until every time in `samples` is
-    passed; interpolated states go to the rows of out. Returns (status, samples written)."""
+    passed; interpolated states go to the rows of out. Returns (status, samples written).
+    The first call (nfev = 0) evaluates f(y₀), J̃'s first state and, when |h| = 0, the initial step."""
     size = y.size
     dof = size // 2
     n = int(k[N])
     work = workspace(n)
+    if state[NFEV] == 0:
+        rhs_into(y, k, work, f)
+        state[NFEV] = 1
+        if state[H_ABS] <= 0:
+            state[H_ABS] = initial_step(y, f, k, t_bound, rtol, atol, max_step, 3)
+            state[NFEV] += 1
+        geometry_into(y, k, work, geo[0], geo[1], geo[2], geo[3], geometric)
+        state[NJEV] = 1
     lam_r = np.empty((n - 1, 3))
     lam_c = np.empty((n - 1, 3), dtype=np.complex128)
     scr_r = np.empty((3, dof))
@@ -353,26 +362,19 @@ class Radau:
         self.y = np.array(y0, float)
         size = self.y.size
         n = int(k[N])
-        self.f = np.empty(size)
-        rhs_into(self.y, k, workspace(n), self.f)
+        self.f = np.empty(size)  # f(y₀), the initial step and J̃'s first state: at the first advance (compiled)
         self.t_bound = float(t_bound)
         self.rtol = float(rtol)
         self.atol = np.broadcast_to(np.asarray(atol, float), self.y.shape).copy()
         self.max_step = float(max_step)
-        h0 = (
-            first_step
-            if first_step is not None
-            else initial_step(self.y, self.f, k, self.t_bound, self.rtol, self.atol, self.max_step, 3)
-        )
+        h0 = 0.0 if first_step is None else float(first_step)
         self.geo = np.zeros((4, n))  # cos θ, sin θ, arms, geometric stiffness of J̃'s state
-        geometry_into(self.y, k, workspace(n), self.geo[0], self.geo[1], self.geo[2], self.geo[3], self.geometric)
         self.real_fac = tuple(np.zeros((n - 1, 3, 3)) for _ in range(3)) + (np.zeros(n),)
         self.cplx_fac = tuple(np.zeros((n - 1, 3, 3), np.complex128) for _ in range(3)) + (np.zeros(n, np.complex128),)
         self.Z = np.zeros((3, size))
         self.y_old = self.y.copy()
         self.state = np.zeros(STATE_SIZE)
         self.state[[H_ABS, H_ABS_OLD, ERROR_OLD, CURRENT_JAC, H_OLD, H_FACTORED]] = [h0, -1.0, -1.0, 1.0, 1.0, -1.0]
-        self.state[NFEV], self.state[NJEV] = 2, 1
         self.status = OK
 
     t = property(lambda self: float(self.state[T_NOW]))
