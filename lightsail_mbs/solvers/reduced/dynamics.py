@@ -140,9 +140,10 @@ def _free_accelerations(q, qd, k, work, extensible):
         sth[i] = math.sin(q[2 + i])
     for i in range(n - 1):
         arm[i] = b + q[n + 2 + i] if extensible else b
-    x[0] = q[0]
-    for i in range(1, n):
-        x[i] = x[i - 1] + arm[i - 1] * cth[i - 1] + b * cth[i]
+    if k[UNIFORM] == 0.0:  # abscissae: only the Gaussian beam's intensity depends on them
+        x[0] = q[0]
+        for i in range(1, n):
+            x[i] = x[i - 1] + arm[i - 1] * cth[i - 1] + b * cth[i]
     slice_forces_into(q[2 : n + 2], cth, sth, x, k, ax, ay)
     tension = k[TENSION]
     if tension != 0.0:
