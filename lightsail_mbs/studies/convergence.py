@@ -292,7 +292,8 @@ def converge(
     else:
         noises = [r.tolerance_noise for r in rows[-2:] if r.tolerance_noise is not None]
         fit = power_law_fit([r.n for r in rows], values, max(noises) if noises else 0.0)
-    empirical = empirical_n_for_one_percent([r.n for r in rows], values) if len(kinds) == 1 else None
+    consistent = len(kinds) == 1 and not ill_posed
+    empirical = empirical_n_for_one_percent([r.n for r in rows], values) if consistent else None
     return ConvergenceStudy(params, settings, rows, fit, empirical, ill_posed, notes)
 
 
