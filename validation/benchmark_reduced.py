@@ -4,6 +4,7 @@
     python validation/benchmark_reduced.py --startup           # end-to-end command times (processes)
     python validation/benchmark_reduced.py --first-run         # fresh clone + venv + pip install, first run
     python validation/benchmark_reduced.py --tolerances        # answer vs rtol (the default tolerances)
+    python validation/benchmark_reduced.py --choice            # both integrators vs the stiffness ratio
     python validation/benchmark_reduced.py --all --markdown validation/benchmark_reduced.md
 
 In-process times are the CPU time of this process (time.process_time) around `solve(...)`, minimum over
@@ -71,7 +72,7 @@ def in_process(repeats: int) -> list[str]:
         )
         print(lines[-1], flush=True)
     exponent = np.polyfit(np.log(SOFT_SIZES), np.log(cpus), 1)[0]
-    steps_note = "fitted CPU ∝ n^{:.2f} over n = {}–{}".format(exponent, SOFT_SIZES[0], SOFT_SIZES[-1])
+    steps_note = f"fitted CPU ∝ n^{exponent:.2f} over n = {SOFT_SIZES[0]}–{SOFT_SIZES[-1]}"
     rows = [
         ("stable torsion, 6 s", "torsion-stable", {}, repeats, "≤ 0.05 s"),
         ("extensible TnT (T = 3.34e-3 N), 6 s", "tnt-stable", {}, repeats, "≤ 0.15 s"),
@@ -171,7 +172,8 @@ def first_run(editable: bool) -> list[str]:
 def tolerances() -> list[str]:
     """The answers of the paper's DOP853 cases against rtol (reference: rtol 1e-10)."""
     lines = [
-        "Answer against DOP853's rtol, relative to rtol 1e-10 (t_f, or the largest amplitude ratio for the stable sail).",
+        "Answer against DOP853's rtol, relative to rtol 1e-10 (t_f, or the largest amplitude ratio for the "
+        "stable sail).",
         "",
         "| case | n | rtol 1e-9 | rtol 1e-8 | rtol 1e-7 | CPU 1e-9 / 1e-8 (s) |",
         "|---|---:|---:|---:|---:|---|",
@@ -190,17 +192,43 @@ def tolerances() -> list[str]:
     return lines
 
 
+def method_choice() -> list[str]:
+    """CPU of both integrators on the paper's torsion runs (6 s, stop at failure) against the stiffness ratio."""
+    from lightsail_mbs.solvers.reduced.solver import choose_method
+
+    lines = [
+        "Both integrators on the paper's torsion run (6 s, stopped at failure), CPU s (minimum of 2), "
+        f"against the stiffness ratio ω_max/ω_slow ({load()}).",
+        "",
+        "| E (Pa) | n | ω_max/ω_slow | DOP853 (s) | Radau (s) | cheaper | auto |",
+        "|---:|---:|---:|---:|---:|---|---|",
+    ]
+    for modulus in (4.5e9, 4.5e11, 4.5e13):
+        for n in (30, 60, 120, 240):
+            params = paper_case("torsion-soft", youngs_modulus=modulus, n=n)
+            auto, figures = choose_method(params)
+            cpu = {m: cpu_time(params, paper_settings("torsion-soft"), 2, method=m)[0] for m in ("DOP853", "Radau")}
+            cheaper = min(cpu, key=cpu.get)
+            lines.append(
+                f"| {modulus:.1e} | {n} | {figures['stiffness_ratio']:.3g} | {cpu['DOP853']:.4f} | {cpu['Radau']:.4f} "
+                f"| {cheaper} | {auto} |"
+            )
+            print(lines[-1], flush=True)
+    return lines
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--startup", action="store_true", help="end-to-end command times")
     parser.add_argument("--first-run", action="store_true", help="fresh clone, venv, pip install, first run")
     parser.add_argument("--tolerances", action="store_true", help="answers against DOP853's rtol")
+    parser.add_argument("--choice", action="store_true", help="both integrators against the stiffness ratio")
     parser.add_argument("--all", action="store_true", help="everything above and the in-process table")
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--markdown", help="also write the tables to this Markdown file")
     args = parser.parse_args()
     sections = []
-    if args.all or not (args.startup or args.first_run or args.tolerances):
+    if args.all or not (args.startup or args.first_run or args.tolerances or args.choice):
         sections.append(("In-process", in_process(args.repeats)))
     if args.all or args.startup:
         sections.append(("Start-up", startup(max(args.repeats, 5))))
@@ -208,6 +236,8 @@ def main() -> int:
         sections.append(("First run on a fresh install", first_run(editable=True) + [""] + first_run(editable=False)))
     if args.all or args.tolerances:
         sections.append(("Tolerances", tolerances()))
+    if args.all or args.choice:
+        sections.append(("Method choice", method_choice()))
     if args.markdown:
         text = "\n\n".join(f"### {title}\n\n" + "\n".join(lines) for title, lines in sections)
         Path(args.markdown).write_text(text + "\n")

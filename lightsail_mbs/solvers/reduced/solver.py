@@ -26,9 +26,12 @@ the failure-time scale t_c = 1/(k √(g₀ a₀)), k = 2πν/L (Eq. 9); the lowe
 an accurate run resolves the lowest ones whatever the method); the tensioned string's fundamental
 π/L √(T/(ρhW)) (mode j at j times it). The explicit step count forced by stability exceeds the one
 accuracy needs by about ω_max/ω_slow, so the implicit method is chosen when that ratio exceeds
-STIFFNESS_THRESHOLD, calibrated by measuring both methods over E = 4.5e9…4.5e13 Pa and n = 30…1000
-(docs/solvers.md, "Choosing the method"): for torsion chains the ratio is ≈ n²/161 (Radau from n ≈ 180), for the
-extensible TnT chain 10⁴–10⁶ (always Radau), for the rigid chain 0 (DOP853). The choice and its inputs
+STIFFNESS_THRESHOLD, calibrated by running both methods on the paper's torsion runs for E = 4.5e9…4.5e13
+Pa and n = 30…240 (validation/benchmark_reduced.py --choice): they cost the same near a ratio of 10–25,
+and Radau is 1.2–4× cheaper from 45 on (it also damps the high bending modes the initial shape
+excites, then steps over them). For torsion chains the ratio is ≈ n²/323 (Radau from n ≈ 90), for the
+extensible TnT chain 10⁴–10⁶ (always Radau), for the rigid chain and the TnT chain without bending 0
+(DOP853). The choice and its inputs
 are recorded in Result.info (method, method_choice, omega_bending, omega_axial, omega_slow,
 failure_rate = 1/t_c, stiffness_ratio, stiffness_threshold).
 
@@ -70,13 +73,13 @@ IMPLICIT = ("Radau", "BDF", "LSODA")
 # Default tolerances, from the answer's accuracy (validation/benchmark_reduced.py --tolerances; reference
 # rtol 1e-10): DOP853 at rtol 1e-8 moves the paper's failure times by ≤ 4e-4 relative (soft torsion
 # n = 30: 5e-7, n = 120: 4e-4; rigid n = 40: 5e-5) and the stable sail's largest amplitude ratio by 1e-8,
-# at least ten times below the error of the chain itself at the n where DOP853 is chosen (n ≤ 250:
-# ≥ 4e-3 relative, docs/convergence.md), and conserves energy in free vibration to 2e-8; 1e-9 costs 1.3×
+# at least ten times below the error of the chain itself at the n where DOP853 is chosen (n < 90:
+# ≥ 3e-3 relative, docs/convergence.md), and conserves energy in free vibration to 2e-8; 1e-9 costs 1.3×
 # the steps. Radau at 1e-6: soft torsion to failure at n = 300 and 1000 moves ≤ 3e-6 relative from
 # rtol 1e-6 to 1e-9, and each decade costs it ~2× more steps.
 DEFAULT_RTOL = {"DOP853": 1e-8, "Radau": 1e-6}
 OPTIONS = ("max_step", "first_step")
-STIFFNESS_THRESHOLD = 200.0  # ω_max/ω_slow above which the implicit method is chosen (calibrated)
+STIFFNESS_THRESHOLD = 25.0  # ω_max/ω_slow above which the implicit method is chosen (calibrated)
 FREE_FREE_BETA_L = 4.730040744862704  # β₁L of the lowest free–free beam mode
 RESOLVED_MODES = 10  # the lowest bending or string modes counted as motion the answer needs
 

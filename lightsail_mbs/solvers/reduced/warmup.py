@@ -19,9 +19,9 @@ import sys
 import time
 from contextlib import contextmanager
 
-# typical compile time of each integrator's kernels on the reference machine (s, 2 cores, idle;
+# compile time of each integrator's kernels on the reference machine (CPU s, which is the wall time when idle;
 # docs/reports/benchmark.md); the message quotes it
-COMPILE_SECONDS = {"DOP853": 15, "Radau": 35}
+COMPILE_SECONDS = {"DOP853": 10, "Radau": 35}
 PACKAGE = "lightsail_mbs"
 _announced = False
 
