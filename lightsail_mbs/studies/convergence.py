@@ -56,7 +56,7 @@ class ConvergenceRow:
     change : float or None
         value − the previous n's value (same kind), None for the first.
     tolerance_noise : float or None
-        |value at rtol/10 − value| (None when not measured).
+        abs(value at rtol/10 − value) (None when not measured).
     method : str
         The reduced solver's integrator at this n (Result.info["method"]).
     steps : int
@@ -89,7 +89,7 @@ class PowerLawFit:
     order : float or None
         p, the order of convergence in n.
     n_for_one_percent : float or None
-        n at which |t(n) − t_∞| = 1 % of |t_∞|.
+        n at which abs(t(n) − t_∞) = 1 % of abs(t_∞).
     verdict : str
         "power law", "converged to the tolerance noise", "not converging (…)", "ill-posed in n (…)" or
         "fewer than three sizes".
