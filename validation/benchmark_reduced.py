@@ -152,16 +152,20 @@ def first_run(editable: bool) -> list[str]:
         subprocess.run(pip + target, check=True, cwd=tmp)
         install = time.perf_counter() - start
         command = [str(venv / "bin" / "lightsail-mbs"), *SOFT_SIMULATE]
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
         start = time.perf_counter()
         first = subprocess.run(command, check=True, capture_output=True, text=True, cwd=tmp)
         first_wall = time.perf_counter() - start
-        second, _ = process_times(command, 3)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        first_cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+        second, second_cpu = process_times(command, 3)
     compiled = "compiling" in first.stderr
     lines = [
         f"Fresh install ({kind}) of a clean clone into a new venv: pip took {install:.0f} s (wall, including "
         f"compiling the kernels); the first `lightsail-mbs simulate --solver reduced` after it took "
-        f"{first_wall:.2f} s wall ({'compiled, with the message' if compiled else 'loaded the cached kernels'}), "
-        f"later ones {second:.2f} s ({load()}).",
+        f"{first_wall:.2f} s wall and {first_cpu:.2f} s CPU "
+        f"({'compiled, with the message' if compiled else 'loaded the cached kernels'}), later ones {second:.2f} s "
+        f"wall and {second_cpu:.2f} s CPU (minimum of 3; {load()}).",
     ]
     if first.stderr.strip():
         lines.append(f"stderr of the first run: `{first.stderr.strip()}`")
@@ -223,6 +227,7 @@ def main() -> int:
     parser.add_argument("--first-run", action="store_true", help="fresh clone, venv, pip install, first run")
     parser.add_argument("--tolerances", action="store_true", help="answers against DOP853's rtol")
     parser.add_argument("--choice", action="store_true", help="both integrators against the stiffness ratio")
+    parser.add_argument("--install", choices=["editable", "regular", "both"], default="both", help="for --first-run")
     parser.add_argument("--all", action="store_true", help="everything above and the in-process table")
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--markdown", help="also write the tables to this Markdown file")
@@ -233,7 +238,9 @@ def main() -> int:
     if args.all or args.startup:
         sections.append(("Start-up", startup(max(args.repeats, 5))))
     if args.all or args.first_run:
-        sections.append(("First run on a fresh install", first_run(editable=True) + [""] + first_run(editable=False)))
+        kinds = {"editable": [True], "regular": [False], "both": [True, False]}[args.install]
+        runs = [line for editable in kinds for line in [*first_run(editable), ""]]
+        sections.append(("First run on a fresh install", runs[:-1]))
     if args.all or args.tolerances:
         sections.append(("Tolerances", tolerances()))
     if args.all or args.choice:
