@@ -137,8 +137,10 @@ class Result:
         error: str | None = None,
         info: dict | None = None,
         settings: RunSettings | None = None,
+        amplitude=None,
     ) -> Result:
-        """Build a Result from raw solver output; the amplitude is computed here (analysis.amplitude)."""
+        """Build a Result from raw solver output. The amplitude is computed here (analysis.amplitude)
+        unless the solver passes it (a compiled twin of analysis.amplitude, tested equal to it)."""
         time = np.asarray(time, float)
         steps = time.shape[0]
         empty = np.zeros((steps, 0))
@@ -146,7 +148,9 @@ class Result:
         arrays = {k: np.asarray(a, float).reshape(steps, -1) for k, a in zip(names, (x, y, theta, vx, vy, omega))}
         arrays["z"] = empty if z is None else np.asarray(z, float).reshape(steps, -1)
         arrays["z_rate"] = empty if z_rate is None else np.asarray(z_rate, float).reshape(steps, -1)
-        amplitude = np.atleast_1d(analysis.amplitude(arrays["x"], arrays["y"]))
+        if amplitude is None:
+            amplitude = analysis.amplitude(arrays["x"], arrays["y"])
+        amplitude = np.atleast_1d(np.asarray(amplitude, float))
         return cls(
             params,
             solver,

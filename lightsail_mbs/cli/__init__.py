@@ -16,9 +16,10 @@ import traceback
 from datetime import datetime
 
 from lightsail_mbs.model.parameters import ParameterError
-from lightsail_mbs.result import RunFileError
 
-# subcommand modules of this package; each defines register(subparsers) and sets `func`
+# subcommand modules of this package; each defines register(subparsers) and sets `func`. Registering
+# imports no more than the options need (numpy, the parameter classes): each command imports the
+# library it calls inside its run(), so a command pays only for what it uses.
 COMMANDS = [
     "theory",
     "simulate",
@@ -28,6 +29,7 @@ COMMANDS = [
     "reproduce",
     "crosscheck",
     "stability",
+    "converge",
     "store",
     "optics",
 ]
@@ -46,7 +48,7 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     try:
         return int(args.func(args) or 0)
-    except (ParameterError, RunFileError) as exc:
+    except ParameterError as exc:
         return _fail(str(exc))
     except OSError as exc:
         where = f"{exc.filename}: " if exc.filename else ""
@@ -55,9 +57,17 @@ def main(argv=None) -> int:
         print("lightsail-mbs: interrupted", file=sys.stderr)
         return 130
     except Exception as exc:  # noqa: BLE001 - the last line of defence: one line, the traceback in a file
+        if _is_run_file_error(exc):
+            return _fail(str(exc))
         log = _write_traceback()
         print(f"lightsail-mbs: internal error: {type(exc).__name__}: {exc} (traceback in {log})", file=sys.stderr)
         return 1
+
+
+def _is_run_file_error(exc: Exception) -> bool:
+    """True for a RunFileError (a missing or foreign run file); result.py is loaded if one was raised."""
+    result = sys.modules.get("lightsail_mbs.result")
+    return result is not None and isinstance(exc, result.RunFileError)
 
 
 def _fail(message: str) -> int:

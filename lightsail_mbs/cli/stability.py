@@ -14,10 +14,7 @@ from __future__ import annotations
 import json
 import time
 
-from lightsail_mbs.analysis import finite_amplitude as critical
-from lightsail_mbs.analysis import linear_stability as stability
 from lightsail_mbs.cli.options import add_case_options, params_from_args
-from lightsail_mbs.model import theory
 
 
 def register(sub) -> None:
@@ -50,6 +47,10 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from lightsail_mbs.analysis import finite_amplitude as critical
+    from lightsail_mbs.analysis import linear_stability as stability
+    from lightsail_mbs.model import theory
+
     p = params_from_args(args)
     if p.model == "tnt":
         p = p.replace(axial_springs=False)

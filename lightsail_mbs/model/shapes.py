@@ -23,10 +23,10 @@ the flat construction; the flat sail itself is built by the flat code path, unch
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
 
@@ -145,15 +145,81 @@ def hinge_points(p: SailParameters, profile=None) -> np.ndarray:
     chords = chord_lengths(p)
     pts = np.zeros((p.n + 1, 2))
     pts[0] = (0.0, w(0.0))
+    step = chords[0]  # first guess of each hinge: the previous chord's Δx
     for k, c in enumerate(chords):
         x0, y0 = pts[k]
 
         def gap(x, x0=x0, y0=y0, c=c):
-            return np.hypot(x - x0, w(x) - y0) - c
+            return math.hypot(x - x0, w(x) - y0) - c
 
-        x1 = brentq(gap, x0, x0 + c * (1 + 1e-9), xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
+        x1 = chord_end(gap, x0, x0 + c * (1 + 1e-9), x0 + min(step, c))
+        step = x1 - x0
         pts[k + 1] = (x1, w(x1))
     return pts
+
+
+def chord_end(gap, lo: float, hi: float, guess: float, xtol: float = 1e-15, rtol: float = 8.9e-16) -> float:
+    """The root of gap(x) = |hinge(x) − hinge₀| − chord in (lo, hi] (gap(lo) < 0 ≤ gap(hi)), to
+    |Δx| ≤ xtol + rtol·|x|: secant steps from hi and the guess, which converge superlinearly from a guess
+    as close as the previous chord's; bracketed_root if a step leaves [lo, hi] or stalls."""
+    a, f_a = hi, gap(hi)
+    b, f_b = guess, gap(guess)
+    for _ in range(12):
+        if f_b == 0:
+            return b
+        if f_b == f_a:
+            break
+        x = b - f_b * (b - a) / (f_b - f_a)
+        if not lo <= x <= hi:
+            break
+        if abs(x - b) <= xtol + rtol * abs(x):
+            return x
+        a, f_a, b, f_b = b, f_b, x, gap(x)
+    return bracketed_root(gap, lo, hi)
+
+
+def bracketed_root(f, lo: float, hi: float, xtol: float = 1e-15, rtol: float = 8.9e-16) -> float:
+    """A root of f in [lo, hi] with f(lo) < 0 < f(hi), to |Δx| ≤ xtol + rtol·|x|: false position with the
+    Illinois modification (superlinear), bisecting whenever a step fails to halve the bracket."""
+    f_lo, f_hi = f(lo), f(hi)
+    if f_lo >= 0 or f_hi <= 0:
+        if f_lo == 0:
+            return lo
+        if f_hi == 0:
+            return hi
+        raise ValueError(f"f must change sign from [{lo}, {hi}]: f = {f_lo}, {f_hi}")
+    side = 0
+    for _ in range(200):
+        width = hi - lo
+        x = lo - f_lo * width / (f_hi - f_lo)
+        if not lo < x < hi:
+            x = 0.5 * (lo + hi)
+        value = f(x)
+        if value == 0:
+            return x
+        if value < 0:
+            lo, f_lo = x, value
+            if side == -1:
+                f_hi *= 0.5
+            side = -1
+        else:
+            hi, f_hi = x, value
+            if side == 1:
+                f_lo *= 0.5
+            side = 1
+        if hi - lo > 0.5 * width:  # a slow step: bisect once
+            mid = 0.5 * (lo + hi)
+            value = f(mid)
+            if value == 0:
+                return mid
+            if value < 0:
+                lo, f_lo = mid, value
+            else:
+                hi, f_hi = mid, value
+            side = 0
+        if hi - lo <= xtol + rtol * abs(lo):
+            return 0.5 * (lo + hi)
+    return 0.5 * (lo + hi)
 
 
 def initial_state(p: SailParameters, profile=None) -> ChainState:

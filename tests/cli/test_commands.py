@@ -208,3 +208,31 @@ def test_reproduce_rejects_an_unknown_figure(capsys):
 def test_crosscheck_cli_rejects_unknown_case(tmp_path):
     with pytest.raises(SystemExit):
         main(["crosscheck", "--cases", "nonsense", "--out", str(tmp_path)])
+
+
+HEAVY = ("matplotlib", "scipy", "exudyn", "numba", "dask", "PIL", "tqdm")
+
+
+def loaded_after(code: str) -> set[str]:
+    """The heavy libraries (HEAVY, and scipy's submodules) in sys.modules after running code in a fresh
+    interpreter."""
+    probe = f"import sys\n{code}\nprint(' '.join(sorted(sys.modules)))"
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True)
+    modules = out.stdout.split()
+    return {m for m in modules if m.split(".")[0] in HEAVY and (m.count(".") == 0 or m.startswith("scipy."))}
+
+
+def test_building_the_parser_imports_no_heavy_library():
+    """A command pays only for what it uses: registering every subcommand imports none of them."""
+    assert loaded_after("from lightsail_mbs.cli import build_parser\nbuild_parser()") == set()
+    assert loaded_after("from lightsail_mbs.cli import main\nmain(['theory'])") == set()
+
+
+def test_reduced_simulate_imports_numba_and_not_the_rest():
+    """The reduced solver's command loads numba (which imports scipy's top level) but not scipy.integrate,
+    scipy.optimize, scipy.linalg (numba's BLAS probe is answered), matplotlib or exudyn."""
+    args = ["simulate", "--solver", "reduced", "--n", "6", "--t-final", "0.01", "--quiet"]
+    code = f"from lightsail_mbs.cli import main\nmain({args!r})"
+    loaded = loaded_after(code)
+    assert "numba" in loaded
+    assert not {"matplotlib", "exudyn", "dask", "PIL", "scipy.integrate", "scipy.optimize", "scipy.linalg"} & loaded

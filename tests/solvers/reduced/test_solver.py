@@ -132,3 +132,40 @@ def test_tnt_soft_fails_like_the_paper_and_converges():
     t2 = solve(p, "reduced", settings, rtol=reduced.DEFAULT_RTOL["Radau"] / 10).failure_time
     assert 1.5 <= t1 <= 2.5
     assert abs(t2 - t1) < 0.01 * t1
+
+
+# ---- the method choice -----------------------------------------------------------------------
+@pytest.mark.parametrize(
+    "case, changes, expected",
+    [
+        ("torsion-stable", {}, "DOP853"),
+        ("torsion-soft", {}, "DOP853"),
+        ("torsion-soft", dict(n=1000), "Radau"),
+        ("tnt-stable", {}, "Radau"),
+        ("tnt-stable", dict(axial_springs=False), "DOP853"),
+        ("rigid", {}, "DOP853"),
+    ],
+)
+def test_method_is_chosen_from_the_stiffness(case, changes, expected):
+    """Explicit unless the fastest spring mode exceeds the motion the answer needs by the threshold:
+    fine torsion chains (top bending mode ∝ n²) and the extensible TnT chain (axial springs) run implicitly."""
+    method, figures = reduced.choose_method(paper_case(case, **changes))
+    assert method == expected
+    ratio = figures["stiffness_ratio"]
+    assert (ratio > reduced.STIFFNESS_THRESHOLD) == (expected == "Radau")
+
+
+def test_torsion_stiffness_ratio_grows_as_n_squared():
+    """ω_max = 2√(k_T/J) ∝ n² while ω_slow (failure scale, lowest bending modes) does not depend on n."""
+    ratios = [reduced.stiffness(paper_case("torsion-soft", n=n))["stiffness_ratio"] for n in (50, 100, 200)]
+    np.testing.assert_allclose(np.diff(np.log(ratios)) / np.log(2), 2.0, rtol=1e-12)
+
+
+def test_choice_and_its_inputs_are_recorded():
+    settings = RunSettings(t_final=0.01)
+    auto = solve(paper_case("tnt-soft", n=10), "reduced", settings)
+    assert auto.info["method"] == "Radau" and auto.info["method_choice"] == "auto"
+    assert auto.info["stiffness_ratio"] > auto.info["stiffness_threshold"]
+    assert auto.info["omega_axial"] > 0 and auto.info["omega_slow"] > 0 and auto.info["failure_rate"] > 0
+    user = solve(paper_case("tnt-soft", n=10), "reduced", settings, method="Radau")
+    assert user.info["method_choice"] == "user" and user.info["stiffness_ratio"] == auto.info["stiffness_ratio"]
