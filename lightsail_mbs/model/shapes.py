@@ -106,6 +106,8 @@ def arc_point(p: SailParameters, s):
 def billowed_hinge_points(p: SailParameters, profile=None) -> np.ndarray:
     """(n+1, 2) hinge points of the billowed sail (billow_radius finite) with exact chords: on the arc, or
     on the arc displaced along its normal by `profile` (default: defect_profile(p), none if a₀ = 0)."""
+    from scipy.optimize import brentq
+
     R = abs(p.billow_radius)
     chords = chord_lengths(p)
     if np.any(chords > 2 * R):
