@@ -22,8 +22,15 @@ from lightsail_mbs.result import RunFileError
 COMMANDS = ["theory", "simulate", "info", "render", "montecarlo", "reproduce", "crosscheck", "stability", "store"]
 
 
+class Parser(argparse.ArgumentParser):
+    """argparse's parser whose usage errors are one line (naming the option) and exit status 2."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="lightsail-mbs", description=__doc__.splitlines()[0])
+    parser = Parser(prog="lightsail-mbs", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True)
     for name in COMMANDS:
         importlib.import_module(f".{name}", __name__).register(sub)

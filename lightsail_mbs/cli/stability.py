@@ -18,6 +18,7 @@ from lightsail_mbs.analysis import finite_amplitude as critical
 from lightsail_mbs.analysis import linear_stability as stability
 from lightsail_mbs.cli.options import add_case_options, params_from_args
 from lightsail_mbs.model import theory
+from lightsail_mbs.model.parameters import check, finite
 
 
 def register(sub) -> None:
@@ -51,6 +52,8 @@ def register(sub) -> None:
 
 def run(args) -> int:
     p = params_from_args(args)
+    if args.run_time is not None:
+        check("run_time", args.run_time, finite("run_time", args.run_time) > 0, "> 0 s")
     if p.model == "tnt":
         p = p.replace(axial_springs=False)
     start = time.perf_counter()

@@ -17,7 +17,10 @@ import traceback
 from collections.abc import Callable
 from concurrent.futures.process import BrokenProcessPool
 
+from lightsail_mbs.model.parameters import ParameterError
 from lightsail_mbs.result import Result
+
+SCHEDULER_TIMEOUT = 10.0  # s to wait for a Dask scheduler to answer
 
 
 def execute(case_function: Callable, case) -> tuple[dict, Result | None]:
@@ -74,14 +77,28 @@ def available_cores() -> int:
 
 
 @contextlib.contextmanager
-def dask_client(scheduler):
-    """A ``distributed.Client`` for a scheduler address (closed on exit), a given Client as is, or None."""
+def dask_client(scheduler, timeout: float = SCHEDULER_TIMEOUT):
+    """A ``distributed.Client`` for a scheduler address (closed on exit), a given Client as is, or None.
+
+    ParameterError naming the address, before any case runs, when no scheduler answers there within
+    ``timeout`` seconds or the address is not one Dask understands."""
     if scheduler is None or not isinstance(scheduler, str):
         yield scheduler
         return
     from distributed import Client
 
-    with Client(scheduler) as client:
+    try:
+        client = Client(scheduler, timeout=timeout)
+    except ValueError as exc:
+        raise ParameterError(
+            f"scheduler={scheduler!r} is invalid: allowed a Dask scheduler address such as tcp://host:8786 ({exc})"
+        ) from None
+    except Exception as exc:  # refused, timed out, or something that does not speak Dask's protocol
+        raise ParameterError(
+            f"scheduler={scheduler!r} is invalid: no Dask scheduler answered there within {timeout:g} s "
+            f"({type(exc).__name__}: {exc})"
+        ) from None
+    with client:
         yield client
 
 

@@ -6,7 +6,8 @@ Optional full Results go to ``results/<key>.npz`` (and its ``.json`` summary) an
 *before* the record, so a record never points at a missing Result.
 
 A record is served only while it is current: it carries the ``code_version`` of the code that made it
-(:func:`lightsail_mbs.result.code_version`, a hash of the sources that decide a run's numbers), and a
+(:func:`lightsail_mbs.result.code_version`, a hash of the sources that decide a run's numbers and its
+record and of the numerical libraries' versions), and a
 record made by other code is *stale*; a record that does not parse, or lacks its key, status or code
 version, is *corrupt*; a record whose saved Result is missing or unreadable is *incomplete*. All three
 count as not finished: the sweep recomputes them. :meth:`CaseStore.audit` reports them without
@@ -18,7 +19,6 @@ from __future__ import annotations
 import json
 import os
 import tempfile
-import zipfile
 from pathlib import Path
 
 import numpy as np
@@ -138,9 +138,12 @@ class CaseStore:
         return record
 
     def _result_readable(self, key: str) -> bool:
-        """The saved Result opens as a zip archive with every member intact (CRC checked)."""
+        """The saved Result loads as a whole run (Result.load: archive intact, every entry and array there)."""
+        from lightsail_mbs.model.parameters import ParameterError
+        from lightsail_mbs.result import Result, RunFileError
+
         try:
-            with zipfile.ZipFile(self.result_path(key)) as archive:
-                return archive.testzip() is None
-        except (OSError, zipfile.BadZipFile):
+            Result.load(self.result_path(key))
+        except (RunFileError, ParameterError):
             return False
+        return True
