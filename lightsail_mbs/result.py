@@ -18,8 +18,10 @@ from __future__ import annotations
 import functools
 import hashlib
 import json
+import os
 import platform
 import subprocess
+import tempfile
 import zipfile
 import zlib
 from dataclasses import dataclass, field
@@ -228,12 +230,16 @@ class Result:
 
     # ---- persistence -----------------------------------------------------------------------
     def save(self, path) -> Path:
-        """Write PATH.npz (arrays + summary) and PATH.json (summary); returns the .npz path."""
+        """Write PATH.npz (arrays + summary) and PATH.json (summary); returns the .npz path.
+
+        Each file is written to a temporary file in the same folder and then renamed over its name, so a
+        run killed while saving leaves the previous file or none, never a truncated one."""
         path = Path(path).with_suffix(".npz")
         path.parent.mkdir(parents=True, exist_ok=True)
         summary = json.dumps(self.summary(), indent=2, default=_jsonable)
-        np.savez_compressed(path, summary_json=np.array(summary), **{k: getattr(self, k) for k in ARRAYS})
-        path.with_suffix(".json").write_text(summary + "\n")
+        arrays = {k: getattr(self, k) for k in ARRAYS}
+        write_atomically(path, lambda handle: np.savez_compressed(handle, summary_json=np.array(summary), **arrays))
+        write_atomically(path.with_suffix(".json"), lambda handle: handle.write((summary + "\n").encode()))
         return path
 
     @classmethod
@@ -294,6 +300,29 @@ class Result:
             warnings=summary.get("warnings", []),
             **arrays,
         )
+
+
+def write_atomically(path: Path, write) -> None:
+    """write(binary handle) into a temporary file beside path, flushed to disk, then renamed to path
+    (with the permissions a new file gets from the umask): a reader sees the old file or the whole new one."""
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        os.chmod(tmp, 0o666 & ~_umask())
+        with os.fdopen(fd, "wb") as handle:
+            write(handle)
+            handle.flush()
+            os.fsync(handle.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+@functools.cache
+def _umask() -> int:
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
 
 
 def _check_arrays(path: Path, arrays: dict, params: SailParameters) -> None:

@@ -17,13 +17,11 @@ recomputing (``lightsail-mbs store DIR``).
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
-from lightsail_mbs.result import code_version
+from lightsail_mbs.result import code_version, write_atomically
 
 REQUIRED = ("key", "status", "code_version")
 
@@ -110,16 +108,7 @@ class CaseStore:
         path = self.record_path(key)
         record = {**record, "code_version": code_version()}
         text = json.dumps(record, indent=1, sort_keys=True, default=_jsonable_or_repr) + "\n"
-        fd, tmp = tempfile.mkstemp(dir=self.directory, prefix=f".{key}.", suffix=".tmp")
-        try:
-            with os.fdopen(fd, "w") as handle:
-                handle.write(text)
-                handle.flush()
-                os.fsync(handle.fileno())
-            os.replace(tmp, path)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
+        write_atomically(path, lambda handle: handle.write(text.encode()))
         return record
 
     def save_result(self, key: str, result) -> Path:
