@@ -31,6 +31,7 @@ def register(sub) -> None:
     p.add_argument("--workers", type=int, default=None, help="local processes [all cores]")
     p.add_argument("--scheduler", default=None, help="Dask scheduler address, e.g. tcp://host:8786")
     p.add_argument("--json", action="store_true", help="print the table as JSON")
+    p.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
     p.set_defaults(func=run)
 
 
@@ -53,6 +54,7 @@ def run(args) -> int:
         settings=settings_from_args(args),
         workers=args.workers,
         scheduler=args.scheduler,
+        progress=not args.quiet,
     )
     if args.json:
         print(json.dumps([dataclasses.asdict(r) for r in rows]))

@@ -21,6 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
+from lightsail_mbs.model.parameters import ParameterError
 from lightsail_mbs.result import code_version, write_atomically
 
 REQUIRED = ("key", "status", "code_version")
@@ -54,7 +55,15 @@ class CaseStore:
 
     def __init__(self, directory):
         self.directory = Path(directory)
-        self.directory.mkdir(parents=True, exist_ok=True)
+        try:
+            if self.directory.exists() and not self.directory.is_dir():
+                raise NotADirectoryError(20, "a file, not a folder")
+            self.directory.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise ParameterError(
+                f"store_dir={str(directory)!r} is invalid: allowed a folder this process can create and write "
+                f"({exc.strerror or exc})"
+            ) from None
 
     def record_path(self, key: str) -> Path:
         return self.directory / f"{key}.json"
