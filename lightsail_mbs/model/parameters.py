@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import numbers
 from dataclasses import dataclass
 
 SPEED_OF_LIGHT = 299_792_458.0  # m/s
@@ -37,12 +38,23 @@ def check(name: str, value, ok: bool, allowed: str) -> None:
 
 
 def finite(name: str, value) -> float:
+    """value as a float; ParameterError unless it is a real number (not a bool or a string), finite."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ParameterError(f"{name}={value!r} is invalid: allowed a finite real number")
     try:
         v = float(value)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise ParameterError(f"{name}={value!r} is invalid: allowed a finite real number") from None
     check(name, value, math.isfinite(v), "a finite real number (no NaN or inf)")
     return v
+
+
+def _as_float(value) -> float:
+    """float(value), NaN where that fails (an int beyond the float range)."""
+    try:
+        return float(value)
+    except (TypeError, ValueError, OverflowError):
+        return math.nan
 
 
 @dataclass(frozen=True)
@@ -119,14 +131,17 @@ class SailParameters:
         check(
             "defect_mode_count",
             self.defect_mode_count,
-            isinstance(self.defect_mode_count, int) and 1 <= self.defect_mode_count <= 200,
+            isinstance(self.defect_mode_count, int)
+            and not isinstance(self.defect_mode_count, bool)
+            and 1 <= self.defect_mode_count <= 200,
             "an integer 1 ≤ K ≤ 200",
         )
         finite("defect_spectrum", self.defect_spectrum)
+        waist = self.beam_waist
         check(
             "beam_waist",
-            self.beam_waist,
-            not math.isnan(float(self.beam_waist)) and self.beam_waist > 0,
+            waist,
+            not isinstance(waist, bool) and isinstance(waist, numbers.Real) and _as_float(waist) > 0,
             "> 0 (inf for a uniform beam)",
         )
         if self.beam_center is None:

@@ -75,10 +75,13 @@ class RunSettings:
         return min(1e-3, self.t_final / 1000.0)
 
     def sample_times(self) -> np.ndarray:
-        """Output times 0, Δt, 2Δt, … up to t_final, with t_final appended when Δt does not divide it (s)."""
+        """Output times 0, Δt, 2Δt, … up to t_final, with t_final appended when Δt does not divide it and
+        the last one set to t_final when Δt divides it up to round-off (s)."""
         dt = self.sample_interval
         times = dt * np.arange(int(math.floor(self.t_final / dt + 1e-9)) + 1)
-        if times[-1] < self.t_final * (1 - 1e-12):
+        if times[-1] > self.t_final:  # k·Δt rounded past t_final: the run ends at t_final
+            times[-1] = self.t_final
+        elif times[-1] < self.t_final * (1 - 1e-12):
             times = np.append(times, self.t_final)
         return times
 
