@@ -35,7 +35,7 @@ def fake_case(case):
     if p.defect_mode in options.get("crash_modes", ()):
         os._exit(3)
     if options.get("as_result"):
-        return fake_result(p, growth_rate=np.log(4.0) if failed else 0.0)
+        return fake_result(p, growth_rate=np.log(4.0) if failed else 0.0, settings=case.settings)
     return {
         "failed": bool(failed),
         "failure_time": 0.1 * p.youngs_modulus / threshold if failed else None,
@@ -44,13 +44,14 @@ def fake_case(case):
     }
 
 
-def fake_result(p, growth_rate):
-    """A Result whose sine shape grows as exp(growth_rate · t) over 1 s."""
+def fake_result(p, growth_rate, settings=None):
+    """A Result whose sine shape grows as exp(growth_rate · t) over 1 s (kept with the given run settings)."""
     t = np.linspace(0.0, 1.0, 21)
     x = np.tile((np.arange(p.n) + 0.5) / p.n * p.length, (t.size, 1))
     y = p.defect_amplitude * np.exp(growth_rate * t)[:, None] * np.sin(2 * np.pi * p.defect_mode * x / p.length)
     zero = np.zeros_like(x)
-    return Result.from_trajectory(p, "fake", t, x, y, zero, zero, zero, zero, settings=RunSettings(t_final=1.0))
+    settings = settings or RunSettings(t_final=1.0)
+    return Result.from_trajectory(p, "fake", t, x, y, zero, zero, zero, zero, settings=settings)
 
 
 def executions(marker_dir) -> Counter:

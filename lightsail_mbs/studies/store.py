@@ -82,7 +82,7 @@ class CaseStore:
             return "corrupt"
         if record["code_version"] != code_version():
             return "stale"
-        if with_result and not self._result_readable(key):
+        if with_result and not self._result_matches(key, record):
             return "incomplete"
         return "current"
 
@@ -135,13 +135,15 @@ class CaseStore:
             return None
         return record
 
-    def _result_readable(self, key: str) -> bool:
-        """The saved Result loads as a whole run (Result.load: archive intact, every entry and array there)."""
+    def _result_matches(self, key: str, record: dict) -> bool:
+        """The saved Result loads as a whole run (Result.load: archive intact, every entry and array there)
+        and is the run of this record's case (the same parameters and settings)."""
         from lightsail_mbs.model.parameters import ParameterError
         from lightsail_mbs.result import Result, RunFileError
 
         try:
-            Result.load(self.result_path(key))
+            saved = Result.load(self.result_path(key))
         except (RunFileError, ParameterError):
             return False
-        return True
+        same = json.loads(to_json([saved.params.to_dict(), saved.settings.to_dict()]))
+        return same == [record.get("parameters"), record.get("settings")]
