@@ -58,16 +58,22 @@ def sweep_and_kill_one_worker(store, markers, scheduler=None):
     case (the worker, not the sweep). Returns (exit status, stderr, killed case key, keys finished before)."""
     args = [sys.executable, sweep_fake.__file__, "held", str(store), "2"] + ([scheduler] if scheduler else [])
     proc = subprocess.Popen(args, stderr=subprocess.PIPE, text=True, env={**os.environ, MARKERS: str(markers)})
+    hold = float(os.environ[HOLD])
     victim, finished, deadline = None, set(), time.monotonic() + 120
     try:
         while victim is None:
             assert proc.poll() is None and time.monotonic() < deadline, "no case to kill"
             finished = set(CaseStore(store).keys()) if store.exists() else set()
-            running = [name.split(".") for name in os.listdir(markers) if name.split(".")[0] not in finished]
-            if finished and running:
-                victim = running[0][0]
-                os.kill(int(running[0][1]), signal.SIGKILL)
-            time.sleep(0.02)
+            # a case started less than hold/2 ago is surely still in its pause: its process is running it
+            fresh = [
+                name.split(".")
+                for name in os.listdir(markers)
+                if name.split(".")[0] not in finished and time.time() - (markers / name).stat().st_mtime < hold / 2
+            ]
+            if finished and fresh:
+                victim = fresh[0][0]
+                os.kill(int(fresh[0][1]), signal.SIGKILL)
+            time.sleep(0.01)
         _, err = proc.communicate(timeout=300)
     finally:
         if proc.poll() is None:
@@ -99,7 +105,7 @@ def check_recovered(store, markers, victim, finished, reference):
 
 
 def test_a_pool_worker_killed_mid_case_loses_nothing(tmp_path, markers, reference, monkeypatch):
-    monkeypatch.setenv(HOLD, "0.25")
+    monkeypatch.setenv(HOLD, "0.3")
     code, err, victim, finished = sweep_and_kill_one_worker(tmp_path / "store", markers)
     assert code == 0, err
     assert 1 <= len(finished) < len(real_cases())
@@ -111,7 +117,7 @@ def test_a_dask_worker_killed_mid_case_loses_nothing(tmp_path, markers, referenc
     """A local cluster of two worker processes on 127.0.0.1, started and stopped here; Dask reschedules the
     killed worker's case on the other (or the restarted) worker."""
     distributed = pytest.importorskip("distributed")
-    monkeypatch.setenv(HOLD, "0.25")
+    monkeypatch.setenv(HOLD, "0.3")
     monkeypatch.setenv(MARKERS, str(markers))  # the cluster's workers are started with this environment
     with distributed.LocalCluster(
         n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
