@@ -25,6 +25,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
 MEASURED = "2026-11-29"  # the day every entry below was measured (lightsail-mbs 0.1.0, branch reliability)
 
 
@@ -183,6 +185,28 @@ REFERENCES = {
         "reduced 2.1050228 s at rtol, 2.1044651 s at rtol/10 (5.6e-4 s)",
         (Quote("docs/paper.md", "a hundredth of T_cr,max) fails at 2.11 s", "2.11"),),
     ),
+    "membrane_extensible_soft_failure_time_reduced": Value(
+        2.1049515,
+        1.0e-4,
+        "s",
+        "solve(paper_case('tnt-soft'), 'reduced', paper_settings('tnt-soft')).failure_time (Radau)",
+        f"{REDUCED_RTOL}: 2.1049515, 2.1049149, 2.1048711 s (spread 8e-5 s)",
+        (
+            Quote("docs/validation.md", "fails at 2.1050 s, trough", "2.1050"),
+            Quote("validation/paper_cases.md", "| failed | 2.105 s | trough | 2.000 |", "2.105"),
+        ),
+    ),
+    "membrane_extensible_soft_failure_time_exudyn": Value(
+        2.1047706,
+        6.0e-4,
+        "s",
+        "solve(paper_case('tnt-soft'), 'exudyn', paper_settings('tnt-soft')).failure_time",
+        "Exudyn at its default step h and h/2: 2.1047706, 2.1052932 s (5.2e-4 s)",
+        (
+            Quote("docs/validation.md", "fails at 2.1048 s, trough", "2.1048"),
+            Quote("validation/paper_cases.md", "| failed | 2.1048 s | trough | 2.001 |", "2.1048"),
+        ),
+    ),
     # ---- the critical ratios (lightsail-mbs stability) -------------------------------------------
     "torsion_critical_ratio": Boundary(
         7.584,
@@ -289,3 +313,26 @@ REFERENCES = {
         (Quote("docs/beyond-the-paper.md", "fails at 2.252 s", "2.252"),),
     ),
 }
+
+
+def assert_held(name: str, computed) -> None:
+    """computed (a number, or a sequence for a tuple reference) within the reference's tolerance; the
+    assertion message gives the measured value, to update the reference with."""
+    ref = REFERENCES[name]
+    assert isinstance(ref, Value), name
+    values, got = np.atleast_1d(ref.value), np.atleast_1d(np.asarray(computed, float))
+    assert got.shape == values.shape and np.all(np.abs(got - values) <= ref.tolerance), (
+        f"{name}: measured {got.tolist()} {ref.unit}, reference {values.tolist()} ± {ref.tolerance} "
+        f"(measured {ref.measured}: {ref.uncertainty})"
+    )
+
+
+def assert_boundary(name: str, fails) -> None:
+    """fails(ratio) is True at the Boundary's failed end and False at its stable end."""
+    ref = REFERENCES[name]
+    assert isinstance(ref, Boundary), name
+    at_failed, at_stable = fails(ref.failed), fails(ref.stable)
+    assert at_failed and not at_stable, (
+        f"{name}: fails at {ref.failed}: {at_failed}, at {ref.stable}: {at_stable}; the boundary left "
+        f"[{ref.failed}, {ref.stable}] (measured {ref.measured}: {ref.uncertainty})"
+    )
