@@ -31,7 +31,11 @@ def clis(*commands):
         )
         for args in commands
     ]
-    return [subprocess.CompletedProcess(proc.args, proc.returncode, *proc.communicate()) for proc in procs]
+    done = []
+    for proc in procs:
+        out, err = proc.communicate()  # sets the return code
+        done.append(subprocess.CompletedProcess(proc.args, proc.returncode, out, err))
+    return done
 
 
 def test_theory_json_paper_numbers():

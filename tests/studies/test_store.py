@@ -104,7 +104,8 @@ def test_store_command_reports_each_state(tmp_path, markers, capsys):
     }
     assert main(["store", str(tmp_path)]) == 0
     out = capsys.readouterr().out
-    assert result_module.code_version() in out and "2 record(s) will be recomputed" in out
+    assert result_module.code_version() in out
+    assert "2 record(s) will be recomputed" in out
     assert [line.split() for line in out.splitlines()[1:5]] == [
         ["current", "3"],
         ["stale", "1"],
