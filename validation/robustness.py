@@ -418,6 +418,11 @@ def run_all(work: Path) -> None:
         check=warned,
     )
 
+    def flat_not_failed(out, err):
+        return "not failed" in out, "a flat sail (a₀ = 0) runs and is not failed (no defect to double)"
+
+    cli_row(["simulate", *QUICK, "--defect-amplitude", "0"], work, "result", check=flat_not_failed)
+
     def provenance_shown(out, err):
         ok = all(word in out for word in ("code_version", "git_commit", "exudyn", "numpy", "scipy", "numba", "python"))
         return ok, "summary and provenance printed (versions, code_version, git commit)"
@@ -444,6 +449,7 @@ def run_all(work: Path) -> None:
     # sweeps and studies
     mc = ["montecarlo", "--n", "12", "--t-final", "0.05", "--solver", "reduced", "--seeds", "2", "--quiet"]
     cli_row([*mc, "--values", "1e9,abc", "--store", "mc"], work, "error", names=["values"])
+    cli_row([*mc, "--values", ",", "--store", "mc"], work, "error", names=["values"])
     cli_row([*mc, "--values", "1e9", "--store", "afile"], work, "error", names=["--store"])
     cli_row([*mc, "--values", "1e9", "--store", "mc", "--workers", "0"], work, "error", names=["workers"])
     cli_row(

@@ -42,7 +42,9 @@ def run(args) -> int:
     try:
         values = [float(v) for v in args.values.split(",") if v.strip()]
     except ValueError:
-        raise ParameterError(f"values={args.values!r} is invalid: allowed comma-separated numbers") from None
+        values = []
+    if not values:
+        raise ParameterError(f"values={args.values!r} is invalid: allowed one or more comma-separated numbers")
     writable_folder(args.store, "--store")
     rows = montecarlo.run(
         base,

@@ -60,7 +60,7 @@ def test_failure_time_at_another_ratio():
     assert analysis.failure_time(t, np.exp(t), 3.0) == pytest.approx(chord, abs=1e-12)
 
 
-def test_failure_time_at_a_sample_and_at_the_start():
+def test_failure_time_at_a_sample_and_of_a_flat_start():
     t = np.array([0.0, 0.5, 1.0])
     assert analysis.failure_time(t, np.array([1.0, 2.0, 3.0]), 2.0) == 0.5
-    assert analysis.failure_time(t, np.array([0.0, 0.0, 0.0]), 2.0) == 0.0  # a flat start: 0 ≥ 2·0
+    assert analysis.failure_time(t, np.array([0.0, 1e-9, 1.0]), 2.0) is None  # a flat start has no failure

@@ -327,6 +327,7 @@ def test_reproduce_quick_end_to_end(tmp_path, capsys):
         (["render", "{tmp}/good.npz", "--out", "{tmp}/frames", "--movie", "gif", "--fps", "0"], ["fps"]),
         (["montecarlo", "--values", "1e9", "--store", "{tmp}/good.npz"], ["--store"]),
         (["montecarlo", "--values", "1e9,x", "--store", "{tmp}/mc"], ["values"]),
+        (["montecarlo", "--values", ",", "--store", "{tmp}/mc"], ["values"]),
         (["reproduce", "--figure", "5", "--out", "/proc/figs"], ["--out"]),
         (["crosscheck", "--out", "/proc/cc"], ["--out"]),
         (["stability", "--factor", "1"], ["factor"]),
