@@ -294,15 +294,57 @@ REFERENCES = {
         "0.6659752 s at rtol, 0.6655894 s at rtol/10",
         (Quote("docs/paper.md", "(0.21, 0.67 and 2.11 s at 0.01, 0.1 and 1 µm", "0.67"),),
     ),
+    "membrane_frequency_exponents": Value(
+        (0.5146262, -0.5000208, 1.0079303),
+        1.0e-6,
+        "",
+        "log-log slopes of the stable membrane's frequency (angle_frequency, 6 s, reduced) against T = 3.34e-5…"
+        "3.34e-2 N, h = 0.01–10 µm and ν = 1, 3/2, 2 (Figs 18–20)",
+        "the frequencies agree to 1e-10 relative at rtol and rtol/10; the slopes to 2e-10",
+        (Quote("docs/paper.md", "the frequency grows as\nT^0.51, as h^−0.50 and as ν^1.0", "0.51, -0.50, 1.0"),),
+    ),
+    "membrane_failure_time_thickness_exponent": Value(
+        0.5000658,
+        2.0e-4,
+        "",
+        "log-log slope of the soft membrane's failure time against h = 0.01, 0.1, 1 µm (Fig. 23)",
+        "0.5000658 at rtol, 0.4999192 at rtol/10",
+        (Quote("docs/paper.md", "and grows as h^0.50", "0.50"),),
+    ),
+    "montecarlo_failures": Value(
+        (49, 29, 11, 0),
+        0.5,
+        "runs",
+        "studies.montecarlo.run(SailParameters(model='torsion', defect_seed=0), 'youngs_modulus', "
+        "[4.5e10, 4.5e11, 4.5e12, 4.5e13], 50 seeds, solver='reduced'): failures per value",
+        "the same counts at rtol and rtol/10 (every seeded run on the same side): held exactly",
+        (Quote("docs/beyond-the-paper.md", "| 4.5e10 | 50 | 49 | 0.98 |", "49"),),
+    ),
+    "montecarlo_median_failure_times": Value(
+        (1.6686772, 3.4459416, 3.7803167),
+        1.0e-6,
+        "s",
+        "the same sweep: median failure time per value (E = 4.5e10, 4.5e11, 4.5e12 Pa)",
+        "rtol and rtol/10 agree to 4e-8 s",
+        (Quote("docs/beyond-the-paper.md", "| 0.98 | 0.90–1.00 | 1.67 |", "1.67"),),
+    ),
     # ---- beyond the paper: beam profile and optics ------------------------------------------------
     "gaussian_cupping_time_w_1m": Value(
-        6.2065025e-4,
+        6.206502485457975e-4,
         1.5e-12,
         "s",
         "solve(paper_case('torsion-stable', beam_waist=1.0), 'reduced', RunSettings(t_final=0.01, "
         "output_interval=1e-5)).failure_time",
         "equal at rtol and rtol/10 to 1e-16 s; Exudyn 2e-9 relative away (docs/beyond-the-paper.md)",
         (Quote("docs/beyond-the-paper.md", "cupping at 0.62065 ms", "0.62065", scale=1e3),),
+    ),
+    "gaussian_cupping_times": Value(
+        (1.1250280611316776e-3, 6.206502485457975e-4, 4.243712610841005e-4),
+        1.5e-12,
+        "s",
+        "as gaussian_cupping_time_w_1m with beam_waist = 2, 1 and 0.5 m",
+        "equal at rtol and rtol/10 to 2e-16 s",
+        (Quote("docs/beyond-the-paper.md", "fails at 1.13 / 0.62 / 0.42 ms", "1.13, 0.62, 0.42", scale=1e3),),
     ),
     "partial_reflector_failure_time": Value(
         2.2524285,
