@@ -24,6 +24,10 @@ BOUNDARIES = ("free", "cantilever", "pinned")
 VALIDATION_DEFAULTS = {"boundary": "free", "tip_load": 0.0, "tip_load_time_constant": 0.0}
 # Names under which saved runs and store records written before the current field names hold them.
 LEGACY_NAMES = {"amplitude": "defect_amplitude", "mode": "defect_mode", "defect_modes": "defect_mode_count"}
+# Smallest non-zero defect amplitude, as a fraction of L: the solvers scale their tolerances with a₀, and the
+# reduced solver's first-step estimate underflows for a₀ ≲ 1e-200 m. (Physically, anything below ~1e-12 L is
+# round-off already: shapes.defect_warnings says so.)
+MIN_DEFECT_FRACTION = 1e-100
 # Run control that saved runs of that format kept with the case (now solvers.settings.RunSettings).
 RUN_FIELDS = ("t_final", "output_interval", "stop_at_failure", "failure_ratio")
 
@@ -177,6 +181,13 @@ class SailParameters:
         if self.bending is None:
             object.__setattr__(self, "bending", self.model == "torsion")
         check("bending", self.bending, isinstance(self.bending, bool), "True, False or None")
+        check(
+            "defect_amplitude",
+            self.defect_amplitude,
+            self.defect_amplitude == 0 or self.defect_amplitude >= MIN_DEFECT_FRACTION * self.length,
+            f"0 or ≥ {MIN_DEFECT_FRACTION:g} L = {MIN_DEFECT_FRACTION * self.length:.3g} m (the solvers' "
+            "tolerances scale with a₀; below this they underflow)",
+        )
         check(
             "defect_amplitude",
             self.defect_amplitude,

@@ -26,6 +26,7 @@ from tests.strategies import EXAMPLES, any_case_kwargs, check_property
         ("youngs_modulus", -4.5e9, "youngs_modulus"),
         ("torsional_damping", -1.0, "torsional_damping"),
         ("defect_amplitude", 0.2, "45°"),
+        ("defect_amplitude", 1e-250, "underflow"),
         ("defect_mode_count", 0, "defect_mode_count"),
     ],
 )
