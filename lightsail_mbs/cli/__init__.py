@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
+import re
 import sys
 import tempfile
 import traceback
@@ -35,8 +37,20 @@ COMMANDS = [
 ]
 
 
+class Parser(argparse.ArgumentParser):
+    """argparse's parser whose usage errors are one line (naming the option) and exit status 2, and which
+    reads a negative number in scientific notation (``--thickness -1e-6``) as a value, not an option."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="lightsail-mbs", description=__doc__.splitlines()[0])
+    parser = Parser(prog="lightsail-mbs", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True)
     for name in COMMANDS:
         importlib.import_module(f".{name}", __name__).register(sub)
@@ -50,6 +64,9 @@ def main(argv=None) -> int:
         return int(args.func(args) or 0)
     except ParameterError as exc:
         return _fail(str(exc))
+    except BrokenPipeError:  # the reader of stdout went away (e.g. `| head`): no message, as other tools
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 1
     except OSError as exc:
         where = f"{exc.filename}: " if exc.filename else ""
         return _fail(f"{where}{exc.strerror or exc}")

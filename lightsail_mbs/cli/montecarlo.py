@@ -32,6 +32,7 @@ def register(sub) -> None:
     p.add_argument("--workers", type=int, default=None, help="local processes [all cores]")
     p.add_argument("--scheduler", default=None, help="Dask scheduler address, e.g. tcp://host:8786")
     p.add_argument("--json", action="store_true", help="print the table as JSON")
+    p.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
     p.set_defaults(func=run)
 
 
@@ -44,7 +45,9 @@ def run(args) -> int:
     try:
         values = [float(v) for v in args.values.split(",") if v.strip()]
     except ValueError:
-        raise ParameterError(f"values={args.values!r} is invalid: allowed comma-separated numbers") from None
+        values = []
+    if not values:
+        raise ParameterError(f"values={args.values!r} is invalid: allowed one or more comma-separated numbers")
     writable_folder(args.store, "--store")
     rows = montecarlo.run(
         base,
@@ -56,6 +59,7 @@ def run(args) -> int:
         settings=settings_from_args(args),
         workers=args.workers,
         scheduler=args.scheduler,
+        progress=not args.quiet,
     )
     if args.json:
         print(json.dumps([dataclasses.asdict(r) for r in rows]))

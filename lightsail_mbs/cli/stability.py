@@ -15,6 +15,7 @@ import json
 import time
 
 from lightsail_mbs.cli.options import add_case_options, params_from_args
+from lightsail_mbs.model.parameters import check, finite
 
 
 def register(sub) -> None:
@@ -52,6 +53,8 @@ def run(args) -> int:
     from lightsail_mbs.model import theory
 
     p = params_from_args(args)
+    if args.run_time is not None:
+        check("run_time", args.run_time, finite("run_time", args.run_time) > 0, "> 0 s")
     if p.model == "tnt":
         p = p.replace(axial_springs=False)
     start = time.perf_counter()

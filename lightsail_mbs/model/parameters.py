@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import numbers
 from dataclasses import dataclass
 
 SPEED_OF_LIGHT = 299_792_458.0  # m/s
@@ -26,6 +27,10 @@ VALIDATION_DEFAULTS = {"boundary": "free", "tip_load": 0.0, "tip_load_time_const
 LATER_DEFAULTS = {"billow_radius": math.inf}
 # Names under which saved runs and store records written before the current field names hold them.
 LEGACY_NAMES = {"amplitude": "defect_amplitude", "mode": "defect_mode", "defect_modes": "defect_mode_count"}
+# Smallest non-zero defect amplitude, as a fraction of L: the solvers scale their tolerances with a₀, and the
+# reduced solver's first-step estimate underflows for a₀ ≲ 1e-200 m. (Physically, anything below ~1e-12 L is
+# round-off already: shapes.defect_warnings says so.)
+MIN_DEFECT_FRACTION = 1e-100
 # Run control that saved runs of that format kept with the case (now solvers.settings.RunSettings).
 RUN_FIELDS = ("t_final", "output_interval", "stop_at_failure", "failure_ratio")
 
@@ -40,12 +45,23 @@ def check(name: str, value, ok: bool, allowed: str) -> None:
 
 
 def finite(name: str, value) -> float:
+    """value as a float; ParameterError unless it is a real number (not a bool or a string), finite."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ParameterError(f"{name}={value!r} is invalid: allowed a finite real number")
     try:
         v = float(value)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise ParameterError(f"{name}={value!r} is invalid: allowed a finite real number") from None
     check(name, value, math.isfinite(v), "a finite real number (no NaN or inf)")
     return v
+
+
+def _as_float(value) -> float:
+    """float(value), NaN where that fails (an int beyond the float range)."""
+    try:
+        return float(value)
+    except (TypeError, ValueError, OverflowError):
+        return math.nan
 
 
 @dataclass(frozen=True)
@@ -123,14 +139,17 @@ class SailParameters:
         check(
             "defect_mode_count",
             self.defect_mode_count,
-            isinstance(self.defect_mode_count, int) and 1 <= self.defect_mode_count <= 200,
+            isinstance(self.defect_mode_count, int)
+            and not isinstance(self.defect_mode_count, bool)
+            and 1 <= self.defect_mode_count <= 200,
             "an integer 1 ≤ K ≤ 200",
         )
         finite("defect_spectrum", self.defect_spectrum)
+        waist = self.beam_waist
         check(
             "beam_waist",
-            self.beam_waist,
-            not math.isnan(float(self.beam_waist)) and self.beam_waist > 0,
+            waist,
+            not isinstance(waist, bool) and isinstance(waist, numbers.Real) and _as_float(waist) > 0,
             "> 0 (inf for a uniform beam)",
         )
         if self.beam_center is None:
@@ -182,6 +201,13 @@ class SailParameters:
         if self.bending is None:
             object.__setattr__(self, "bending", self.model == "torsion")
         check("bending", self.bending, isinstance(self.bending, bool), "True, False or None")
+        check(
+            "defect_amplitude",
+            self.defect_amplitude,
+            self.defect_amplitude == 0 or self.defect_amplitude >= MIN_DEFECT_FRACTION * self.length,
+            f"0 or ≥ {MIN_DEFECT_FRACTION:g} L = {MIN_DEFECT_FRACTION * self.length:.3g} m (the solvers' "
+            "tolerances scale with a₀; below this they underflow)",
+        )
         check(
             "defect_amplitude",
             self.defect_amplitude,

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from lightsail_mbs import ParameterError, SailParameters
+from lightsail_mbs.model import shapes
 from lightsail_mbs.model.shapes import hinge_points, initial_state
 
 
@@ -150,3 +151,24 @@ def test_both_solvers_start_from_the_billowed_sail_and_agree():
     assert moved > 0.05  # the load turns the edges of the billowed film flatter (0.31 → 0.21 rad in 50 ms)
     # Exudyn's default 1 ms step (generalized-α) against DOP853 at rtol 1e-9: 4e-4 of the motion measured
     assert np.max(np.abs(runs[0].theta[-1] - runs[1].theta[-1])) < 2e-3 * moved
+
+
+def test_defect_warnings_when_the_chain_cannot_carry_the_defect():
+    """n = 3 with ν = 3/2 draws one slice per half wave: the chain's initial amplitude is round-off, and
+    both the resolution and the carried amplitude are flagged (and recorded in the Result); a₀ below
+    1e-12 L is flagged for precision; the paper's n = 30 raises nothing."""
+    from lightsail_mbs import RunSettings, solve
+    from lightsail_mbs.analysis import amplitude
+
+    coarse = SailParameters(n=3, defect_mode=1.5)
+    start = shapes.initial_state(coarse)
+    notes = shapes.defect_warnings(coarse, amplitude(start.x, start.y))
+    assert len(notes) == 2 and "slices per half wavelength" in notes[0] and "round-off" in notes[1]
+    assert solve(coarse, "reduced", RunSettings(t_final=0.01)).warnings == notes
+    tiny = SailParameters(defect_amplitude=1e-13)
+    start = shapes.initial_state(tiny)
+    assert any("double precision" in note for note in shapes.defect_warnings(tiny, amplitude(start.x, start.y)))
+    paper = SailParameters()
+    start = shapes.initial_state(paper)
+    assert shapes.defect_warnings(paper, amplitude(start.x, start.y)) == []
+    assert shapes.defect_warnings(paper.replace(defect_amplitude=0.0), 0.0) == []
