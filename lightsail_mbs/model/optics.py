@@ -222,8 +222,12 @@ class OpticalTable:
     def nominal_acceleration(self, p: SailParameters) -> float:
         """g₀ = c_n(0) Ī / (c ρ h): the flat sail's acceleration under this law (for the mirror exactly
         SailParameters.nominal_acceleration)."""
-        cn0 = float(self.coefficients(0.0)[0])
-        return cn0 * p.mean_intensity / (SPEED_OF_LIGHT * p.density * p.thickness)
+        return self.normal_at_zero * p.mean_intensity / (SPEED_OF_LIGHT * p.density * p.thickness)
+
+    @property
+    def normal_at_zero(self) -> float:
+        """c_n(0): the flat sail's normal force coefficient at normal incidence (2 for the mirror)."""
+        return float(self.coefficients(0.0)[0])
 
     # ---- views ----------------------------------------------------------------------------------
     @property
@@ -332,17 +336,34 @@ class OpticalTable:
         }
 
 
+_READ_CACHE: dict = {}
+
+
+def read_table(path) -> OpticalTable:
+    """OpticalTable.load(path), read once per resolved path, size and modification time (a case reads its
+    table at every validation)."""
+    path = Path(path)
+    try:
+        st = path.stat()
+    except OSError as exc:
+        raise OpticsFileError(f"{path}: cannot be read ({exc.strerror or exc})") from None
+    key = (str(path.resolve()), st.st_size, st.st_mtime_ns)
+    if key not in _READ_CACHE:
+        if len(_READ_CACHE) > 64:
+            _READ_CACHE.clear()
+        _READ_CACHE[key] = OpticalTable.load(path)
+    return _READ_CACHE[key]
+
+
 # ---- compiled evaluation -------------------------------------------------------------------------
 @njit(cache=True)
-def packed_coefficients(packed, theta, mirrored):
-    """(c_n, c_t) at angle θ from OpticalTable.packed() (NaN outside a bounded table)."""
+def packed_tabulated(packed, u):
+    """(s_n, s_t) of OpticalTable.packed() at the table angle u (NaN outside a bounded table)."""
     n = int(packed[1])
     nodes = PACKED_HEADER
     cn0 = nodes + n
     ct0 = cn0 + 4 * (n - 1)
     m = n - 1
-    sign = -1.0 if mirrored else 1.0
-    u = sign * theta
     if packed[2] != 0.0 and not (packed[nodes] <= u <= packed[nodes + n - 1]):
         return math.nan, math.nan
     lo, hi = 0, n - 1  # binary search for θ_lo ≤ u < θ_hi, clamped to the end intervals
@@ -357,6 +378,14 @@ def packed_coefficients(packed, theta, mirrored):
     sn += packed[cn0 + 3 * m + lo]
     st = ((packed[ct0 + lo] * dx + packed[ct0 + m + lo]) * dx + packed[ct0 + 2 * m + lo]) * dx
     st += packed[ct0 + 3 * m + lo]
+    return sn, st
+
+
+@njit(cache=True)
+def packed_coefficients(packed, theta, mirrored):
+    """(c_n, c_t) at angle θ from OpticalTable.packed() (NaN outside a bounded table)."""
+    sign = -1.0 if mirrored else 1.0
+    sn, st = packed_tabulated(packed, sign * theta)
     c = math.cos(theta)
     s = math.sin(theta)
     cc = c * c
@@ -370,6 +399,55 @@ def packed_force(packed, scale, theta, mirrored):
     c = math.cos(theta)
     s = math.sin(theta)
     return scale * (ct * c - cn * s), scale * (cn * c + ct * s)
+
+
+@njit(cache=True)
+def packed_slice_force(packed, push, c, s, theta, mirrored):
+    """The radiation force (f_x, f_y) on one slice (N), inertial directions, as the reduced solver applies
+    it: push = I(x) l W / c, c, s = cos θ, sin θ. With q_n = A_n + s_n (module docstring)
+
+        normal = (q_n c)(push c),   tangential = push (A_t c s + c² s_t),
+        f_x = tangential c − normal s,   f_y = normal c + tangential s,
+
+    the product order of model/loads.py's law as the reduced solver's kernel computes it, so the built-in
+    mirror (q_n = 2, A_t = s_t = 0) gives Eq. (11) to the last bit there."""
+    sign = -1.0 if mirrored else 1.0
+    sn, st = packed_tabulated(packed, sign * theta)
+    normal = ((packed[3] + sn) * c) * (push * c)
+    tangential = push * (packed[4] * c * s + c * c * (sign * st))
+    return tangential * c - normal * s, normal * c + tangential * s
+
+
+@njit(cache=True)
+def normal_tangential_into(packed, mirrored, push, c, s, theta, normal, tangential):
+    """The force components along each slice's normal and tangent (N), as the Exudyn force function
+    applies them (f = (tangential + i normal) e^{iθ} in its complex notation): push_i = I(x_i) l W / c
+    (half of f₀ for the uniform beam), mirrored_i ≠ 0 for a slice carrying the table turned over,
+
+        normal = (q_n push)(c²),   tangential = push (A_t c s + c² s_t),
+
+    the product order of Exudyn's Eq. (11) path, f₀ (c²) n, so the built-in mirror gives its bits."""
+    for i in range(theta.size):
+        sign = -1.0 if mirrored[i] != 0.0 else 1.0
+        sn, st = packed_tabulated(packed, sign * theta[i])
+        ci, si = c[i], s[i]
+        normal[i] = ((packed[3] + sn) * push[i]) * (ci * ci)
+        tangential[i] = push[i] * (packed[4] * ci * si + ci * ci * (sign * st))
+
+
+def slice_flags(p: SailParameters) -> np.ndarray:
+    """1.0 for each slice of case p that carries its table turned over (t → −t), else 0.0: none for the
+    layout 'uniform'; for 'mirrored-halves' the slices whose centres lie right of the middle (i ≥ n/2;
+    with n odd the middle slice keeps the table's orientation)."""
+    flags = np.zeros(p.n)
+    if p.optics_layout == "mirrored-halves":
+        flags[(p.n + 1) // 2 :] = 1.0
+    return flags
+
+
+def solver_block(p: SailParameters) -> np.ndarray:
+    """What a solver's compiled load reads for case p's table: the n slice flags, then the packed table."""
+    return np.concatenate([slice_flags(p), p.optical_table().packed()])
 
 
 # ---- built-in laws -------------------------------------------------------------------------------

@@ -24,7 +24,9 @@ BOUNDARIES = ("free", "cantilever", "pinned")
 VALIDATION_DEFAULTS = {"boundary": "free", "tip_load": 0.0, "tip_load_time_constant": 0.0}
 # Fields added after the store's keys were first written, omitted by to_dict at their defaults so that the
 # record (and store key) of every case that does not use them stays what it was.
-LATER_DEFAULTS = {"billow_radius": math.inf}
+LATER_DEFAULTS = {"billow_radius": math.inf, "optics": None, "optics_layout": "uniform"}
+# How the slices carry an optical table: all alike, or the right half turned over (t → −t; model/optics.py).
+OPTICS_LAYOUTS = ("uniform", "mirrored-halves")
 # Names under which saved runs and store records written before the current field names hold them.
 LEGACY_NAMES = {"amplitude": "defect_amplitude", "mode": "defect_mode", "defect_modes": "defect_mode_count"}
 # Smallest non-zero defect amplitude, as a fraction of L: the solvers scale their tolerances with a₀, and the
@@ -100,6 +102,8 @@ class SailParameters:
     tip_load: float = 0.0  # P₀, N: transverse (+y) dead load at the centre of slice n (Eq. 43)
     tip_load_time_constant: float = 0.0  # τ, s: P(t) = P₀(1 − e^(−t/τ)) (Eq. 43); 0: P₀ from t = 0
     billow_radius: float = math.inf  # R_c, m: initial circular arc (shapes.py); > 0 concave to the laser; inf: flat
+    optics: str | None = None  # the slices' force law from a table: None (R, α above), "mirror", or a table file
+    optics_layout: str = "uniform"  # one of OPTICS_LAYOUTS: which slices carry the table turned over
 
     def __post_init__(self):
         check("model", self.model, self.model in MODELS, f"one of {', '.join(MODELS)}")
@@ -198,6 +202,7 @@ class SailParameters:
             math.isinf(R) or self.boundary == "free",
             "inf (flat) unless boundary='free' (the supports hold a flat chain)",
         )
+        self._check_optics()
         if self.bending is None:
             object.__setattr__(self, "bending", self.model == "torsion")
         check("bending", self.bending, isinstance(self.bending, bool), "True, False or None")
@@ -215,6 +220,32 @@ class SailParameters:
             f"< L/(2πν) = {self.length / (2 * math.pi * self.defect_mode):.3g} m (a sine steeper than 45° "
             "is outside the model)",
         )
+
+    def _check_optics(self) -> None:
+        check("optics_layout", self.optics_layout, self.optics_layout in OPTICS_LAYOUTS, " or ".join(OPTICS_LAYOUTS))
+        if self.optics is None:
+            check("optics_layout", self.optics_layout, self.optics_layout == "uniform", "'uniform' without optics")
+            return
+        allowed = "None, 'mirror' or the path of an optical table file (.npz, from lightsail-mbs optics … --out)"
+        check("optics", self.optics, isinstance(self.optics, str) and self.optics != "", allowed)
+        for name in ("reflectivity", "absorptivity"):
+            check(name, getattr(self, name), getattr(self, name) == (name == "reflectivity"), "its default with optics")
+        self.optical_table()  # reads the file now: a bad one is refused before any solving
+
+    def optical_table(self):
+        """The slices' force law as a :class:`~lightsail_mbs.model.optics.OpticalTable`: the file `optics`
+        (read once per path and modification time), the built-in mirror for 'mirror', and for None the
+        built-in mirror or facet of reflectivity and absorptivity."""
+        from lightsail_mbs.model import optics
+
+        if self.optics is None:
+            return optics.for_case(self)
+        if self.optics == "mirror":
+            return optics.mirror()
+        try:
+            return optics.read_table(self.optics)
+        except optics.OpticsFileError as exc:
+            raise ParameterError(f"optics={self.optics!r} is invalid: {exc}") from None
 
     # ---- derived quantities (paper Sec. III) -------------------------------------------------
     @property
@@ -298,8 +329,11 @@ class SailParameters:
     @property
     def nominal_acceleration(self) -> float:
         """g₀ = (2R + α) Ī / (c ρ h): the flat sail's acceleration (Eq. 4, first order, for R = 1,
-        α = 0 and a uniform beam: 2 I₀ / (c ρ h))."""
-        momentum = 2.0 * self.reflectivity + self.absorptivity
+        α = 0 and a uniform beam: 2 I₀ / (c ρ h)); with an optical table, c_n(0) Ī / (c ρ h)."""
+        if self.optics is None:
+            momentum = 2.0 * self.reflectivity + self.absorptivity
+        else:
+            momentum = self.optical_table().normal_at_zero
         return momentum * self.mean_intensity / (SPEED_OF_LIGHT * self.density * self.thickness)
 
     def replace(self, **changes) -> SailParameters:

@@ -37,8 +37,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lightsail_mbs.model import loads, shapes
-from lightsail_mbs.model.parameters import SailParameters
+from lightsail_mbs.model import loads, optics, shapes
+from lightsail_mbs.model.parameters import SPEED_OF_LIGHT, SailParameters
 
 
 @dataclass(frozen=True)
@@ -122,7 +122,8 @@ def generalized_force(p: SailParameters, layout: ChainLayout):
     The frame force −m g₀ is not included: the tree applies it as gravity. Written for speed
     (≈ 20 numpy calls on length-n arrays): it runs at every Newton iterate. For the paper's
     beam (uniform, R = 1, α = 0) the load is Eq. (11) inline, f = f₀ cos²θ n, the same
-    expression as loads.radiation_forces; otherwise loads.radiation_forces is called.
+    expression as loads.radiation_forces; otherwise loads.radiation_forces is called; with an optical
+    table (case.optics) its law, optics.normal_tangential_into.
     """
     size, idx, zidx = layout.size, layout.angle_index, layout.stretch_index
     l = layout.slice_length
@@ -131,6 +132,10 @@ def generalized_force(p: SailParameters, layout: ChainLayout):
     i_f0 = 1j * p.flat_force
     ideal = p.uniform_beam and p.reflectivity == 1.0 and p.absorptivity == 0.0
     extensible = bool(zidx.size)
+    if p.optics is not None:  # an optical table: components along n and t from model/optics.py, compiled
+        packed, flags = p.optical_table().packed(), optics.slice_flags(p)
+        push = np.full(p.n, 0.5 * p.flat_force)  # I l W / c of the uniform beam
+        normal, tangential = np.empty(p.n), np.empty(p.n)
     acc = np.add.accumulate
     Q = np.zeros(size)
 
@@ -141,7 +146,13 @@ def generalized_force(p: SailParameters, layout: ChainLayout):
         e = np.exp(1j * theta)
         c = e.real
         seg = layout.segments(q) if extensible else l
-        if ideal:
+        if p.optics is not None:
+            if not p.uniform_beam:
+                x = q[0] + _exclusive_cumsum(seg * c) + half * c
+                push[:] = loads.intensity(p, x) * (p.slice_length * p.width / SPEED_OF_LIGHT)
+            optics.normal_tangential_into(packed, flags, push, c, e.imag, theta, normal, tangential)
+            f = (tangential + 1j * normal) * e
+        elif ideal:
             f = i_f0 * (c * c) * e  # Eq. (11): f₀ cos²θ n
         else:
             x = q[0] + _exclusive_cumsum(seg * c) + half * c

@@ -51,6 +51,8 @@ import math
 import numpy as np
 from numba import njit
 
+from lightsail_mbs.model import optics
+from lightsail_mbs.model.optics import packed_slice_force
 from lightsail_mbs.model.parameters import SPEED_OF_LIGHT
 from lightsail_mbs.solvers.reduced.kinematics import ChainModel
 
@@ -94,6 +96,8 @@ def constants(model: ChainModel) -> np.ndarray:
     k[CENTER], k[REFL], k[ABSORB] = p.beam_center, p.reflectivity, p.absorptivity
     k[FRAME] = -p.slice_mass * p.nominal_acceleration
     k[EXTENSIBLE], k[UNIFORM] = float(model.extensible), float(p.uniform_beam)
+    if p.optics is not None:  # an optical table: the slices' flags and the packed table follow the constants
+        k = np.concatenate([k, optics.solver_block(p)])
     return k
 
 
@@ -110,16 +114,23 @@ def slice_forces_into(theta, cth, sth, x, k, fx, fy):
 
     theta, cth, sth: slice angles θ_i and their cosines and sines; x: abscissae of the centres (read
     only by the Gaussian beam). Radiation f_i = (I(x_i) l W / c) cos θ_i [2R cos θ_i n_i + α ŷ]
-    (Eq. 11 for R = 1, α = 0; I = I₀ or I₀ exp(−2(x − x_c)²/w²)), plus the frame force −m g₀ ŷ.
+    (Eq. 11 for R = 1, α = 0; I = I₀ or I₀ exp(−2(x − x_c)²/w²)), plus the frame force −m g₀ ŷ; with an
+    optical table after the constants (case.optics), its law instead (optics.packed_slice_force).
     """
     inten0, area_c, refl, absorb, frame = k[INTENSITY], k[AREA_C], k[REFL], k[ABSORB], k[FRAME]
     uniform = k[UNIFORM] != 0.0
-    for i in range(theta.size):
+    n = theta.size
+    table = k[N_CONSTANTS + n :]  # an optical table (model/optics.py), after the n slices' mirrored flags
+    for i in range(n):
         c, s = cth[i], sth[i]
         inten = inten0
         if not uniform:
             dx = (x[i] - k[CENTER]) / k[WAIST]
             inten *= math.exp(-2.0 * dx * dx)
+        if table.size:
+            fx[i], fy[i] = packed_slice_force(table, inten * area_c, c, s, theta[i], k[N_CONSTANTS + i] != 0.0)
+            fy[i] += frame
+            continue
         scale = inten * area_c * c
         normal = 2.0 * refl * c * scale
         fx[i] = -normal * s
