@@ -28,6 +28,13 @@ CASE_OPTIONS = {
     "--beam-center": ("beam_center", float, "Gaussian beam axis x_c (m); default L/2"),
     "--reflectivity": ("reflectivity", float, "specular reflectivity R"),
     "--absorptivity": ("absorptivity", float, "absorptivity α"),
+    "--optics": (
+        "optics",
+        str,
+        "the slices' force law from a table: 'mirror' or a table file (lightsail-mbs optics … --out); "
+        "unset: the R/α law",
+    ),
+    "--optics-layout": ("optics_layout", str, "uniform | mirrored-halves (the right half carries the table turned over)"),
     "--torsional-damping": ("torsional_damping", float, "torsional damping c_T (N·m·s/rad)"),
     "--axial-damping": ("axial_damping", float, "axial damping c_s (N·s/m)"),
     "--stiffness-damping": (
