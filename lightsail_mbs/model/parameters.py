@@ -24,7 +24,14 @@ BOUNDARIES = ("free", "cantilever", "pinned")
 VALIDATION_DEFAULTS = {"boundary": "free", "tip_load": 0.0, "tip_load_time_constant": 0.0}
 # Fields added after the store's keys were first written, omitted by to_dict at their defaults so that the
 # record (and store key) of every case that does not use them stays what it was.
-LATER_DEFAULTS = {"billow_radius": math.inf, "optics": None, "optics_layout": "uniform"}
+LATER_DEFAULTS = {
+    "billow_radius": math.inf,
+    "optics": None,
+    "optics_layout": "uniform",
+    "payload_mass": 0.0,
+    "payload_inertia": 0.0,
+    "payload_stem": 0.0,
+}
 # How the slices carry an optical table: all alike, or the right half turned over (t → −t; model/optics.py).
 OPTICS_LAYOUTS = ("uniform", "mirrored-halves")
 # Names under which saved runs and store records written before the current field names hold them.
@@ -104,6 +111,9 @@ class SailParameters:
     billow_radius: float = math.inf  # R_c, m: initial circular arc (shapes.py); > 0 concave to the laser; inf: flat
     optics: str | None = None  # the slices' force law from a table: None (R, α above), "mirror", or a table file
     optics_layout: str = "uniform"  # one of OPTICS_LAYOUTS: which slices carry the table turned over
+    payload_mass: float = 0.0  # m_p, kg: a payload on a rigid stem from the sail's middle (model/payload.py)
+    payload_inertia: float = 0.0  # J_p, kg·m²: its inertia about its own centre
+    payload_stem: float = 0.0  # d, m: the stem's length from the sail's middle towards the laser (−ŷ)
 
     def __post_init__(self):
         check("model", self.model, self.model in MODELS, f"one of {', '.join(MODELS)}")
@@ -203,6 +213,7 @@ class SailParameters:
             "inf (flat) unless boundary='free' (the supports hold a flat chain)",
         )
         self._check_optics()
+        self._check_payload()
         if self.bending is None:
             object.__setattr__(self, "bending", self.model == "torsion")
         check("bending", self.bending, isinstance(self.bending, bool), "True, False or None")
@@ -231,6 +242,23 @@ class SailParameters:
         for name in ("reflectivity", "absorptivity"):
             check(name, getattr(self, name), getattr(self, name) == (name == "reflectivity"), "its default with optics")
         self.optical_table()  # reads the file now: a bad one is refused before any solving
+
+    def _check_payload(self) -> None:
+        for name in ("payload_mass", "payload_inertia", "payload_stem"):
+            v = finite(name, getattr(self, name))
+            check(name, v, v >= 0, "≥ 0")
+        if self.payload_mass == 0:
+            for name in ("payload_inertia", "payload_stem"):
+                check(name, getattr(self, name), getattr(self, name) == 0, "0 without a payload (payload_mass = 0)")
+            return
+        check("payload_mass", self.payload_mass, self.boundary == "free", "0 unless boundary='free'")
+        check("payload_mass", self.payload_mass, self.n >= 3, "0 for n < 3 (the payload slice is not an end slice)")
+        check(
+            "payload_mass",
+            self.payload_mass,
+            not (self.model == "tnt" and self.axial_springs),
+            "0 for the extensible TnT chain (axial_springs=False: its inextensible limit carries one)",
+        )
 
     def optical_table(self):
         """The slices' force law as a :class:`~lightsail_mbs.model.optics.OpticalTable`: the file `optics`
@@ -329,11 +357,17 @@ class SailParameters:
     @property
     def nominal_acceleration(self) -> float:
         """g₀ = (2R + α) Ī / (c ρ h): the flat sail's acceleration (Eq. 4, first order, for R = 1,
-        α = 0 and a uniform beam: 2 I₀ / (c ρ h)); with an optical table, c_n(0) Ī / (c ρ h)."""
+        α = 0 and a uniform beam: 2 I₀ / (c ρ h)); with an optical table, c_n(0) Ī / (c ρ h); with a payload
+        of mass m_p, times M_sail/(M_sail + m_p) (the whole craft accelerates)."""
         if self.optics is None:
             momentum = 2.0 * self.reflectivity + self.absorptivity
         else:
             momentum = self.optical_table().normal_at_zero
+        if self.payload_mass > 0:  # the whole craft accelerates: c_n(0) Ī L W / (c (M_sail + m_p))
+            sail = self.density * self.thickness * self.length * self.width
+            return momentum * self.mean_intensity / (SPEED_OF_LIGHT * self.density * self.thickness) * (
+                sail / (sail + self.payload_mass)
+            )
         return momentum * self.mean_intensity / (SPEED_OF_LIGHT * self.density * self.thickness)
 
     def replace(self, **changes) -> SailParameters:

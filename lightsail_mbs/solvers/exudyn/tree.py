@@ -37,7 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lightsail_mbs.model import loads, optics, shapes
+from lightsail_mbs.model import loads, optics, payload, shapes
 from lightsail_mbs.model.parameters import SPEED_OF_LIGHT, SailParameters
 
 
@@ -178,7 +178,9 @@ def tree_arguments(p: SailParameters, layout: ChainLayout, exu) -> dict:
     """Keyword arguments of ObjectKinematicTree (without node and user function): massless
     PrismaticX/PrismaticY base links, one RevoluteZ link per slice (mass m at l/2, inertia J;
     joint offset l from the previous slice's hinge, or 0 after a slide), massless PrismaticX
-    slides at l along the previous slice; P/D control = springs/dampers with offset 0."""
+    slides at l along the previous slice; P/D control = springs/dampers with offset 0. A payload makes its
+    slice's link the composite body of model/payload.py (mass M, centre of mass ρ_c from the slice centre,
+    inertia J_c); the tree's gravity −g₀ then carries the payload's frame force too."""
     l, m, J = p.slice_length, p.slice_mass, p.slice_inertia
     size = layout.size
     types = [exu.JointType.PrismaticX, exu.JointType.PrismaticY] + [None] * (size - 2)
@@ -198,6 +200,13 @@ def tree_arguments(p: SailParameters, layout: ChainLayout, exu) -> dict:
             damping[i] = p.total_torsional_damping
             if not layout.stretch_index.size:
                 offsets[i] = [l, 0.0, 0.0]
+    attached = payload.attachment(p)
+    if attached is not None:  # slice j and the payload as one composite link (model/payload.py)
+        i = layout.angle_index[attached.slice_index]
+        centre = np.array([0.5 * l + attached.centre_along, attached.centre_across])
+        masses[i] = attached.mass
+        coms[i] = [centre[0], centre[1], 0.0]
+        inertias[i] = np.diag([attached.inertia] * 3)
     for i in layout.stretch_index:
         types[i] = exu.JointType.PrismaticX
         offsets[i] = [l, 0.0, 0.0]
