@@ -34,7 +34,11 @@ CASE_OPTIONS = {
         "the slices' force law from a table: 'mirror' or a table file (lightsail-mbs optics … --out); "
         "unset: the R/α law",
     ),
-    "--optics-layout": ("optics_layout", str, "uniform | mirrored-halves (the right half carries the table turned over)"),
+    "--optics-layout": (
+        "optics_layout",
+        str,
+        "uniform | mirrored-halves (the right half carries the table turned over)",
+    ),
     "--torsional-damping": ("torsional_damping", float, "torsional damping c_T (N·m·s/rad)"),
     "--axial-damping": ("axial_damping", float, "axial damping c_s (N·s/m)"),
     "--stiffness-damping": (

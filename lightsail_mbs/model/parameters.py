@@ -365,8 +365,11 @@ class SailParameters:
             momentum = self.optical_table().normal_at_zero
         if self.payload_mass > 0:  # the whole craft accelerates: c_n(0) Ī L W / (c (M_sail + m_p))
             sail = self.density * self.thickness * self.length * self.width
-            return momentum * self.mean_intensity / (SPEED_OF_LIGHT * self.density * self.thickness) * (
-                sail / (sail + self.payload_mass)
+            return (
+                momentum
+                * self.mean_intensity
+                / (SPEED_OF_LIGHT * self.density * self.thickness)
+                * (sail / (sail + self.payload_mass))
             )
         return momentum * self.mean_intensity / (SPEED_OF_LIGHT * self.density * self.thickness)
 

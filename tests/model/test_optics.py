@@ -419,7 +419,9 @@ def test_both_solvers_agree_on_a_grating_table_run(tmp_path):
     load is a grating's, not a mirror's (its c_n has a first-order slope term)."""
     from lightsail_mbs import RunSettings, solve
 
-    p = SailParameters(n=10, youngs_modulus=4.5e13, optics=coarse_grating_file(tmp_path), optics_layout="mirrored-halves")
+    p = SailParameters(
+        n=10, youngs_modulus=4.5e13, optics=coarse_grating_file(tmp_path), optics_layout="mirrored-halves"
+    )
     settings = RunSettings(t_final=0.01, output_interval=1e-3, stop_at_failure=False)
     exudyn = solve(p, "exudyn", settings, step_size=2e-6)
     reduced = solve(p, "reduced", settings, rtol=1e-10)

@@ -211,8 +211,7 @@ def _payload_free_acceleration(k, c, s, fx, fy, tau, ax, ay, al, j):
     fpy = k[FRAME] * mp / k[MASS]  # −m_p g₀ (k[FRAME] = −m g₀)
     cx = k[PAY_CE] * c - k[PAY_CP] * s  # ρ_c in inertial axes
     cy = k[PAY_CE] * s + k[PAY_CP] * c
-    rx = k[PAY_RE] * c - k[PAY_RP] * s - cx  # payload from the composite centre of mass
-    ry = k[PAY_RE] * s + k[PAY_RP] * c - cy
+    rx = k[PAY_RE] * c - k[PAY_RP] * s - cx  # payload from the composite centre of mass (x; F_p is along y)
     moment = tau + (-cx * fy + cy * fx) + rx * fpy
     ax[j] = fx / k[PAY_MASS]
     ay[j] = (fy + fpy) / k[PAY_MASS]
@@ -277,8 +276,7 @@ def _inextensible_payload(qd, k, work, qdd):
         inv[0, i], inv[1, i], inv[2, i] = d_yy * inv_det, -d_xy * inv_det, d_xx * inv_det
         rr[0, i], rr[1, i] = r_x, r_y
         if i < joints - 1:
-            _, _, rjx2, rjy2, _, _ = _arms(k, cth, sth, i + 1)
-            qr_x, qr_y = -rjy2, rjx2  # R⊥_{i+1}
+            qr_x, qr_y = -rjy, rjx  # R⊥_{i+1}
             up[0, i] = -im_j - ij_j * pl_x * qr_x
             up[1, i] = -ij_j * pl_x * qr_y
             up[2, i] = -ij_j * pl_y * qr_x
