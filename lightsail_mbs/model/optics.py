@@ -76,7 +76,6 @@ from pathlib import Path
 
 import numpy as np
 from numba import njit
-from scipy.interpolate import CubicSpline
 
 from lightsail_mbs.model import rcwa
 from lightsail_mbs.model.loads import intensity
@@ -162,6 +161,8 @@ class OpticalTable:
     ) -> OpticalTable:
         """A bounded table through samples c_n(θ_k), c_t(θ_k) (|θ_k| < π/2): cubic splines of c/cos²θ,
         independent on each piece between consecutive `breaks` (which must be nodes)."""
+        from scipy.interpolate import CubicSpline  # here: the solvers import this module and not scipy's splines
+
         theta = np.asarray(theta, float)
         check("theta", "samples", theta.ndim == 1 and np.all(np.abs(theta) < math.pi / 2), "|θ| < π/2 rad")
         c2 = np.cos(theta) ** 2

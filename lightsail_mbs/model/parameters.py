@@ -31,6 +31,7 @@ LATER_DEFAULTS = {
     "payload_mass": 0.0,
     "payload_inertia": 0.0,
     "payload_stem": 0.0,
+    "billow_rest": False,
 }
 # How the slices carry an optical table: all alike, or the right half turned over (t → −t; model/optics.py).
 OPTICS_LAYOUTS = ("uniform", "mirrored-halves")
@@ -114,6 +115,7 @@ class SailParameters:
     payload_mass: float = 0.0  # m_p, kg: a payload on a rigid stem from the sail's middle (model/payload.py)
     payload_inertia: float = 0.0  # J_p, kg·m²: its inertia about its own centre
     payload_stem: float = 0.0  # d, m: the stem's length from the sail's middle towards the laser (−ŷ)
+    billow_rest: bool = False  # torsion springs at rest on the billowed arc (a sail made curved); False: flat
 
     def __post_init__(self):
         check("model", self.model, self.model in MODELS, f"one of {', '.join(MODELS)}")
@@ -214,6 +216,13 @@ class SailParameters:
         )
         self._check_optics()
         self._check_payload()
+        check("billow_rest", self.billow_rest, isinstance(self.billow_rest, bool), "True or False")
+        check(
+            "billow_rest",
+            self.billow_rest,
+            not self.billow_rest or not math.isinf(float(self.billow_radius)),
+            "False for a flat sail (billow_radius = inf)",
+        )
         if self.bending is None:
             object.__setattr__(self, "bending", self.model == "torsion")
         check("bending", self.bending, isinstance(self.bending, bool), "True, False or None")
@@ -302,6 +311,14 @@ class SailParameters:
         if self.model == "rigid" or not self.bending:
             return 0.0
         return self.youngs_modulus * self.second_moment_of_area / self.slice_length
+
+    @property
+    def rest_turn(self) -> float:
+        """δ = θ_{k+1} − θ_k of the unstressed sail: −2 asin(l/(2R_c)) when the springs are at rest on the billowed
+        arc (billow_rest), else 0 (flat); the torsion springs act on θ_{k+1} − θ_k − δ."""
+        if not self.billow_rest:
+            return 0.0
+        return -2.0 * math.asin(self.slice_length / (2.0 * float(self.billow_radius)))
 
     @property
     def axial_stiffness(self) -> float:

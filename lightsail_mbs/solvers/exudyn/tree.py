@@ -190,6 +190,7 @@ def tree_arguments(p: SailParameters, layout: ChainLayout, exu) -> dict:
     inertias = [np.zeros((3, 3)) for _ in range(size)]
     stiffness = np.zeros(size)
     damping = np.zeros(size)
+    rest = np.zeros(size)  # joint P control's set point: the rest angle of a sail made curved
     for k, i in enumerate(layout.angle_index):
         types[i] = exu.JointType.RevoluteZ
         masses[i] = m
@@ -198,6 +199,7 @@ def tree_arguments(p: SailParameters, layout: ChainLayout, exu) -> dict:
         if k > 0:
             stiffness[i] = p.torsional_stiffness
             damping[i] = p.total_torsional_damping
+            rest[i] = p.rest_turn
             if not layout.stretch_index.size:
                 offsets[i] = [l, 0.0, 0.0]
     attached = payload.attachment(p)
@@ -223,6 +225,6 @@ def tree_arguments(p: SailParameters, layout: ChainLayout, exu) -> dict:
         linkMasses=masses,
         jointPControlVector=stiffness,
         jointDControlVector=damping,
-        jointPositionOffsetVector=np.zeros(size),
+        jointPositionOffsetVector=rest,
         jointVelocityOffsetVector=np.zeros(size),
     )

@@ -83,8 +83,9 @@ from lightsail_mbs.solvers.reduced.kinematics import ChainModel
     PAY_CP,
     PAY_RE,
     PAY_RP,
-) = range(25)
-N_CONSTANTS = 25
+    REST_TURN,
+) = range(26)
+N_CONSTANTS = 26
 
 # rows of the workspace of one right-hand-side evaluation
 (COS, SIN, ARM, ABSCISSA, AX, AY, AL, I_XX, I_XY, I_YY, U_XX, U_XY, U_YY, R_X, R_Y) = range(15)
@@ -103,6 +104,7 @@ def constants(model: ChainModel) -> np.ndarray:
     k[CENTER], k[REFL], k[ABSORB] = p.beam_center, p.reflectivity, p.absorptivity
     k[FRAME] = -p.slice_mass * p.nominal_acceleration
     k[EXTENSIBLE], k[UNIFORM] = float(model.extensible), float(p.uniform_beam)
+    k[REST_TURN] = p.rest_turn  # the springs' rest angle between neighbours (a sail made curved)
     k[PAY_SLICE] = -1.0  # a payload (model/payload.py): its composite slice j, M, J_c, ρ_c, ρ in slice j's axes
     attached = payload.attachment(p)
     if attached is not None:
@@ -177,14 +179,15 @@ def _free_accelerations(q, qd, k, work, extensible):
         ay[n - 1] += tension * sth[n - 1]
     k_t, c_t, k_s, c_s = k[K_T], k[C_T], k[K_S], k[C_S]
     springs = k_t != 0.0 or c_t != 0.0
+    rest = k[REST_TURN]
     for i in range(n):
         c, s = cth[i], sth[i]
         fx, fy, tau = ax[i], ay[i], 0.0
         if springs:
             if i > 0:
-                tau -= k_t * (q[2 + i] - q[1 + i]) + c_t * (qd[2 + i] - qd[1 + i])
+                tau -= k_t * (q[2 + i] - q[1 + i] - rest) + c_t * (qd[2 + i] - qd[1 + i])
             if i < n - 1:
-                tau += k_t * (q[3 + i] - q[2 + i]) + c_t * (qd[3 + i] - qd[2 + i])
+                tau += k_t * (q[3 + i] - q[2 + i] - rest) + c_t * (qd[3 + i] - qd[2 + i])
         if extensible:  # axial spring forces s_j e_j: +s on slice j+1, −s on slice j
             if i > 0:
                 sp = -k_s * q[n + 1 + i] - c_s * qd[n + 1 + i]
