@@ -14,7 +14,8 @@ the craft's centre of mass is one waist from the axis, else "rides". Beside them
 (analysis.beam_riding.ride) and the closed-form criterion's boundary d* (analysis.beam_riding.criterion).
 
 1. The two solvers on one riding run (E = 1e19 Pa, d = 6 m, 1 s): lateral position and tilt at 1 s.
-2. Histories (d = 6 m, 5 s) for E = 1e17, 1e18, 1e19 Pa and the rigid body.
+2. Histories (d = 6 m, 5 s) for E = 1e17, 1e18, 1e19 Pa, E = 1e19 Pa with the paper's defect on top of the
+   arc (a₀ = 10 µm, ν = 3/2), and the rigid body.
 3. The stem map: verdicts of 20 s runs for E = 1e18, 1e19, 1e20 Pa and the rigid body over d = 3…8 m.
 --quick: 2 s runs, a coarse stem grid, no Exudyn, 8 frames (a smoke run).
 """
@@ -45,13 +46,13 @@ BASE = dict(
 )
 
 
-def case(E, d):
-    return SailParameters(youngs_modulus=E, payload_stem=d, **BASE)
+def case(E, d, **changes):
+    return SailParameters(**{**BASE, "youngs_modulus": E, "payload_stem": d, **changes})
 
 
-def flexible(E, d, t_final, solver="reduced", **options):
+def flexible(E, d, t_final, solver="reduced", changes=None, **options):
     """(Result, FlexibleRide); a run that crumples within its first second is not continued."""
-    p = case(E, d)
+    p = case(E, d, **(changes or {}))
     first = solve(
         p, solver, RunSettings(t_final=min(1.0, t_final), output_interval=0.01, stop_at_failure=False), **options
     )
@@ -110,6 +111,9 @@ def main():
     for E in (1e17, 1e18, 1e19):
         r, f = flexible(E, 6.0, t_hist)
         hist[f"E = {E:.0e} Pa"] = (f, r)
+    defect = dict(defect_amplitude=1e-5, defect_mode=1.5)
+    r, f = flexible(1e19, 6.0, t_hist, changes=defect)
+    hist["E = 1e+19 Pa, paper's defect"] = (f, r)
     rr = rigid(6.0, t_hist)
     records = []
     for d in stems:
@@ -169,7 +173,7 @@ def main():
         ylabel="E (Pa)",
         title=f"verdict after {t_map:g} s",
     )
-    ax_m.legend(fontsize=7, loc="best", framealpha=0.6)
+    ax_m.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0))
     save_figure(fig, out / "flexible_beam_riding.png")
     # movie of the riding sail
     from lightsail_mbs.viz.frames import make_movie, render_frames
