@@ -147,3 +147,23 @@ def test_simulate_takes_a_table_and_refuses_a_bad_one(tmp_path, capsys):
         assert main([*base, "--optics", str(bad)]) == 2
         err = capsys.readouterr().err.strip()
         assert err.startswith("lightsail-mbs: error: optics=") and "\n" not in err
+
+
+def test_payload_and_curved_rest_options_make_the_case():
+    from lightsail_mbs import SailParameters
+    from lightsail_mbs.cli import build_parser
+    from lightsail_mbs.cli.options import params_from_args
+
+    args = ["simulate", "--n", "9", "--billow-radius", "2", "--billow-rest", "--payload-mass", "1e-3"]
+    args += ["--payload-stem", "6", "--payload-inertia", "1e-6", "--optics", "mirror"]
+    p = params_from_args(build_parser().parse_args(args))
+    assert p == SailParameters(
+        n=9,
+        billow_radius=2.0,
+        billow_rest=True,
+        payload_mass=1e-3,
+        payload_stem=6.0,
+        payload_inertia=1e-6,
+        optics="mirror",
+    )
+    assert main(["simulate", "--payload-stem", "6", "--t-final", "0.01"]) == 2  # a stem without a payload
