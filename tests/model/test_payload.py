@@ -124,12 +124,12 @@ def test_both_solvers_agree_with_a_payload():
         billow_radius=2.0,
         beam_waist=1.0,
     )
-    settings = RunSettings(t_final=0.05, output_interval=1e-3, stop_at_failure=False)
+    settings = RunSettings(t_final=0.02, output_interval=1e-3, stop_at_failure=False)
     reduced = solve(p, "reduced", settings, rtol=1e-10, method="DOP853")
-    exudyn = solve(p, "exudyn", settings, step_size=5e-6)
+    exudyn = solve(p, "exudyn", settings, step_size=2e-5)
     assert reduced.error is None and exudyn.error is None
     bare = solve(p.replace(payload_mass=0.0, payload_stem=0.0, payload_inertia=0.0), "reduced", settings)
     moved = np.max(np.abs(reduced.theta - reduced.theta[0]))
     assert np.max(np.abs(bare.theta - reduced.theta)) > 0.1 * moved  # the payload's weight folds the sail
-    assert np.max(np.abs(exudyn.theta - reduced.theta)) < 1e-5 * moved  # measured 1e-7
+    assert np.max(np.abs(exudyn.theta - reduced.theta)) < 1e-5 * moved  # measured 1.0e-6 (2.9e-7 at h = 1e-5 s)
     assert math.isfinite(float(exudyn.y[-1, 0]))
