@@ -436,6 +436,34 @@ def normal_tangential_into(packed, mirrored, push, c, s, theta, normal, tangenti
         tangential[i] = push[i] * (packed[4] * ci * si + ci * ci * (sign * st))
 
 
+@njit(cache=True)
+def packed_net_force(packed, local, mean, area_c, c, s, theta, mirrored, normal_at_zero):
+    """The net force (f_x, f_y) on one slice in the accelerating frame, radiation plus the frame force
+    −c_n(0) Ī A/c ŷ, with their cancellation done analytically (N). local, mean: I(x) and Ī; area_c = l W/c;
+    normal_at_zero: q_n(0) = c_n(0) of the table. With push = I A/c, q_n = A_n + s_n(±θ) and
+    1 − cos³θ = 2 sin²(θ/2)(1 + cos θ + cos²θ):
+
+        f_x = (((−push q_n) c) c) s + tangential c,
+        f_y = −push q_n(0) (1 − cos³θ) + push c³ (q_n − q_n(0)) + tangential s + q_n(0) (A/c)(I − Ī),
+
+    every term to a few ulps of itself (the plain sum push q_n c³ − q_n(0) Ī A/c keeps only ~8 digits of the
+    remainder at the paper's slopes). For the mirror (q_n ≡ 2, no tangential part) the product order is that
+    of the analytic net force of Eq. (11) (2R = 2, α = 0), so the built-in mirror reproduces it to the bit.
+    For a solver whose load is the net force rather than radiation plus a separate frame force."""
+    sign = -1.0 if mirrored else 1.0
+    sn, st = packed_tabulated(packed, sign * theta)
+    push = local * area_c
+    qn = packed[3] + sn
+    tangential = push * (packed[4] * c * s + c * c * (sign * st))
+    half = math.sin(0.5 * theta)
+    one_minus_cos = 2.0 * half * half
+    fx = -push * qn * c * c * s + tangential * c
+    fy = -push * (normal_at_zero * one_minus_cos * (1.0 + c + c * c))
+    fy += push * (c * c * c) * (qn - normal_at_zero) + tangential * s
+    fy += normal_at_zero * area_c * (local - mean)
+    return fx, fy
+
+
 def slice_flags(p: SailParameters) -> np.ndarray:
     """1.0 for each slice of case p that carries its table turned over (t → −t), else 0.0: none for the
     layout 'uniform'; for 'mirrored-halves' the slices whose centres lie right of the middle (i ≥ n/2;

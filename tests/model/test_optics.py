@@ -430,3 +430,33 @@ def test_both_solvers_agree_on_a_grating_table_run(tmp_path):
     assert np.max(np.abs(mirror.theta - reduced.theta)) > 0.1 * scale  # the grating moves the sail differently
     assert np.max(np.abs(exudyn.theta - reduced.theta)) < 1e-6 * scale  # measured 2.8e-9
     np.testing.assert_allclose(exudyn.x, reduced.x, rtol=0, atol=1e-9)
+
+
+def test_net_force_form_cancels_the_frame_force_analytically(tmp_path):
+    """packed_net_force: for the mirror, the analytic net force of Eq. (11) (the formula written out here) to the
+    bit; for a grating table, radiation minus c_n(0) Ī A/c to round-off of f₀; exactly zero on a flat slice in
+    the mean intensity, where the plain sum leaves round-off."""
+    p = SailParameters(intensity=3e9, beam_waist=0.8)
+    area_c = p.slice_length * p.width / optics.SPEED_OF_LIGHT
+    mirror = optics.mirror().packed()
+    for theta in rng.uniform(-1.2, 1.2, 50):
+        c, s, local = math.cos(theta), math.sin(theta), rng.uniform(0.2, 1.0) * p.intensity
+        push = local * area_c
+        half = math.sin(0.5 * theta)
+        omc = 2.0 * half * half
+        expected_x = -push * 2.0 * c * c * s
+        expected_y = -push * (2.0 * omc * (1.0 + c + c * c) + 0.0 * omc) + 2.0 * area_c * (local - p.mean_intensity)
+        got = optics.packed_net_force(mirror, local, p.mean_intensity, area_c, c, s, theta, False, 2.0)
+        assert got == (expected_x, expected_y)
+    table = optics.read_table(coarse_grating_file(tmp_path))
+    packed, q0 = table.packed(), table.normal_at_zero
+    f0 = 2 * p.intensity * area_c
+    for theta in rng.uniform(-0.5, 0.5, 50):
+        for mirrored in (False, True):
+            c, s = math.cos(theta), math.sin(theta)
+            local = rng.uniform(0.2, 1.0) * p.intensity
+            fx, fy = optics.packed_force(packed, local * area_c, theta, mirrored)
+            nx, ny = optics.packed_net_force(packed, local, p.mean_intensity, area_c, c, s, theta, mirrored, q0)
+            assert abs(nx - fx) < 1e-15 * f0 and abs(ny - (fy - q0 * p.mean_intensity * area_c)) < 1e-15 * f0
+    mean = p.mean_intensity
+    assert optics.packed_net_force(packed, mean, mean, area_c, 1.0, 0.0, 0.0, False, q0)[1] == 0.0
