@@ -391,10 +391,10 @@ class FlexibleRide:
 def flexible_ride(result, crumple: float = 0.01, drift_factor: float = 1.0) -> FlexibleRide:
     """The beam-riding histories of a flexible run and its verdict.
 
-    Each sample's slice centres r_i (and the payload, model/payload.py) are fitted by the initial ones turned
-    by φ and moved (least squares over the slice centres, masses m: the Procrustes rotation about the centre of
-    mass); the tilt is φ, the deformation δ the largest distance of a slice centre from the fitted rigid
-    shape, and the lateral position the craft's centre of mass (payload included) minus the beam axis x_c.
+    Each sample's slice centres r_i are fitted by the initial ones turned by φ and moved (least squares over
+    the slice centres: the Procrustes rotation about their centroid); the tilt is φ plus the case's initial
+    tilt (so: from the untilted pose), the deformation δ the largest distance of a slice centre from the fitted
+    rigid shape, and the lateral position the craft's centre of mass (payload included) minus the beam axis.
     Verdict: "crumples" once δ ≥ crumple (m), else "drifts out" once |X − x_c| ≥ drift_factor·w (a Gaussian
     beam), else "rides"; decided_at is the first sample that decides it.
     """
@@ -412,11 +412,12 @@ def flexible_ride(result, crumple: float = 0.01, drift_factor: float = 1.0) -> F
     cx, cy = x.mean(axis=1, keepdims=True), y.mean(axis=1, keepdims=True)
     u, v = x - cx, y - cy
     u0, v0 = u[0], v[0]
-    tilt = np.arctan2(np.sum(u0 * v - v0 * u, axis=1), np.sum(u0 * u + v0 * v, axis=1))
-    c, s = np.cos(tilt)[:, None], np.sin(tilt)[:, None]
+    turn = np.arctan2(np.sum(u0 * v - v0 * u, axis=1), np.sum(u0 * u + v0 * v, axis=1))
+    c, s = np.cos(turn)[:, None], np.sin(turn)[:, None]
     fit_u, fit_v = c * u0 - s * v0, s * u0 + c * v0
     deformation = np.max(np.hypot(u - fit_u, v - fit_v), axis=1)
     lateral = gx - p.beam_center
+    tilt = turn + p.initial_tilt  # from the untilted pose
     verdict, when = "rides", None
     crumpled = np.flatnonzero(deformation >= crumple)
     width = drift_factor * p.beam_waist

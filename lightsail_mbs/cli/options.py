@@ -42,6 +42,7 @@ CASE_OPTIONS = {
     "--payload-mass": ("payload_mass", float, "payload on a rigid stem from the sail's middle, mass m_p (kg)"),
     "--payload-inertia": ("payload_inertia", float, "the payload's own inertia J_p (kg·m²)"),
     "--payload-stem": ("payload_stem", float, "stem length d from the sail's middle towards the laser (m)"),
+    "--initial-tilt": ("initial_tilt", float, "the initial shape turned about the craft's centre of mass (rad)"),
     "--torsional-damping": ("torsional_damping", float, "torsional damping c_T (N·m·s/rad)"),
     "--axial-damping": ("axial_damping", float, "axial damping c_s (N·s/m)"),
     "--stiffness-damping": (

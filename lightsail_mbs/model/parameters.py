@@ -32,6 +32,7 @@ LATER_DEFAULTS = {
     "payload_inertia": 0.0,
     "payload_stem": 0.0,
     "billow_rest": False,
+    "initial_tilt": 0.0,
 }
 # How the slices carry an optical table: all alike, or the right half turned over (t → −t; model/optics.py).
 OPTICS_LAYOUTS = ("uniform", "mirrored-halves")
@@ -116,6 +117,7 @@ class SailParameters:
     payload_inertia: float = 0.0  # J_p, kg·m²: its inertia about its own centre
     payload_stem: float = 0.0  # d, m: the stem's length from the sail's middle towards the laser (−ŷ)
     billow_rest: bool = False  # torsion springs at rest on the billowed arc (a sail made curved); False: flat
+    initial_tilt: float = 0.0  # rad: the initial shape turned counter-clockwise about the craft's centre of mass
 
     def __post_init__(self):
         check("model", self.model, self.model in MODELS, f"one of {', '.join(MODELS)}")
@@ -217,6 +219,9 @@ class SailParameters:
         self._check_optics()
         self._check_payload()
         check("billow_rest", self.billow_rest, isinstance(self.billow_rest, bool), "True or False")
+        v = finite("initial_tilt", self.initial_tilt)
+        check("initial_tilt", v, abs(v) < math.pi / 2, "|tilt| < π/2 rad")
+        check("initial_tilt", v, v == 0 or self.boundary == "free", "0 unless boundary='free'")
         check(
             "billow_rest",
             self.billow_rest,

@@ -52,7 +52,7 @@ def attachment(p: SailParameters) -> Attachment | None:
     """The payload's attachment of case p, None without a payload."""
     if p.payload_mass <= 0.0:
         return None
-    state = shapes.initial_state(p)
+    state = shapes.initial_state(p.replace(initial_tilt=0.0))  # the stem is fixed in the untilted sail's axes
     j = middle_slice(p.n)
     c, s = np.cos(state.theta[j]), np.sin(state.theta[j])
     half = 0.5 * p.slice_length
