@@ -44,7 +44,7 @@ KERNEL_SOURCES = (
 def _drop_stale_kernels() -> None:
     """Delete numba's cached machine code of every kernel when any kernel source changed since it was cached.
 
-    numba keys each cached function on its own file's time stamp only, but a kernel inlines the kernels it
+    numba keys each cached function on its own file's time stamp and size only, but a kernel inlines the kernels it
     calls from other files (an integrator inlines the right-hand side), so after an edit of one file the
     others would load machine code built from the old source. The sizes and time stamps of all kernel
     sources are kept in ``__pycache__/numba-kernel-sources``; when they differ, every ``*.nbi``/``*.nbc`` of
@@ -54,7 +54,7 @@ def _drop_stale_kernels() -> None:
     root = Path(__file__).parent
     try:
         stamp = "\n".join(
-            f"{name} {(root / name).stat().st_size} {(root / name).stat().st_mtime_ns}" for name in KERNEL_SOURCES
+            f"{name} {(root / name).stat().st_size} {(root / name).stat().st_mtime!r}" for name in KERNEL_SOURCES
         )
         record = root / "__pycache__" / "numba-kernel-sources"
         if record.is_file() and record.read_text() == stamp:
