@@ -49,7 +49,6 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
 from lightsail_mbs.model.parameters import ParameterError, check, finite
 
@@ -377,6 +376,8 @@ def orders(g: Grating, theta: float, polarization: str = "TE", harmonics: int = 
     check("theta", v, abs(v) < math.pi / 2, "|θ| < π/2 rad")
     t0 = time.process_time()
     # one BLAS thread: the small dense eigenproblems of RCWA run several times slower multithreaded
+    from threadpoolctl import threadpool_limits  # not a build requirement: the solver kernels compile without it
+
     with threadpool_limits(1):
         out = (_meent_orders if backend == "meent" else _grcwa_orders)(g, v, polarization, harmonics)
     propagating = np.abs(out.sigma) < 1.0
