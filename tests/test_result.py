@@ -4,6 +4,7 @@ files of the format before RunSettings)."""
 import json
 
 import numpy as np
+import pytest
 
 from lightsail_mbs import Result, RunSettings, SailParameters
 
@@ -85,3 +86,38 @@ def test_loads_the_files_of_the_format_before_run_settings(tmp_path):
     assert back.params == r.params and back.settings == r.settings
     np.testing.assert_array_equal(back.amplitude, r.amplitude)
     assert back.failure_time == r.failure_time
+
+
+def synthetic_sheet(steps=5):
+    """A sheet run on w = a₀ e^t sin(3πx) sin(πy) (tile centres only), as Result.from_tiles builds it."""
+    from lightsail_mbs.model import sheet
+
+    p = SailParameters(model="sheet", n=8, ny=6, defect_mode_y=0.5)
+    flat = sheet.flat_centres(p)
+    times = np.linspace(0, 1, steps)
+    w = p.defect_amplitude * np.sin(3 * np.pi * flat[:, 0]) * np.sin(np.pi * flat[:, 1])
+    centres = np.stack([flat + np.outer([0, 0, 1], np.exp(t) * w).T for t in times])
+    zero = np.zeros_like(centres)
+    return Result.from_tiles(p, "synthetic", times, centres, zero, zero, zero, settings=RunSettings(t_final=1.0))
+
+
+def test_sheet_result_amplitude_summary_and_roundtrip(tmp_path):
+    r = synthetic_sheet()
+    np.testing.assert_allclose(r.amplitude / r.amplitude[0], np.exp(r.time), rtol=1e-12)
+    assert r.is_sheet and r.x.shape == (5, 0) and r.tile_centres.shape == (5, 48, 3)
+    assert r.failure_time == pytest.approx(0.6931, abs=0.03)  # e^t = 2, interpolated on 0.25 s samples
+    s = r.summary()
+    assert s["ny"] == 6 and s["tiles"] == 48 and s["dissipated_energy"] is None
+    path = r.save(tmp_path / "sheet")
+    back = Result.load(path)
+    assert back.is_sheet and back.params == r.params
+    for name in ("tile_centres", "tile_angles", "tile_velocities", "tile_angular_velocities", "amplitude"):
+        np.testing.assert_array_equal(getattr(back, name), getattr(r, name))
+    np.testing.assert_array_equal(back.deflection(), r.deflection())
+
+
+def test_chain_runs_are_saved_without_tile_arrays(tmp_path, run):
+    path = run.save(tmp_path / "chain")
+    with np.load(path) as data:
+        assert not [k for k in data.files if k.startswith("tile_")]
+    assert not Result.load(path).is_sheet and "ny" not in run.summary()

@@ -8,7 +8,7 @@ axial stiffness k_s = (n − 1) E h W / L (Sec. III.C).
 Two model families share this one parameter class. The chains ("rigid", "torsion", "tnt") are the
 paper's strip of n slices. The "sheet" is the sail cut into n × ny rigid tiles moving in 3-D
 (:mod:`lightsail_mbs.model.sheet`); its own fields (ny, defect_mode_y, membrane_modulus,
-edge_tension, beam_center_y, pressure, membrane_damping, membrane_reference) are listed in
+edge_tension, beam_center_y, pressure, membrane_damping, membrane_reference, bending_reference) are listed in
 SHEET_DEFAULTS, rejected away from their defaults for a chain, and left out of :meth:`to_dict` at
 their defaults, so the record (and the store key) of every chain case is what it was before the
 sheet existed.
@@ -43,8 +43,10 @@ SHEET_DEFAULTS = {
     "pressure": 0.0,
     "membrane_damping": None,
     "membrane_reference": "initial",
+    "bending_reference": "flat",
 }
 MEMBRANE_REFERENCES = ("initial", "flat")
+BENDING_REFERENCES = ("flat", "initial")
 # Names under which saved runs and store records written before the current field names hold them.
 LEGACY_NAMES = {"amplitude": "defect_amplitude", "mode": "defect_mode", "defect_modes": "defect_mode_count"}
 # Run control that saved runs of that format kept with the case (now solvers.settings.RunSettings).
@@ -113,6 +115,8 @@ class SailParameters:
     pressure: float = 0.0  # p, Pa: dead pressure along the beam (+z) (the plate validations)
     membrane_damping: float | None = None  # β_m, s: damping β_m k on the stiff springs; None: critical
     membrane_reference: str = "initial"  # in-plane springs at rest in the "initial" (defect) or "flat" shape
+    bending_reference: str = "flat"  # bending springs at rest "flat" (the paper: an elastically loaded defect)
+    #                                  or in the "initial" shape (a stress-free, manufactured defect)
 
     def __post_init__(self):
         check("model", self.model, self.model in MODELS, f"one of {', '.join(MODELS)}")
@@ -258,6 +262,12 @@ class SailParameters:
             self.membrane_reference,
             self.membrane_reference in MEMBRANE_REFERENCES,
             f"one of {', '.join(MEMBRANE_REFERENCES)}",
+        )
+        check(
+            "bending_reference",
+            self.bending_reference,
+            self.bending_reference in BENDING_REFERENCES,
+            f"one of {', '.join(BENDING_REFERENCES)}",
         )
 
     # ---- derived quantities (paper Sec. III) -------------------------------------------------

@@ -22,7 +22,7 @@ e = a, s = b), with the membrane modulus E_m (default E) and the plate bending r
 stiffness in tile A's frame is, for an x-edge (components x, y, z, about x, about y, about z)
 
     k_∥ = E_m h e/s (both in-plane directions),   k_⊥ = κ (E_m/2) h e/s (κ = 5/6),
-    k_twist = k_bend = D e/s,   k_drill = E_m h e³/(12 s),
+    k_twist = k_bend = D e/s,   k_drill = D_m e/s  (D_m = E_m h³/12),
 
 and the same with x and y exchanged for a y-edge. Derivation (patch tests: tiles placed on a surface
 w(x, y), turned to its slope; the energy per tile compared with the continuum):
@@ -43,8 +43,18 @@ w(x, y), turned to its slope; the energy per tile compared with the continuum):
   frequencies test D and the twist stiffness, not ν_p.
 * Membrane (ν = 0, G = E_m/2): uniform stretch ε stores ½(E_m h b/a)(εa)² = ½E_m h ε² ab per tile;
   pure shear γ is shared by x- and y-edges (relative tangential displacement γa/2, γb/2), so the
-  tangential spring is 2G h e/s = E_m h e/s; in-plane bending of a column of tiles is carried by the
-  normal springs plus the drilling spring, which supplies the within-tile part ∫ y² dy exactly.
+  tangential spring is 2G h e/s = E_m h e/s. In-plane bending of the sheet is carried by the normal
+  springs of its columns (the within-tile part ∫ y² dy of a column is left out: O(1/ny²) of the
+  sheet's in-plane bending stiffness).
+* Drilling (relative rotation about the normal): tiles joined at edge midpoints leave one in-plane
+  mechanism free, the checkerboard of counter-rotating tiles (each shared midpoint moves alike on
+  both tiles). The drilling spring only suppresses it, at the plate's own scale D_m e/s. It must not
+  be stiffer: the connector applies the moment A₀ K φ of the Tait–Bryan angles φ of R_Aᵀ R_B, which is
+  not the gradient T(φ)ᵀ K φ of a potential; tilts about x and y make a drilling angle of second order
+  (the surface's angular defect), and the difference couples in-plane rotation to tilt with a
+  circulatory stiffness ~ k_drill |θ|. With k_drill = E_m h e³/(12 s) (the within-tile in-plane bending,
+  (e/h)² ≈ 1e9 times larger) that coupling was ~1e6 times the bending stiffness of the paper's sail
+  and made a doubly curved sheet with E_m = E diverge at ~17/s, unlit as well as lit (docs: sheet).
 * Transverse shear (Mindlin, κ = 5/6) is a stiff penalty that keeps edge midpoints together: thin
   plates are Kirchhoff plates (k_⊥/(D/s²) ≈ 12 s²/h², 3e10 for the paper's sail).
 
@@ -63,10 +73,20 @@ along the edge, so the half cell between centre and edge twists with the plate).
 
 Reference state and pre-stress
 ------------------------------
-Bending and twist springs are at rest flat (as in the paper's chain: the defect is an elastically
-loaded initial shape). The translational springs are at rest in the initial shape
+Bending and twist springs are at rest flat (bending_reference="flat", as in the paper's chain: the
+defect is an elastically loaded initial shape) or in the initial shape ("initial": a stress-free,
+manufactured defect). The translational springs are at rest in the initial shape
 (membrane_reference="initial": a doubly curved defect laid down free of membrane stress; for a 1-D
-defect nothing changes) or flat ("flat"). Rest offsets are computed from small quantities only (tile
+defect nothing changes) or flat ("flat"). The initial rest state is realised by the marker positions,
+not by an offset in the spring law: B's marker is moved by the (~1e-10 m) mismatch of the two edge
+midpoints in the initial shape (Connectors.gap). The connector law applies +f at p_a and −f at p_b;
+with markers δ₀ apart at rest, an offset δ₀ in the law would make that pair a couple δ₀ × f that
+no potential produces — a circulatory stiffness ∝ E_m |δ₀|, for the paper's sail with E_m = E about
+50 times the bending stiffness, which drove a spurious divergence (growth rate ~15/s, unlit and
+lit alike) of the doubly curved sheet (docs: sheet, the membrane modulus). With both at "initial" the unlit initial shape is an exact
+equilibrium. With bending at rest flat, a doubly curved defect is not: flattening it strains the
+membrane (Gauss), so the bending springs load the membrane, and for a stiff membrane that state is
+itself unstable (docs: sheet, the membrane modulus). Rest offsets are computed from small quantities only (tile
 displacements u and R − I), so the initial springs are at rest to ~1e-21 m.
 An edge tension T (N per metre of edge) pre-stretches every connector so that the flat sheet carries
 the isotropic membrane force T (an exact equilibrium), and on a free boundary acts as a follower force
@@ -349,9 +369,12 @@ class Connectors:
     stiffness, damping : ndarray (C, 6)
         Diagonals [x, y, z, about x, about y, about z] in tile A's frame.
     offset : ndarray (C, 6)
-        Rest values of δ and φ (pre-stress and the initial shape).
+        Rest values of δ (the edge-tension pre-stress) and φ (bending_reference "initial").
     kind : ndarray (C,)
         0: x-edge, 1: y-edge, 2: ground.
+    gap : ndarray (C, 3)
+        (X_b + l_b) − (X_a + l_a) on the flat grid (global, m): 0, unless B's marker was moved so that
+        the two markers coincide in a doubly curved initial shape (membrane_reference "initial").
     """
 
     tile_a: np.ndarray
@@ -362,6 +385,7 @@ class Connectors:
     damping: np.ndarray
     offset: np.ndarray
     kind: np.ndarray
+    gap: np.ndarray
 
     def __len__(self) -> int:
         return len(self.tile_a)
@@ -379,7 +403,7 @@ def edge_stiffness(p: SailParameters, tiles: Tiles, edge: float, span: float, be
             SHEAR_CORRECTION * 0.5 * k_par,
             D * edge / span,
             D * edge / span if bending else 0.0,
-            em * h * edge**3 / (12.0 * span),
+            em * h**3 / 12.0 * edge / span,
         ]
     )
 
@@ -430,26 +454,41 @@ def connectors(p: SailParameters, centres: np.ndarray | None = None, rotations: 
     # pre-stress: the spring force on tile b is −A₀ K(δ − offset); a tension F pulls b towards a, so
     # K(0 − offset) = F along the a → b direction: offset = −F/k
     offset[:, :2] = -pre / K[:, :2]
-    if p.membrane_reference == "initial" and p.defect_amplitude > 0:
+    gap = np.zeros((len(rows), 3))
+    if p.defect_amplitude > 0 and "initial" in (p.membrane_reference, p.bending_reference):
         if centres is None or rotations is None:
             centres, rotations = initial_state(p)
-        offset[:, :3] += relative_displacement(ta, tb, la, lb, centres, rotations, flat_centres(p))
+        if p.membrane_reference == "initial":
+            # the rest state of the translational springs is the initial shape: B's marker moves by the
+            # markers' mismatch there (~1e-10 m for a₀ = 10 µm), so that the force pair of every spring acts
+            # at coincident points at rest (an offset in the spring law instead would apply ±f at points
+            # δ₀ apart: a couple no potential produces, a circulatory stiffness ∝ E_m |δ₀|, module docstring)
+            mismatch = relative_displacement(ta, tb, la, lb, centres, rotations, flat_centres(p), gap)
+            ra = np.where((ta < 0)[:, None, None], np.eye(3), rotations[np.maximum(ta, 0)])
+            gap = -np.einsum("kji,kj->ki", rotations[tb], np.einsum("kij,kj->ki", ra, mismatch))
+            lb = lb + gap
+        if p.bending_reference == "initial":
+            ra = np.where((ta < 0)[:, None, None], np.eye(3), rotations[np.maximum(ta, 0)])
+            offset[:, 3:] = angles_xyz(np.einsum("kji,kjl->kil", ra, rotations[tb]))
     damping = p.stiffness_damping * K
     damping[:, [0, 1, 2, 5]] += t.membrane_damping * K[:, [0, 1, 2, 5]]
-    return Connectors(ta, tb, la, lb, K, damping, offset, kind)
+    return Connectors(ta, tb, la, lb, K, damping, offset, kind, gap)
 
 
-def relative_displacement(ta, tb, la, lb, centres, rotations, flat) -> np.ndarray:
+def relative_displacement(ta, tb, la, lb, centres, rotations, flat, gap=None) -> np.ndarray:
     """A₀ᵀ(p_b − p_a) of every connector in a given state (its translational strain measure), (C, 3).
 
-    Evaluated from small quantities only: the markers of every connector coincide in the flat grid
-    (X_b + l_b = X_a + l_a), so p_b − p_a = (u_b − u_a) + (R_b − I) l_b − (R_a − I) l_a with
-    u = centre − flat grid point; no ~1 m coordinates are differenced (round-off ~1e-21 m, not 1e-16 m)."""
+    Evaluated from small quantities only: on the flat grid the markers of every connector coincide up to
+    the small known gap = (X_b + l_b) − (X_a + l_a) (Connectors.gap), so
+    p_b − p_a = gap + (u_b − u_a) + (R_b − I) l_b − (R_a − I) l_a with u = centre − flat grid point; no
+    ~1 m coordinates are differenced (round-off ~1e-21 m, not 1e-16 m)."""
     u = np.asarray(centres) - flat
     RmI = np.asarray(rotations) - np.eye(3)
     ground = ta < 0
     a = np.maximum(ta, 0)
     d = u[tb] + np.einsum("kij,kj->ki", RmI[tb], lb)
+    if gap is not None:
+        d = d + gap
     d -= np.where(ground[:, None], 0.0, u[a] + np.einsum("kij,kj->ki", RmI[a], la))
     Ra = np.where(ground[:, None, None], np.eye(3), rotations[a])
     return np.einsum("kji,kj->ki", Ra, d)

@@ -14,7 +14,8 @@ What is independent of Exudyn:
       u̇ = v,  q̇ = ½ q ⊗ (0, ω_b),  m v̇ = F,  J ω̇_b = τ_b − ω_b × J ω_b
   (Exudyn: Tait–Bryan angles, a second-order system with a state-dependent mass matrix). The springs'
   relative displacement is formed from small quantities only,
-  p_b − p_a = (u_b − u_a) + (R_b − I) l_b − (R_a − I) l_a (the markers coincide when flat), so its
+  p_b − p_a = gap + (u_b − u_a) + (R_b − I) l_b − (R_a − I) l_a (gap: the markers' small known
+  mismatch on the flat grid, model.sheet.Connectors), so its
   round-off is ~1e-21 m where Exudyn's, formed from ~1 m positions, is ~1e-16 m;
 * the load: the compiled facet law (loads.net_facet_force) on the normal's components
   (2(q₁q₃ + q₀q₂), 2(q₂q₃ − q₀q₁), …)/|q|², never a difference of O(1) numbers;
@@ -78,7 +79,7 @@ def _rotation_minus_identity(q0, q1, q2, q3, R):
 
 
 @nb.njit(cache=True)
-def rhs_kernel(y, flat, mass, inertia, ta, tb, la, lb, K, Dm, off, fol_tile, fol_point, fol_force, load, out):
+def rhs_kernel(y, flat, mass, inertia, ta, tb, la, lb, gap, K, Dm, off, fol_tile, fol_point, fol_force, load, out):
     """dy/dt of the sheet (module docstring). load = (Ī, A/c, I₀, x_c, y_c, w, R, α, p·A)."""
     N = flat.shape[0]
     R = np.empty((N, 3, 3))
@@ -122,7 +123,7 @@ def rhs_kernel(y, flat, mass, inertia, ta, tb, la, lb, K, Dm, off, fol_tile, fol
                 sa[i] = RmI[A, i, 0] * la[c, 0] + RmI[A, i, 1] * la[c, 1] + RmI[A, i, 2] * la[c, 2]
                 ra[i] = la[c, i] + sa[i]
             for i in range(3):
-                d[i] = (y[bB + i] - y[bA + i]) + sb[i] - sa[i]
+                d[i] = (y[bB + i] - y[bA + i]) + sb[i] - sa[i] + gap[c, i]
             wa0, wa1, wa2 = W[A, 0], W[A, 1], W[A, 2]
             va0 = y[bA + 7] + wa1 * ra[2] - wa2 * ra[1]
             va1 = y[bA + 8] + wa2 * ra[0] - wa0 * ra[2]
@@ -132,7 +133,7 @@ def rhs_kernel(y, flat, mass, inertia, ta, tb, la, lb, K, Dm, off, fol_tile, fol
                 for j in range(3):
                     RA[i, j] = 1.0 if i == j else 0.0
                 ra[i] = 0.0
-                d[i] = y[bB + i] + sb[i]
+                d[i] = y[bB + i] + sb[i] + gap[c, i]
             wa0 = wa1 = wa2 = 0.0
             va0 = va1 = va2 = 0.0
         wb0, wb1, wb2 = W[B, 0], W[B, 1], W[B, 2]
@@ -275,6 +276,7 @@ class SheetModel:
         self.start = sheet.perturbed(p, self.centres0, perturbation)
         self.ta, self.tb = c.tile_a.astype(np.int64), c.tile_b.astype(np.int64)
         self.la, self.lb = np.ascontiguousarray(c.local_a), np.ascontiguousarray(c.local_b)
+        self.gap = np.ascontiguousarray(c.gap)
         self.K, self.Dm = np.ascontiguousarray(c.stiffness), np.ascontiguousarray(c.damping)
         self.off = np.ascontiguousarray(c.offset)
         ft, fp, ff = sheet.edge_followers(p)
@@ -315,6 +317,7 @@ class SheetModel:
             self.tb,
             self.la,
             self.lb,
+            self.gap,
             self.K,
             self.Dm,
             self.off,
