@@ -80,14 +80,13 @@ manufactured defect). The translational springs are at rest in the initial shape
 defect nothing changes) or flat ("flat"). The initial rest state is realised by the marker positions,
 not by an offset in the spring law: B's marker is moved by the (~1e-10 m) mismatch of the two edge
 midpoints in the initial shape (Connectors.gap). The connector law applies +f at p_a and −f at p_b;
-with markers δ₀ apart at rest, an offset δ₀ in the law would make that pair a couple δ₀ × f that
-no potential produces — a circulatory stiffness ∝ E_m |δ₀|, for the paper's sail with E_m = E about
-50 times the bending stiffness, which drove a spurious divergence (growth rate ~15/s, unlit and
-lit alike) of the doubly curved sheet (docs: sheet, the membrane modulus). With both at "initial" the unlit initial shape is an exact
-equilibrium. With bending at rest flat, a doubly curved defect is not: flattening it strains the
-membrane (Gauss), so the bending springs load the membrane, and for a stiff membrane that state is
-itself unstable (docs: sheet, the membrane modulus). Rest offsets are computed from small quantities only (tile
-displacements u and R − I), so the initial springs are at rest to ~1e-21 m.
+with markers δ₀ apart at rest, an offset δ₀ in the law would make that pair a couple δ₀ × f that no
+potential produces (a circulatory stiffness ∝ E_m |δ₀|). With both at "initial" the unlit initial
+shape is an exact equilibrium. With bending at rest flat, a doubly curved defect is not: flattening it
+strains the membrane (Gauss's theorema egregium), so the bending springs load the membrane, and a stiff
+membrane holds the shell in shape (docs: sheet, the membrane modulus). Rest states are computed from
+small quantities only (tile displacements u, and R − I from the quaternions' small components), so the
+initial springs are at rest to ~1e-21 m.
 An edge tension T (N per metre of edge) pre-stretches every connector so that the flat sheet carries
 the isotropic membrane force T (an exact equilibrium), and on a free boundary acts as a follower force
 T·e at each boundary tile's outer edge midpoint along the tile's own outward in-plane axis (the
@@ -254,6 +253,38 @@ def tilt_rotation(normal: np.ndarray) -> np.ndarray:
     return np.eye(3) + K + K @ K / (1.0 + n[..., 2])[..., None, None]
 
 
+def rotation_minus_identity(q: np.ndarray) -> np.ndarray:
+    """R − I of the rotations of (not necessarily unit) quaternions q (..., 4), scalar first, from small
+    products only (accurate to the ulps of its own entries, not of 1), (..., 3, 3)."""
+    q = np.asarray(q, float)
+    q0, q1, q2, q3 = q[..., 0], q[..., 1], q[..., 2], q[..., 3]
+    n = 2.0 / np.sum(q * q, axis=-1)
+    out = np.empty(q.shape[:-1] + (3, 3))
+    out[..., 0, 0] = -(q2 * q2 + q3 * q3) * n
+    out[..., 0, 1] = (q1 * q2 - q0 * q3) * n
+    out[..., 0, 2] = (q1 * q3 + q0 * q2) * n
+    out[..., 1, 0] = (q1 * q2 + q0 * q3) * n
+    out[..., 1, 1] = -(q1 * q1 + q3 * q3) * n
+    out[..., 1, 2] = (q2 * q3 - q0 * q1) * n
+    out[..., 2, 0] = (q1 * q3 - q0 * q2) * n
+    out[..., 2, 1] = (q2 * q3 + q0 * q1) * n
+    out[..., 2, 2] = -(q1 * q1 + q2 * q2) * n
+    return out
+
+
+def quaternion_rotation(q: np.ndarray) -> np.ndarray:
+    """The rotation matrices (..., 3, 3) of quaternions q (..., 4), scalar first."""
+    return np.eye(3) + rotation_minus_identity(q)
+
+
+def tilt_quaternion(normal: np.ndarray) -> np.ndarray:
+    """(..., 4) unit quaternions of the twist-free rotations taking ẑ to the (not necessarily unit) normals:
+    q ∝ (|n| + n_z, −n_y, n_x, 0), the half-angle form of the rotation about ẑ × n."""
+    n = np.asarray(normal, float)
+    q = np.stack([np.linalg.norm(n, axis=-1) + n[..., 2], -n[..., 1], n[..., 0], np.zeros_like(n[..., 0])], axis=-1)
+    return q / np.linalg.norm(q, axis=-1, keepdims=True)
+
+
 # ---- defects -------------------------------------------------------------------------------------
 def multimode_coefficients(p: SailParameters):
     """Seeded random 2-D defect w = Σ_kl a_kl sin(2πν_k x/L + φ_kl) sin(2πν_l y/W + ψ_kl), ν_k = k/2.
@@ -314,34 +345,38 @@ def defect_surface(p: SailParameters):
 
 
 def initial_state(p: SailParameters) -> tuple[np.ndarray, np.ndarray]:
-    """Tile centres (N, 3) and rotation matrices (N, 3, 3) of the initial (defect) shape, at rest.
+    """Tile centres (N, 3) and rotation matrices (N, 3, 3) of the initial (defect) shape, at rest
+    (initial_quaternions, whose quaternions carry the small rotations without round-off of 1)."""
+    centres, q = initial_quaternions(p)
+    return centres, quaternion_rotation(q)
+
+
+def initial_quaternions(p: SailParameters) -> tuple[np.ndarray, np.ndarray]:
+    """Tile centres (N, 3) and unit quaternions (N, 4, scalar first) of the initial (defect) shape.
 
     1-D defects (defect_mode_y None): every column of tiles is a slice of the chain
     (shapes.initial_state: hinge points on the profile, every chord exactly a long), the tile along its
-    chord, turned about y by −θ_i (θ the chain's angle from +x towards its transverse axis, here +z).
+    chord, turned about y by −θ_i (θ the chain's angle from +x towards its transverse axis, here +z):
+    q = (cos(θ/2), 0, −sin(θ/2), 0).
     2-D defects: centres on the surface above the flat grid points, each tile turned by the twist-free
-    rotation that takes ẑ to the surface normal (−w_x, −w_y, 1)/|…|."""
+    rotation that takes ẑ to the surface normal (−w_x, −w_y, 1)/|…| (tilt_quaternion)."""
     require_sheet(p)
     flat = flat_centres(p)
     count = flat.shape[0]
+    identity = np.tile([1.0, 0.0, 0.0, 0.0], (count, 1))
     if p.defect_amplitude == 0:
-        return flat, np.broadcast_to(np.eye(3), (count, 3, 3)).copy()
+        return flat, identity
     if p.defect_mode_y is None:
         chain = shapes.initial_state(p)
         i = np.tile(np.arange(p.n), p.ny)
         centres = np.column_stack([chain.x[i], flat[:, 1], chain.y[i]])
-        th = chain.theta[i]
-        R = np.zeros((count, 3, 3))
-        R[:, 0, 0] = np.cos(th)
-        R[:, 0, 2] = -np.sin(th)
-        R[:, 1, 1] = 1.0
-        R[:, 2, 0] = np.sin(th)
-        R[:, 2, 2] = np.cos(th)
-        return centres, R
+        half = 0.5 * chain.theta[i]
+        q = np.column_stack([np.cos(half), 0 * half, -np.sin(half), 0 * half])
+        return centres, q
     w, wx, wy = defect_surface(p)
     x, y = flat[:, 0], flat[:, 1]
     centres = np.column_stack([x, y, w(x, y)])
-    return centres, tilt_rotation(np.column_stack([-wx(x, y), -wy(x, y), np.ones_like(x)]))
+    return centres, tilt_quaternion(np.column_stack([-wx(x, y), -wy(x, y), np.ones_like(x)]))
 
 
 def perturbed(p: SailParameters, centres: np.ndarray, perturbation: float) -> np.ndarray:
@@ -412,10 +447,12 @@ def _y_edge(k: np.ndarray) -> np.ndarray:
     return k[[1, 0, 2, 4, 3, 5]]
 
 
-def connectors(p: SailParameters, centres: np.ndarray | None = None, rotations: np.ndarray | None = None) -> Connectors:
+def connectors(
+    p: SailParameters, centres: np.ndarray | None = None, quaternions: np.ndarray | None = None
+) -> Connectors:
     """The edge connections: interior x-edges, interior y-edges, then the ground connections of a
-    supported boundary, with rest offsets from the initial shape (centres, rotations; default
-    initial_state(p)) and the edge-tension pre-stress."""
+    supported boundary, with the rest state of the initial shape (centres, quaternions; default
+    initial_quaternions(p)) and the edge-tension pre-stress."""
     t = Tiles.of(p)
     a, b, T, nx = t.a, t.b, p.edge_tension, t.nx
     rows = []  # (tile a, tile b, local a, local b, stiffness, kind, pre-stress force on b along local x/y)
@@ -456,14 +493,15 @@ def connectors(p: SailParameters, centres: np.ndarray | None = None, rotations: 
     offset[:, :2] = -pre / K[:, :2]
     gap = np.zeros((len(rows), 3))
     if p.defect_amplitude > 0 and "initial" in (p.membrane_reference, p.bending_reference):
-        if centres is None or rotations is None:
-            centres, rotations = initial_state(p)
+        if centres is None or quaternions is None:
+            centres, quaternions = initial_quaternions(p)
+        rotations = quaternion_rotation(quaternions)
         if p.membrane_reference == "initial":
             # the rest state of the translational springs is the initial shape: B's marker moves by the
             # markers' mismatch there (~1e-10 m for a₀ = 10 µm), so that the force pair of every spring acts
             # at coincident points at rest (an offset in the spring law instead would apply ±f at points
             # δ₀ apart: a couple no potential produces, a circulatory stiffness ∝ E_m |δ₀|, module docstring)
-            mismatch = relative_displacement(ta, tb, la, lb, centres, rotations, flat_centres(p), gap)
+            mismatch = relative_displacement(ta, tb, la, lb, centres, quaternions, flat_centres(p), gap)
             ra = np.where((ta < 0)[:, None, None], np.eye(3), rotations[np.maximum(ta, 0)])
             gap = -np.einsum("kji,kj->ki", rotations[tb], np.einsum("kij,kj->ki", ra, mismatch))
             lb = lb + gap
@@ -475,15 +513,17 @@ def connectors(p: SailParameters, centres: np.ndarray | None = None, rotations: 
     return Connectors(ta, tb, la, lb, K, damping, offset, kind, gap)
 
 
-def relative_displacement(ta, tb, la, lb, centres, rotations, flat, gap=None) -> np.ndarray:
+def relative_displacement(ta, tb, la, lb, centres, quaternions, flat, gap=None) -> np.ndarray:
     """A₀ᵀ(p_b − p_a) of every connector in a given state (its translational strain measure), (C, 3).
 
     Evaluated from small quantities only: on the flat grid the markers of every connector coincide up to
     the small known gap = (X_b + l_b) − (X_a + l_a) (Connectors.gap), so
     p_b − p_a = gap + (u_b − u_a) + (R_b − I) l_b − (R_a − I) l_a with u = centre − flat grid point; no
-    ~1 m coordinates are differenced (round-off ~1e-21 m, not 1e-16 m)."""
+    ~1 m coordinates are differenced, and R − I comes from the quaternions' small components (round-off
+    ~1e-21 m, not 1e-16 m)."""
     u = np.asarray(centres) - flat
-    RmI = np.asarray(rotations) - np.eye(3)
+    RmI = rotation_minus_identity(quaternions)
+    rotations = np.eye(3) + RmI
     ground = ta < 0
     a = np.maximum(ta, 0)
     d = u[tb] + np.einsum("kij,kj->ki", RmI[tb], lb)

@@ -27,10 +27,10 @@ def test_initial_shape_is_membrane_stress_free(changes):
     """membrane_reference='initial': every translational spring is at rest in the initial shape, to the
     round-off of small quantities (1e-21 m), not of 1 m coordinates (1e-16 m)."""
     p = sheet_case(**changes)
-    centres, R = sheet.initial_state(p)
-    conn = sheet.connectors(p, centres, R)
+    centres, q = sheet.initial_quaternions(p)
+    conn = sheet.connectors(p, centres, q)
     d = sheet.relative_displacement(
-        conn.tile_a, conn.tile_b, conn.local_a, conn.local_b, centres, R, sheet.flat_centres(p), conn.gap
+        conn.tile_a, conn.tile_b, conn.local_a, conn.local_b, centres, q, sheet.flat_centres(p), conn.gap
     )
     assert np.max(np.abs(d)) < 1e-20 and not conn.offset.any()  # at rest, with the markers coinciding
     if p.defect_mode_y is None:  # exact chords: the hinges of a 1-D defect coincide, nothing to move
@@ -70,6 +70,8 @@ def test_edge_springs_store_the_plate_energy_with_poisson_ratio_zero(kind):
         density = t.bending_rigidity * kappa**2  # ½ D · 2 w_xy²
         area = 0.5 * ((p.n - 1) * t.a * p.width + (p.ny - 1) * t.b * p.length)
     R = sheet.tilt_rotation(np.column_stack([-wx, -wy, np.ones_like(x)]))
+    q = sheet.tilt_quaternion(np.column_stack([-wx, -wy, np.ones_like(x)]))
+    np.testing.assert_allclose(sheet.quaternion_rotation(q), R, atol=1e-15)
     conn = sheet.connectors(p)
     relative = np.einsum("kji,kjl->kil", R[conn.tile_a], R[conn.tile_b])
     phi = sheet.angles_xyz(relative)
@@ -86,7 +88,7 @@ def test_membrane_springs_store_the_stretch_energy():
     flat = sheet.flat_centres(p)
     centres = flat * np.array([1 + eps, 1, 1])
     d = sheet.relative_displacement(
-        conn.tile_a, conn.tile_b, conn.local_a, conn.local_b, centres, np.broadcast_to(np.eye(3), (15, 3, 3)), flat
+        conn.tile_a, conn.tile_b, conn.local_a, conn.local_b, centres, np.tile([1.0, 0, 0, 0], (15, 1)), flat
     )
     energy = 0.5 * np.sum(conn.stiffness[:, :3] * d**2)
     assert energy == pytest.approx(0.5 * 2e9 * p.thickness * eps**2 * (p.n - 1) * t.a * p.width, rel=1e-9)

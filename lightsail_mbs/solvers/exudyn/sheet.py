@@ -119,7 +119,7 @@ def angular_velocity_xyz(angles: np.ndarray, rates: np.ndarray) -> np.ndarray:
 class SheetSystem:
     """The assembled Exudyn system of one sheet case (module docstring).
 
-    Attributes: SC, mbs, flat (grid points), centres0 and R0 (the initial shape), conn (connectors),
+    Attributes: SC, mbs, flat (grid points), centres0 and q0 (the initial shape), conn (connectors),
     generic (the load's ObjectGenericODE2), load_calls and load_time (the load updates so far).
     """
 
@@ -139,10 +139,10 @@ class SheetSystem:
         self.tiles = sheet.Tiles.of(p)
         N = self.tiles.count
         self.flat = sheet.flat_centres(p)
-        self.centres0, self.R0 = sheet.initial_state(p)
+        self.centres0, self.q0 = sheet.initial_quaternions(p)
         start = sheet.perturbed(p, self.centres0, perturbation)
-        angles0 = sheet.angles_xyz(self.R0)
-        self.conn = sheet.connectors(p, self.centres0, self.R0)
+        angles0 = sheet.angles_xyz(sheet.quaternion_rotation(self.q0))
+        self.conn = sheet.connectors(p, self.centres0, self.q0)
         self.SC = exu.SystemContainer()
         mbs = self.mbs = self.SC.AddSystem()
         inertia = [*self.tiles.inertia, 0.0, 0.0, 0.0]

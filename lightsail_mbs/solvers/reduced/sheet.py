@@ -253,15 +253,6 @@ def _unpack_kernel(Y, angles, omega):
                 omega[t, k, i] = R[i, 0] * Y[t, k, 10] + R[i, 1] * Y[t, k, 11] + R[i, 2] * Y[t, k, 12]
 
 
-def quaternions(R: np.ndarray) -> np.ndarray:
-    """Unit quaternions (scalar first, q₀ ≥ 0) of rotation matrices (N, 3, 3)."""
-    from scipy.spatial.transform import Rotation
-
-    q = Rotation.from_matrix(R).as_quat()  # (x, y, z, w)
-    q = np.column_stack([q[:, 3], q[:, :3]])
-    return q * np.where(q[:, :1] < 0, -1.0, 1.0)
-
-
 class SheetModel:
     """The right-hand side, sparse Jacobian and initial state of one sheet case."""
 
@@ -270,8 +261,8 @@ class SheetModel:
         self.tiles = sheet.Tiles.of(p)
         N = self.tiles.count
         self.flat = sheet.flat_centres(p)
-        self.centres0, self.R0 = sheet.initial_state(p)
-        c = sheet.connectors(p, self.centres0, self.R0)
+        self.centres0, self.q0 = sheet.initial_quaternions(p)
+        c = sheet.connectors(p, self.centres0, self.q0)
         self.conn = c
         self.start = sheet.perturbed(p, self.centres0, perturbation)
         self.ta, self.tb = c.tile_a.astype(np.int64), c.tile_b.astype(np.int64)
@@ -302,7 +293,7 @@ class SheetModel:
     def y0(self) -> np.ndarray:
         y = np.zeros((self.tiles.count, STATE))
         y[:, 0:3] = self.start - self.flat
-        y[:, 3:7] = quaternions(self.R0)
+        y[:, 3:7] = self.q0
         return y.ravel()
 
     def rhs(self, t, y, out=None):
