@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from lightsail_mbs import Result, RunSettings, SailParameters
+from tests.helpers import synthetic_sheet
 
 ONE_SECOND = RunSettings(t_final=1.0)
 
@@ -86,19 +87,6 @@ def test_loads_the_files_of_the_format_before_run_settings(tmp_path):
     assert back.params == r.params and back.settings == r.settings
     np.testing.assert_array_equal(back.amplitude, r.amplitude)
     assert back.failure_time == r.failure_time
-
-
-def synthetic_sheet(steps=5):
-    """A sheet run on w = a₀ e^t sin(3πx) sin(πy) (tile centres only), as Result.from_tiles builds it."""
-    from lightsail_mbs.model import sheet
-
-    p = SailParameters(model="sheet", n=8, ny=6, defect_mode_y=0.5)
-    flat = sheet.flat_centres(p)
-    times = np.linspace(0, 1, steps)
-    w = p.defect_amplitude * np.sin(3 * np.pi * flat[:, 0]) * np.sin(np.pi * flat[:, 1])
-    centres = np.stack([flat + np.outer([0, 0, 1], np.exp(t) * w).T for t in times])
-    zero = np.zeros_like(centres)
-    return Result.from_tiles(p, "synthetic", times, centres, zero, zero, zero, settings=RunSettings(t_final=1.0))
 
 
 def test_sheet_result_amplitude_summary_and_roundtrip(tmp_path):

@@ -9,6 +9,7 @@ from lightsail_mbs.model import plate_theory
 from lightsail_mbs.studies import sheet as sheet_study
 from lightsail_mbs.studies.store import CaseStore
 from lightsail_mbs.studies.sweep import Case, run_sweep
+from tests.helpers import synthetic_sheet
 
 SMALL = SailParameters(model="sheet", n=8, ny=3, youngs_modulus=4.5e9)
 
@@ -59,8 +60,6 @@ def test_with_ratio_and_its_errors():
 
 
 def test_compare_deflections_of_identical_and_shifted_runs():
-    from tests.test_result import synthetic_sheet
-
     a = synthetic_sheet(steps=9)
     assert sheet_study.compare_deflections(a, a) == (0.0, pytest.approx(0.375))  # e^t < 1.5 up to 0.375 s
     b = synthetic_sheet(steps=9)
