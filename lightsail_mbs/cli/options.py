@@ -31,6 +31,7 @@ CASE_OPTIONS = {
     ),
     "--membrane-modulus": ("membrane_modulus", float, "sheet: in-plane (membrane) modulus E_m (Pa); unset: E"),
     "--edge-tension": ("edge_tension", float, "sheet: follower tension on all four edges (N per metre of edge)"),
+    "--billow-radius": ("billow_radius", float, "initial arc radius R_c (m), > 0 concave to the laser; inf = flat"),
     "--beam-waist": ("beam_waist", float, "Gaussian beam waist w (m); inf = uniform beam"),
     "--beam-center": ("beam_center", float, "Gaussian beam axis x_c (m); default L/2"),
     "--beam-center-y": ("beam_center_y", float, "sheet: Gaussian beam axis y_c (m); default W/2"),
@@ -96,18 +97,18 @@ def add_case_options(parser: argparse.ArgumentParser, run: bool = True) -> None:
     )
 
 
-def params_from_args(args: argparse.Namespace) -> SailParameters:
-    """The SailParameters of the given case options (defaults for the others)."""
+def params_from_args(args: argparse.Namespace, base: SailParameters | None = None) -> SailParameters:
+    """The SailParameters of the given case options (base's values, or the defaults, for the others)."""
     names = [v[0] for v in CASE_OPTIONS.values()] + ["bending", "axial_springs"]
     given = {k: getattr(args, k) for k in names if getattr(args, k, None) is not None}
-    return SailParameters(**given)
+    return base.replace(**given) if base is not None else SailParameters(**given)
 
 
-def settings_from_args(args: argparse.Namespace) -> RunSettings:
-    """The RunSettings of the given run options (defaults for the others)."""
+def settings_from_args(args: argparse.Namespace, base: RunSettings | None = None) -> RunSettings:
+    """The RunSettings of the given run options (base's values, or the defaults, for the others)."""
     names = [v[0] for v in RUN_OPTIONS.values()] + ["stop_at_failure"]
     given = {k: getattr(args, k) for k in names if getattr(args, k, None) is not None}
-    return RunSettings(**given)
+    return base.replace(**given) if base is not None else RunSettings(**given)
 
 
 def scenario_parser(doc: str, quick_help: str) -> argparse.ArgumentParser:

@@ -5,9 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from lightsail_mbs.cli.options import writable_folder
-from lightsail_mbs.result import Result
-from lightsail_mbs.viz.frames import RENDERERS, make_movie, parse_size, render_comparison, render_frames
 
+RENDERERS = ("auto", "matplotlib", "exudyn")  # viz.frames.RENDERERS
 COLOR_CHOICES = {"curvature": "curvature", "moment": "moment", "none": None}
 
 
@@ -57,11 +56,16 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from lightsail_mbs.result import Result
+    from lightsail_mbs.viz.frames import check_fps, make_movie, parse_size, render_comparison, render_frames
+
     result = Result.load(args.run)
     if result.is_sheet:
         return run_sheet(args, result)
     other = Result.load(args.compare) if args.compare else None
     size = parse_size(args.size or ("800x800" if args.compare else "800x400"))
+    if args.movie:
+        check_fps(args.fps)
     writable_folder(args.out, "--out")
     options = dict(
         frames=args.frames,
@@ -89,6 +93,7 @@ def run(args) -> int:
 def run_sheet(args, result) -> int:
     """A sheet run: deflection map and 3-D view per frame (viz.sheet), matplotlib only."""
     from lightsail_mbs.model.parameters import ParameterError
+    from lightsail_mbs.viz.frames import check_fps, make_movie, parse_size
     from lightsail_mbs.viz.sheet import render_sheet_frames
 
     if args.compare:
@@ -96,6 +101,8 @@ def run_sheet(args, result) -> int:
     if args.renderer == "exudyn":
         raise ParameterError("--renderer=exudyn is invalid for a sheet run: allowed auto or matplotlib")
     size = parse_size(args.size or "1000x450")
+    if args.movie:
+        check_fps(args.fps)
     writable_folder(args.out, "--out")
     paths = render_sheet_frames(
         result,

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import numbers
 from dataclasses import dataclass
 
 SPEED_OF_LIGHT = 299_792_458.0  # m/s
@@ -47,8 +48,15 @@ SHEET_DEFAULTS = {
 }
 MEMBRANE_REFERENCES = ("initial", "flat")
 BENDING_REFERENCES = ("flat", "initial")
+# Fields added after the store's keys were first written, omitted by to_dict at their defaults so that the
+# record (and store key) of every case that does not use them stays what it was.
+LATER_DEFAULTS = {"billow_radius": math.inf}
 # Names under which saved runs and store records written before the current field names hold them.
 LEGACY_NAMES = {"amplitude": "defect_amplitude", "mode": "defect_mode", "defect_modes": "defect_mode_count"}
+# Smallest non-zero defect amplitude, as a fraction of L: the solvers scale their tolerances with a₀, and the
+# reduced solver's first-step estimate underflows for a₀ ≲ 1e-200 m. (Physically, anything below ~1e-12 L is
+# round-off already: shapes.defect_warnings says so.)
+MIN_DEFECT_FRACTION = 1e-100
 # Run control that saved runs of that format kept with the case (now solvers.settings.RunSettings).
 RUN_FIELDS = ("t_final", "output_interval", "stop_at_failure", "failure_ratio")
 
@@ -63,12 +71,23 @@ def check(name: str, value, ok: bool, allowed: str) -> None:
 
 
 def finite(name: str, value) -> float:
+    """value as a float; ParameterError unless it is a real number (not a bool or a string), finite."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ParameterError(f"{name}={value!r} is invalid: allowed a finite real number")
     try:
         v = float(value)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise ParameterError(f"{name}={value!r} is invalid: allowed a finite real number") from None
     check(name, value, math.isfinite(v), "a finite real number (no NaN or inf)")
     return v
+
+
+def _as_float(value) -> float:
+    """float(value), NaN where that fails (an int beyond the float range)."""
+    try:
+        return float(value)
+    except (TypeError, ValueError, OverflowError):
+        return math.nan
 
 
 @dataclass(frozen=True)
@@ -117,6 +136,7 @@ class SailParameters:
     membrane_reference: str = "initial"  # in-plane springs at rest in the "initial" (defect) or "flat" shape
     bending_reference: str = "flat"  # bending springs at rest "flat" (the paper: an elastically loaded defect)
     #                                  or in the "initial" shape (a stress-free, manufactured defect)
+    billow_radius: float = math.inf  # R_c, m: initial circular arc (shapes.py); > 0 concave to the laser; inf: flat
 
     def __post_init__(self):
         check("model", self.model, self.model in MODELS, f"one of {', '.join(MODELS)}")
@@ -156,14 +176,17 @@ class SailParameters:
         check(
             "defect_mode_count",
             self.defect_mode_count,
-            isinstance(self.defect_mode_count, int) and 1 <= self.defect_mode_count <= 200,
+            isinstance(self.defect_mode_count, int)
+            and not isinstance(self.defect_mode_count, bool)
+            and 1 <= self.defect_mode_count <= 200,
             "an integer 1 ≤ K ≤ 200",
         )
         finite("defect_spectrum", self.defect_spectrum)
+        waist = self.beam_waist
         check(
             "beam_waist",
-            self.beam_waist,
-            not math.isnan(float(self.beam_waist)) and self.beam_waist > 0,
+            waist,
+            not isinstance(waist, bool) and isinstance(waist, numbers.Real) and _as_float(waist) > 0,
             "> 0 (inf for a uniform beam)",
         )
         if self.beam_center is None:
@@ -195,10 +218,33 @@ class SailParameters:
         finite("tip_load", self.tip_load)
         v = finite("tip_load_time_constant", self.tip_load_time_constant)
         check("tip_load_time_constant", v, v >= 0, "≥ 0 (0: the full load from t = 0)")
+        ok_type = isinstance(self.billow_radius, (int, float)) and not isinstance(self.billow_radius, bool)
+        R = float(self.billow_radius) if ok_type else math.nan
+        r_min = self.slice_length / (2.0 * math.sin(math.pi / (2 * self.n)))
+        check(
+            "billow_radius",
+            self.billow_radius,
+            not math.isnan(R) and abs(R) >= r_min,
+            f"|R_c| ≥ {r_min:.4g} m (the arc of n chords of length l subtends at most 180°), > 0 concave to the "
+            "laser, < 0 convex, inf for a flat sail",
+        )
+        check(
+            "billow_radius",
+            self.billow_radius,
+            math.isinf(R) or self.boundary == "free",
+            "inf (flat) unless boundary='free' (the supports hold a flat chain)",
+        )
         self._check_sheet_fields()
         if self.bending is None:
             object.__setattr__(self, "bending", self.model in ("torsion", "sheet"))
         check("bending", self.bending, isinstance(self.bending, bool), "True, False or None")
+        check(
+            "defect_amplitude",
+            self.defect_amplitude,
+            self.defect_amplitude == 0 or self.defect_amplitude >= MIN_DEFECT_FRACTION * self.length,
+            f"0 or ≥ {MIN_DEFECT_FRACTION:g} L = {MIN_DEFECT_FRACTION * self.length:.3g} m (the solvers' "
+            "tolerances scale with a₀; below this they underflow)",
+        )
         check(
             "defect_amplitude",
             self.defect_amplitude,
@@ -228,6 +274,7 @@ class SailParameters:
             f"one of {', '.join(SHEET_BOUNDARIES)} for a sheet",
         )
         check("tip_load", self.tip_load, self.tip_load == 0, "0 for a sheet (a chain validation)")
+        check("billow_radius", self.billow_radius, self.billow_radius == math.inf, "inf (flat) for a sheet")
         for name in ("torsional_damping", "axial_damping"):
             check(name, getattr(self, name), getattr(self, name) == 0, "0 for a sheet (its damping: stiffness_damping)")
         if self.defect_mode_y is not None:
@@ -376,9 +423,10 @@ class SailParameters:
         return self.tip_load * -math.expm1(-t / self.tip_load_time_constant)
 
     def to_dict(self) -> dict:
-        """The fields as a dict (the validation fields and the sheet's fields omitted at their defaults)."""
+        """The fields as a dict (the validation fields, the later ones and the sheet's fields omitted at their
+        defaults)."""
         d = dataclasses.asdict(self)
-        for name, default in {**VALIDATION_DEFAULTS, **SHEET_DEFAULTS}.items():
+        for name, default in {**VALIDATION_DEFAULTS, **LATER_DEFAULTS, **SHEET_DEFAULTS}.items():
             if d[name] == default:
                 del d[name]
         return d

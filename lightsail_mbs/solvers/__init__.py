@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING
 
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
 from lightsail_mbs.solvers.settings import RunSettings, paper_settings
+from lightsail_mbs.solvers.skeleton import interrupts_propagate
 
 if TYPE_CHECKING:
     from lightsail_mbs.result import Result
@@ -73,4 +74,5 @@ def solve(
     if not isinstance(settings, RunSettings):
         raise ParameterError(f"settings={settings!r} is invalid: allowed a RunSettings")
     module = importlib.import_module(f".{solver_module(params, solver)}", __name__)
-    return module.run(params, settings, progress=progress, **options)
+    with interrupts_propagate():
+        return module.run(params, settings, progress=progress, **options)
