@@ -14,7 +14,9 @@ The intercepted power is I A cos θ; absorbed photons push along the beam, specu
 along the unit normal n with twice their normal momentum, transmitted ones not at all. For R = 1,
 α = 0 this is exactly Eq. (11). The law is the same for a slice of the chain (2-D: b̂ = ŷ,
 n = (−sin θ, cos θ)) and for a tile of the sheet (3-D: b̂ = ẑ, n = R_tile ẑ); :func:`facet_forces`
-is that one law for facets of any dimension, the chain's and the sheet's functions call it.
+is that one law for facets of any dimension (the sheet's tiles use it; the chain solvers'
+:func:`applied_forces` sums the radiation and the frame force in floating point, and the tests hold
+the two to each other).
 
 The beam profile is uniform (the paper) or Gaussian: I₀ exp(−2(x − x_c)²/w²) across the chain's
 length, and the round I₀ exp(−2((x − x_c)² + (y − y_c)²)/w²) on the sheet.
@@ -43,8 +45,8 @@ non-uniformity; it is exactly 0 for the uniform beam (I = Ī), and for a Gaussia
 physical O(f₀) force that no cancellation threatens. For the mirror in a uniform beam
 f_b = −f₀ (1 − cos θ)(1 + cos θ + cos²θ), f₀ = 2 I₀ A/c.
 
-:func:`net_facet_force` is the same formula for one facet, compiled (numba); :func:`net_slice_force`
-(the chain's slice) calls it, and the tests hold both to :func:`facet_forces`.
+:func:`net_facet_force` is the same formula for one facet, compiled (numba); the tests hold it to
+:func:`facet_forces`.
 """
 
 from __future__ import annotations
@@ -122,7 +124,7 @@ def facet_forces(
 def radiation_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(f_x, f_y) of the radiation alone on each slice centre at abscissa x and angle θ, inertial
     directions (N): f = (I A / c) cos θ [2R cos θ n + α ŷ] with n = (−sin θ, cos θ); Eq. (11) for R = 1,
-    α = 0. The solvers use :func:`applied_forces` (this load plus the frame force, without cancellation)."""
+    α = 0. The chain solvers use :func:`applied_forces` (this load plus the frame force)."""
     c = np.cos(theta)
     s = np.sin(theta)
     if p.uniform_beam and p.reflectivity == 1.0 and p.absorptivity == 0.0:
@@ -134,27 +136,15 @@ def radiation_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tup
 
 
 def frame_force(p: SailParameters) -> float:
-    """y-component of the d'Alembert force −m g₀ = −(2R + α) Ī A/c on each slice in the accelerating
-    frame (N)."""
-    return -(2.0 * p.reflectivity + p.absorptivity) * p.mean_intensity * p.slice_length * p.width / SPEED_OF_LIGHT
+    """y-component of the d'Alembert force −m g₀ on each slice in the accelerating frame (N)."""
+    return -p.slice_mass * p.nominal_acceleration
 
 
 def applied_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The net force on each slice centre in the accelerating frame, radiation load plus frame force (N),
-    with their cancellation done analytically (:func:`facet_forces` with n_⊥ = −sin θ, n_b = cos θ);
-    the load every chain solver applies."""
-    theta = np.asarray(theta, float)
-    local = intensity(p, np.broadcast_to(x, theta.shape))
-    f_across, f_along = facet_forces(
-        -np.sin(theta)[..., None],
-        np.cos(theta),
-        local,
-        p.mean_intensity,
-        p.slice_length * p.width,
-        p.reflectivity,
-        p.absorptivity,
-    )
-    return f_across[..., 0], f_along
+    """Radiation load plus frame force on each slice centre, as used by the chain solvers (N): summed in
+    floating point (:func:`facet_forces` is the same net force with the cancellation done analytically)."""
+    fx, fy = radiation_forces(p, x, theta)
+    return fx, fy + frame_force(p)
 
 
 @njit(cache=True)
@@ -171,16 +161,6 @@ def net_facet_force(n1, n2, nb, local_intensity, mean_intensity, area_c, reflect
     fb = -push * (two_r * one_minus_cos * (1.0 + nb + nb * nb) + absorptivity * one_minus_cos)
     fb += (two_r + absorptivity) * area_c * (local_intensity - mean_intensity)
     return across * n1, across * n2, fb
-
-
-@njit(cache=True)
-def net_slice_force(theta, cos_theta, sin_theta, local_intensity, mean_intensity, area_c, reflectivity, absorptivity):
-    """(f_x, f_y) of :func:`applied_forces` for one slice (compiled): :func:`net_facet_force` with the
-    normal (−sin θ, cos θ); area_c = l W / c."""
-    fx, _, fy = net_facet_force(
-        -sin_theta, 0.0, cos_theta, local_intensity, mean_intensity, area_c, reflectivity, absorptivity
-    )
-    return fx, fy
 
 
 @njit(cache=True)
