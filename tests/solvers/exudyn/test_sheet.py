@@ -105,3 +105,20 @@ def test_limits_are_reported():
         solve(stiff, "exudyn", RunSettings(t_final=0.01), step_size=-1.0)
     with pytest.raises(ParameterError, match="rtol"):
         solve(stiff, "exudyn", RunSettings(t_final=0.01), rtol=1e-3)
+
+
+@pytest.mark.slow
+def test_two_sheet_solvers_agree_to_failure_on_a_doubly_sinusoidal_defect():
+    """The cross-check's doubly sinusoidal case on 6 × 6 tiles, to failure: failure times within 1 % and
+    deflections within 1e-3 a₀ while both amplitudes are below 1.5 a₀ (studies.sheet; 20 × 20 in
+    validation/sheet_crosscheck.py)."""
+    from lightsail_mbs.studies import sheet as sheet_study
+
+    p = SailParameters(n=6, ny=6, defect_mode_y=1.5, **SOFT)
+    settings = RunSettings(t_final=3.0, output_interval=5e-3)
+    a = solve(p, "exudyn", settings, step_size=2.5e-4)
+    b = solve(p, "reduced", settings)
+    assert a.failed and b.failed and a.error is None and b.error is None
+    assert a.failure_time == pytest.approx(b.failure_time, rel=sheet_study.FAILURE_TIME_LIMIT)
+    difference, _ = sheet_study.compare_deflections(a, b)
+    assert difference <= sheet_study.DEFLECTION_LIMIT
