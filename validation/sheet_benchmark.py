@@ -58,7 +58,8 @@ def main(argv=None) -> int:
                 f"| {grid}×{grid} | {grid * grid} | {'Exudyn' if solver == 'exudyn' else 'in-house'} | "
                 f"{warm['warm']['cpu']:.2f} | {warm['warm']['wall']:.2f} | "
                 f"{warm['first']['cpu'] - warm['warm']['cpu']:+.2f} | "
-                f"{warm['warm']['failure_time']:.6g} | {warm['warm']['steps']} | {len(runs)} | {warm['load']:.1f} |"
+                f"{'–' if warm['warm']['failure_time'] is None else format(warm['warm']['failure_time'], '.6g')} | "
+                f"{warm['warm']['steps']} | {len(runs)} | {warm['load']:.1f} |"
             )
             print(rows[-1], flush=True)
     fits = []
