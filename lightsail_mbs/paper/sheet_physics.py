@@ -46,7 +46,7 @@ GAUSSIAN = RunSettings(t_final=3e-3, output_interval=1e-5)
 
 
 def base(grid: int, **changes) -> SailParameters:
-    return SailParameters(model="sheet", n=grid, ny=grid, youngs_modulus=SOFT, **changes)
+    return SailParameters(**{"model": "sheet", "n": grid, "ny": grid, "youngs_modulus": SOFT, **changes})
 
 
 def modulus_cases(grids) -> dict:
@@ -181,7 +181,8 @@ def plot(path, rows) -> Path:
             hi = np.array([r["ratio_high"] or np.nan for r in mine])
             ax[0, k].errorbar(mid, y, xerr=[mid - lo, hi - mid], fmt="o", capsize=3, label=f"{g} tiles along L")
         ax[0, k].set_yticks(np.arange(len(labels)), labels, fontsize=7)
-        ax[0, k].set_xscale("log")
+        if any(r["ratio"] for r in data):  # a log axis needs a bracketed boundary
+            ax[0, k].set_xscale("log")
         ax[0, k].set_xlabel("E_stable / E_cr,max" if kind == "modulus" else "T_stable / T_cr,max")
         ax[0, k].legend(fontsize=7)
     g = [r for r in rows["gaussian"]]
