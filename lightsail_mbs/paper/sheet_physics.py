@@ -18,14 +18,16 @@ convergence.
    sail survives 6 s, as T/T_cr,max with T_cr,max = ½(2I₀/c)a₀ (Eq. 10 per metre), for the strip, the sheet
    with the 1-D sine and the sheet with the doubly sinusoidal defect.
 
-Writes sheet_physics_modulus.csv, sheet_physics_gaussian.csv, sheet_physics_tension.csv,
-sheet_physics.png and sheet_physics_failure.png (the doubly sinusoidal sheet at failure) into OUT; the
-runs go to the store OUT/store/sheet_physics. Quick (a smoke test): one 6 × 6 grid, 1 s runs, factor 3.
+Writes sheet_physics_modulus.csv, sheet_physics_gaussian.csv, sheet_physics_tension.csv, their summary
+sheet_physics.md (brackets as uncertainties, sheet against strip), sheet_physics.png and
+sheet_physics_failure.png (the doubly sinusoidal sheet at failure) into OUT; the runs go to the store
+OUT/store/sheet_physics. Quick (a smoke test): one 6 × 6 grid, 1 s runs, factor 3.
 Run: lightsail-mbs reproduce --scenario sheet_physics, or python scenarios/sheet_physics.py.
 """
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -161,9 +163,81 @@ def run(out, *, solver="reduced", workers=None, scheduler=None, quick=False, sto
     ):
         write_csv(out / f"sheet_physics_{kind}.csv", rows[kind])
         print_table(title, rows[kind])
+    (out / "sheet_physics.md").write_text(summary_markdown(rows))
     plot(out / "sheet_physics.png", rows)
     failure_frame(out / "sheet_physics_failure.png", quick)
     return rows
+
+
+def read_rows(out) -> dict:
+    """The rows of a finished run back from its CSV files in `out` (numbers as floats, empty as None)."""
+    import csv
+
+    def number(text):
+        return None if text in ("", None) else float(text)
+
+    rows = {}
+    for kind in ("modulus", "tension", "gaussian"):
+        with open(Path(out) / f"sheet_physics_{kind}.csv", newline="") as handle:
+            rows[kind] = list(csv.DictReader(handle))
+    for r in rows["modulus"] + rows["tension"]:
+        r.update({k: number(r[k]) for k in ("ratio", "ratio_low", "ratio_high")})
+        r["runs"] = int(r["runs"])
+    for r in rows["gaussian"]:
+        r.update(grid=int(r["grid"]), waist_m=float(r["waist_m"]), failure_time_ms=number(r["failure_time_ms"]))
+    return rows
+
+
+def _bracket(lo, hi) -> str:
+    """A bisected boundary as its geometric middle × or ÷ its half-width factor, and the bracket."""
+    if lo is None or hi is None:
+        return "not bracketed"
+    mid, half = math.sqrt(lo * hi), math.sqrt(hi / lo)
+    return f"{mid:.3g} (×÷{half:.3f}; {lo:.3g} – {hi:.3g})"
+
+
+def summary_markdown(rows) -> str:
+    """The three studies as Markdown tables: each boundary with its bisection bracket, each sheet's boundary
+    against the strip's of the same grid (ratio range from the two brackets), and the Gaussian failure
+    times of sheet and strip with their ratio, on every grid."""
+    lines = ["# The sheet against the strip", ""]
+    for kind, quantity in (("modulus", "E_stable / E_cr,max"), ("tension", "T_stable / T_cr,max")):
+        data = rows[kind]
+        lines += [
+            f"## {'Critical modulus' if kind == 'modulus' else 'Stabilising edge tension'}: {quantity}",
+            "",
+            f"| case | grid | {quantity}: middle (×÷ half-width; bracket) | sheet / strip (range) | runs |",
+            "|---|---|---|---|---|",
+        ]
+        for r in data:
+            grid = r["grid"].split("×")[0]
+            strip = next((q for q in data if q["case"] == "strip" and q["grid"].split("×")[0] == grid), None)
+            versus = "–"
+            if r["case"] != "strip" and strip and None not in (r["ratio_low"], r["ratio_high"], strip["ratio_low"]):
+                lo, hi = r["ratio_low"] / strip["ratio_high"], r["ratio_high"] / strip["ratio_low"]
+                versus = f"{math.sqrt(lo * hi):.3g} ({lo:.3g} – {hi:.3g})"
+            lines.append(
+                f"| {r['case']} | {r['grid']} | {_bracket(r['ratio_low'], r['ratio_high'])} | {versus} | {r['runs']} |"
+            )
+        lines.append("")
+    lines += [
+        "## Centred Gaussian beam, 1-D sine, E = 4.5e9 Pa: failure time",
+        "",
+        "| grid | waist w (m) | strip (ms) | sheet (ms) | sheet / strip |",
+        "|---|---|---|---|---|",
+    ]
+    g = rows["gaussian"]
+    for grid in sorted({r["grid"] for r in g}):
+        for w in sorted({r["waist_m"] for r in g}, reverse=True):
+            pick = {r["case"]: r["failure_time_ms"] for r in g if r["grid"] == grid and r["waist_m"] == w}
+            strip, sheet = pick.get("strip"), pick.get("sheet")
+            ratio = f"{sheet / strip:.3f}" if strip and sheet else "–"
+            lines.append(
+                f"| {grid}×{grid} | {w:g} | {'–' if strip is None else f'{strip:.4f}'} | "
+                f"{'–' if sheet is None else f'{sheet:.4f}'} | {ratio} |"
+            )
+    lines.append("")
+    return "\n".join(lines)
 
 
 def plot(path, rows) -> Path:
