@@ -7,7 +7,7 @@ over the shared output samples while both amplitudes are below 1.5 a(0), in unit
 (lightsail_mbs.studies.sheet). Pass: the same verdict, failure times within 1 %, deflections within
 1e-3 a₀, no solver error. Exudyn runs at a quarter of its default 1 ms step (an eighth for the random
 multi-mode defect), as the chain's cross-check: its default step gives deflection errors up to 4.8e-3 a₀
-on 2-D defects (step study in docs/sheet.md); the in-house solver at rtol 1e-7 is within 1.4e-7 a₀ of
+on 2-D defects (step study on docs/sheet.md); the in-house solver at rtol 1e-7 is within 1.4e-7 a₀ of
 rtol 1e-9. Writes validation/sheet_crosscheck.md; the runs go to a store (--store, default a folder in
 the system's temporary directory), so a rerun recomputes nothing.
 """
