@@ -92,6 +92,7 @@ def test_sheet_physics_scenario(tmp_path):
         "sheet_physics_modulus.csv",
         "sheet_physics_tension.csv",
         "sheet_physics_gaussian.csv",
+        "sheet_physics.md",
     }
     assert all(r["status"] in ("converged", "unbracketed") for r in rows["modulus"] + rows["tension"])
     strip = sorted((r for r in rows["gaussian"] if r["case"] == "strip"), key=lambda r: r["waist_m"])
