@@ -30,6 +30,47 @@ if TYPE_CHECKING:
     from lightsail_mbs.solvers import solve
     from lightsail_mbs.solvers.settings import RunSettings, paper_settings
 
+# the package's files that hold numba kernels compiled with cache=True (tests/test_package.py checks the list)
+KERNEL_SOURCES = (
+    "model/optics.py",
+    "solvers/reduced/dop853.py",
+    "solvers/reduced/dynamics.py",
+    "solvers/reduced/newton.py",
+    "solvers/reduced/radau.py",
+    "solvers/reduced/sampling.py",
+)
+
+
+def _drop_stale_kernels() -> None:
+    """Delete numba's cached machine code of every kernel when any kernel source changed since it was cached.
+
+    numba keys each cached function on its own file's time stamp and size only, but a kernel inlines the kernels it
+    calls from other files (an integrator inlines the right-hand side), so after an edit of one file the
+    others would load machine code built from the old source. The sizes and time stamps of all kernel
+    sources are kept in ``__pycache__/numba-kernel-sources``; when they differ, every ``*.nbi``/``*.nbc`` of
+    those files is removed and numba compiles afresh. A read-only install is left as it is."""
+    from pathlib import Path
+
+    root = Path(__file__).parent
+    try:
+        stamp = "\n".join(
+            f"{name} {(root / name).stat().st_size} {(root / name).stat().st_mtime!r}" for name in KERNEL_SOURCES
+        )
+        record = root / "__pycache__" / "numba-kernel-sources"
+        if record.is_file() and record.read_text() == stamp:
+            return
+        for name in KERNEL_SOURCES:
+            source = root / name
+            for cached in (source.parent / "__pycache__").glob(f"{source.stem}.*.nb[ic]"):
+                cached.unlink(missing_ok=True)
+        record.parent.mkdir(exist_ok=True)
+        record.write_text(stamp)
+    except OSError:
+        pass
+
+
+_drop_stale_kernels()
+
 __all__ = ["ParameterError", "SailParameters", "RunSettings", "paper_case", "paper_settings", "Result", "solve"]
 __version__ = "0.1.0"
 

@@ -1,8 +1,17 @@
 """Fixtures shared across the test folders."""
 
 import pytest
+from threadpoolctl import threadpool_limits
 
 from tests.helpers import growing_sine
+
+
+@pytest.fixture(scope="session", autouse=True)
+def one_blas_thread():
+    """BLAS on one thread: the tests' matrices are small, and BLAS worker threads spinning beside the test
+    process and the sweep workers only slow a 2-core machine down."""
+    with threadpool_limits(1):
+        yield
 
 
 @pytest.fixture

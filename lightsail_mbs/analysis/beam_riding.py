@@ -369,3 +369,62 @@ def ride(
         verdict = "drifts out" if (math.isfinite(width) and first == 0) else "tumbles"
     info = dict(nfev=int(sol.nfev), rtol=rtol, message=sol.message)
     return Ride(sol.t, lateral, phi, verdict, when, info)
+
+
+FLEXIBLE_VERDICTS = ("rides", "drifts out", "crumples")
+
+
+@dataclass
+class FlexibleRide:
+    """A run of the flexible sail (a Result of either solver) read as beam riding: at the sample times the
+    lateral position X − x_c of the craft's centre of mass (sail and payload), the tilt φ and the
+    deformation δ of the sail (:func:`flexible_ride`), and the verdict."""
+
+    time: np.ndarray
+    lateral: np.ndarray  # X − x_c (m)
+    tilt: np.ndarray  # φ (rad), counter-clockwise from the initial pose
+    deformation: np.ndarray  # δ (m)
+    verdict: str
+    decided_at: float | None
+
+
+def flexible_ride(result, crumple: float = 0.01, drift_factor: float = 1.0) -> FlexibleRide:
+    """The beam-riding histories of a flexible run and its verdict.
+
+    Each sample's slice centres r_i are fitted by the initial ones turned by φ and moved (least squares over
+    the slice centres: the Procrustes rotation about their centroid); the tilt is φ plus the case's initial
+    tilt (so: from the untilted pose), the deformation δ the largest distance of a slice centre from the fitted
+    rigid shape, and the lateral position the craft's centre of mass (payload included) minus the beam axis.
+    Verdict: "crumples" once δ ≥ crumple (m), else "drifts out" once |X − x_c| ≥ drift_factor·w (a Gaussian
+    beam), else "rides"; decided_at is the first sample that decides it.
+    """
+    from lightsail_mbs.model import payload as payload_model
+
+    p = result.params
+    x, y, theta = result.x, result.y, result.theta
+    m, mp = p.slice_mass, p.payload_mass
+    where = payload_model.position(p, x, y, theta)
+    total = m * p.n + mp
+    gx = m * x.sum(axis=1) / total
+    if where is not None:
+        gx = gx + mp * where[0] / total
+    # Procrustes rotation of the sail's slice centres about their centroid, against the initial shape
+    cx, cy = x.mean(axis=1, keepdims=True), y.mean(axis=1, keepdims=True)
+    u, v = x - cx, y - cy
+    u0, v0 = u[0], v[0]
+    turn = np.arctan2(np.sum(u0 * v - v0 * u, axis=1), np.sum(u0 * u + v0 * v, axis=1))
+    c, s = np.cos(turn)[:, None], np.sin(turn)[:, None]
+    fit_u, fit_v = c * u0 - s * v0, s * u0 + c * v0
+    deformation = np.max(np.hypot(u - fit_u, v - fit_v), axis=1)
+    lateral = gx - p.beam_center
+    tilt = turn + p.initial_tilt  # from the untilted pose
+    verdict, when = "rides", None
+    crumpled = np.flatnonzero(deformation >= crumple)
+    width = drift_factor * p.beam_waist
+    drifted = np.flatnonzero(np.abs(lateral) >= width) if math.isfinite(width) else np.zeros(0, int)
+    firsts = [(int(crumpled[0]), "crumples")] if crumpled.size else []
+    firsts += [(int(drifted[0]), "drifts out")] if drifted.size else []
+    if firsts:
+        k, verdict = min(firsts)
+        when = float(result.time[k])
+    return FlexibleRide(result.time, lateral, tilt, deformation, verdict, when)

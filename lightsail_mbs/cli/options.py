@@ -37,6 +37,21 @@ CASE_OPTIONS = {
     "--beam-center-y": ("beam_center_y", float, "sheet: Gaussian beam axis y_c (m); default W/2"),
     "--reflectivity": ("reflectivity", float, "specular reflectivity R"),
     "--absorptivity": ("absorptivity", float, "absorptivity α"),
+    "--optics": (
+        "optics",
+        str,
+        "the slices' force law from a table: 'mirror' or a table file (lightsail-mbs optics … --out); "
+        "unset: the R/α law",
+    ),
+    "--optics-layout": (
+        "optics_layout",
+        str,
+        "uniform | mirrored-halves (the right half carries the table turned over)",
+    ),
+    "--payload-mass": ("payload_mass", float, "payload on a rigid stem from the sail's middle, mass m_p (kg)"),
+    "--payload-inertia": ("payload_inertia", float, "the payload's own inertia J_p (kg·m²)"),
+    "--payload-stem": ("payload_stem", float, "stem length d from the sail's middle towards the laser (m)"),
+    "--initial-tilt": ("initial_tilt", float, "the initial shape turned about the craft's centre of mass (rad)"),
     "--torsional-damping": ("torsional_damping", float, "torsional damping c_T (N·m·s/rad)"),
     "--axial-damping": ("axial_damping", float, "axial damping c_s (N·s/m)"),
     "--stiffness-damping": (
@@ -82,6 +97,13 @@ def add_case_options(parser: argparse.ArgumentParser, run: bool = True) -> None:
         default=None,
         help="TnT: extensible slices with k_s = (n−1)EhW/L, or their rigid limit [default on]",
     )
+    g.add_argument(
+        "--billow-rest",
+        dest="billow_rest",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="torsion springs at rest on the billowed arc (a sail made curved) [default off: at rest flat]",
+    )
     if not run:
         return
     settings = RunSettings()
@@ -99,7 +121,7 @@ def add_case_options(parser: argparse.ArgumentParser, run: bool = True) -> None:
 
 def params_from_args(args: argparse.Namespace, base: SailParameters | None = None) -> SailParameters:
     """The SailParameters of the given case options (base's values, or the defaults, for the others)."""
-    names = [v[0] for v in CASE_OPTIONS.values()] + ["bending", "axial_springs"]
+    names = [v[0] for v in CASE_OPTIONS.values()] + ["bending", "axial_springs", "billow_rest"]
     given = {k: getattr(args, k) for k in names if getattr(args, k, None) is not None}
     return base.replace(**given) if base is not None else SailParameters(**given)
 

@@ -76,7 +76,6 @@ from pathlib import Path
 
 import numpy as np
 from numba import njit
-from scipy.interpolate import CubicSpline
 
 from lightsail_mbs.model import rcwa
 from lightsail_mbs.model.loads import intensity
@@ -162,6 +161,8 @@ class OpticalTable:
     ) -> OpticalTable:
         """A bounded table through samples c_n(θ_k), c_t(θ_k) (|θ_k| < π/2): cubic splines of c/cos²θ,
         independent on each piece between consecutive `breaks` (which must be nodes)."""
+        from scipy.interpolate import CubicSpline  # here: the solvers import this module and not scipy's splines
+
         theta = np.asarray(theta, float)
         check("theta", "samples", theta.ndim == 1 and np.all(np.abs(theta) < math.pi / 2), "|θ| < π/2 rad")
         c2 = np.cos(theta) ** 2
@@ -222,8 +223,12 @@ class OpticalTable:
     def nominal_acceleration(self, p: SailParameters) -> float:
         """g₀ = c_n(0) Ī / (c ρ h): the flat sail's acceleration under this law (for the mirror exactly
         SailParameters.nominal_acceleration)."""
-        cn0 = float(self.coefficients(0.0)[0])
-        return cn0 * p.mean_intensity / (SPEED_OF_LIGHT * p.density * p.thickness)
+        return self.normal_at_zero * p.mean_intensity / (SPEED_OF_LIGHT * p.density * p.thickness)
+
+    @property
+    def normal_at_zero(self) -> float:
+        """c_n(0): the flat sail's normal force coefficient at normal incidence (2 for the mirror)."""
+        return float(self.coefficients(0.0)[0])
 
     # ---- views ----------------------------------------------------------------------------------
     @property
@@ -332,17 +337,34 @@ class OpticalTable:
         }
 
 
+_READ_CACHE: dict = {}
+
+
+def read_table(path) -> OpticalTable:
+    """OpticalTable.load(path), read once per resolved path, size and modification time (a case reads its
+    table at every validation)."""
+    path = Path(path)
+    try:
+        st = path.stat()
+    except OSError as exc:
+        raise OpticsFileError(f"{path}: cannot be read ({exc.strerror or exc})") from None
+    key = (str(path.resolve()), st.st_size, st.st_mtime_ns)
+    if key not in _READ_CACHE:
+        if len(_READ_CACHE) > 64:
+            _READ_CACHE.clear()
+        _READ_CACHE[key] = OpticalTable.load(path)
+    return _READ_CACHE[key]
+
+
 # ---- compiled evaluation -------------------------------------------------------------------------
 @njit(cache=True)
-def packed_coefficients(packed, theta, mirrored):
-    """(c_n, c_t) at angle θ from OpticalTable.packed() (NaN outside a bounded table)."""
+def packed_tabulated(packed, u):
+    """(s_n, s_t) of OpticalTable.packed() at the table angle u (NaN outside a bounded table)."""
     n = int(packed[1])
     nodes = PACKED_HEADER
     cn0 = nodes + n
     ct0 = cn0 + 4 * (n - 1)
     m = n - 1
-    sign = -1.0 if mirrored else 1.0
-    u = sign * theta
     if packed[2] != 0.0 and not (packed[nodes] <= u <= packed[nodes + n - 1]):
         return math.nan, math.nan
     lo, hi = 0, n - 1  # binary search for θ_lo ≤ u < θ_hi, clamped to the end intervals
@@ -357,6 +379,14 @@ def packed_coefficients(packed, theta, mirrored):
     sn += packed[cn0 + 3 * m + lo]
     st = ((packed[ct0 + lo] * dx + packed[ct0 + m + lo]) * dx + packed[ct0 + 2 * m + lo]) * dx
     st += packed[ct0 + 3 * m + lo]
+    return sn, st
+
+
+@njit(cache=True)
+def packed_coefficients(packed, theta, mirrored):
+    """(c_n, c_t) at angle θ from OpticalTable.packed() (NaN outside a bounded table)."""
+    sign = -1.0 if mirrored else 1.0
+    sn, st = packed_tabulated(packed, sign * theta)
     c = math.cos(theta)
     s = math.sin(theta)
     cc = c * c
@@ -370,6 +400,83 @@ def packed_force(packed, scale, theta, mirrored):
     c = math.cos(theta)
     s = math.sin(theta)
     return scale * (ct * c - cn * s), scale * (cn * c + ct * s)
+
+
+@njit(cache=True)
+def packed_slice_force(packed, push, c, s, theta, mirrored):
+    """The radiation force (f_x, f_y) on one slice (N), inertial directions, as the reduced solver applies
+    it: push = I(x) l W / c, c, s = cos θ, sin θ. With q_n = A_n + s_n (module docstring)
+
+        normal = (q_n c)(push c),   tangential = push (A_t c s + c² s_t),
+        f_x = tangential c − normal s,   f_y = normal c + tangential s,
+
+    the product order of model/loads.py's law as the reduced solver's kernel computes it, so the built-in
+    mirror (q_n = 2, A_t = s_t = 0) gives Eq. (11) to the last bit there."""
+    sign = -1.0 if mirrored else 1.0
+    sn, st = packed_tabulated(packed, sign * theta)
+    normal = ((packed[3] + sn) * c) * (push * c)
+    tangential = push * (packed[4] * c * s + c * c * (sign * st))
+    return tangential * c - normal * s, normal * c + tangential * s
+
+
+@njit(cache=True)
+def normal_tangential_into(packed, mirrored, push, c, s, theta, normal, tangential):
+    """The force components along each slice's normal and tangent (N), as the Exudyn force function
+    applies them (f = (tangential + i normal) e^{iθ} in its complex notation): push_i = I(x_i) l W / c
+    (half of f₀ for the uniform beam), mirrored_i ≠ 0 for a slice carrying the table turned over,
+
+        normal = (q_n push)(c²),   tangential = push (A_t c s + c² s_t),
+
+    the product order of Exudyn's Eq. (11) path, f₀ (c²) n, so the built-in mirror gives its bits."""
+    for i in range(theta.size):
+        sign = -1.0 if mirrored[i] != 0.0 else 1.0
+        sn, st = packed_tabulated(packed, sign * theta[i])
+        ci, si = c[i], s[i]
+        normal[i] = ((packed[3] + sn) * push[i]) * (ci * ci)
+        tangential[i] = push[i] * (packed[4] * ci * si + ci * ci * (sign * st))
+
+
+@njit(cache=True)
+def packed_net_force(packed, local, mean, area_c, c, s, theta, mirrored, normal_at_zero):
+    """The net force (f_x, f_y) on one slice in the accelerating frame, radiation plus the frame force
+    −c_n(0) Ī A/c ŷ, with their cancellation done analytically (N). local, mean: I(x) and Ī; area_c = l W/c;
+    normal_at_zero: q_n(0) = c_n(0) of the table. With push = I A/c, q_n = A_n + s_n(±θ) and
+    1 − cos³θ = 2 sin²(θ/2)(1 + cos θ + cos²θ):
+
+        f_x = (((−push q_n) c) c) s + tangential c,
+        f_y = −push q_n(0) (1 − cos³θ) + push c³ (q_n − q_n(0)) + tangential s + q_n(0) (A/c)(I − Ī),
+
+    every term to a few ulps of itself (the plain sum push q_n c³ − q_n(0) Ī A/c keeps only ~8 digits of the
+    remainder at the paper's slopes). For the mirror (q_n ≡ 2, no tangential part) the product order is that
+    of the analytic net force of Eq. (11) (2R = 2, α = 0), so the built-in mirror reproduces it to the bit.
+    For a solver whose load is the net force rather than radiation plus a separate frame force."""
+    sign = -1.0 if mirrored else 1.0
+    sn, st = packed_tabulated(packed, sign * theta)
+    push = local * area_c
+    qn = packed[3] + sn
+    tangential = push * (packed[4] * c * s + c * c * (sign * st))
+    half = math.sin(0.5 * theta)
+    one_minus_cos = 2.0 * half * half
+    fx = -push * qn * c * c * s + tangential * c
+    fy = -push * (normal_at_zero * one_minus_cos * (1.0 + c + c * c))
+    fy += push * (c * c * c) * (qn - normal_at_zero) + tangential * s
+    fy += normal_at_zero * area_c * (local - mean)
+    return fx, fy
+
+
+def slice_flags(p: SailParameters) -> np.ndarray:
+    """1.0 for each slice of case p that carries its table turned over (t → −t), else 0.0: none for the
+    layout 'uniform'; for 'mirrored-halves' the slices whose centres lie right of the middle (i ≥ n/2;
+    with n odd the middle slice keeps the table's orientation)."""
+    flags = np.zeros(p.n)
+    if p.optics_layout == "mirrored-halves":
+        flags[(p.n + 1) // 2 :] = 1.0
+    return flags
+
+
+def solver_block(p: SailParameters) -> np.ndarray:
+    """What a solver's compiled load reads for case p's table: the n slice flags, then the packed table."""
+    return np.concatenate([slice_flags(p), p.optical_table().packed()])
 
 
 # ---- built-in laws -------------------------------------------------------------------------------

@@ -50,7 +50,18 @@ MEMBRANE_REFERENCES = ("initial", "flat")
 BENDING_REFERENCES = ("flat", "initial")
 # Fields added after the store's keys were first written, omitted by to_dict at their defaults so that the
 # record (and store key) of every case that does not use them stays what it was.
-LATER_DEFAULTS = {"billow_radius": math.inf}
+LATER_DEFAULTS = {
+    "billow_radius": math.inf,
+    "optics": None,
+    "optics_layout": "uniform",
+    "payload_mass": 0.0,
+    "payload_inertia": 0.0,
+    "payload_stem": 0.0,
+    "billow_rest": False,
+    "initial_tilt": 0.0,
+}
+# How the slices carry an optical table: all alike, or the right half turned over (t → −t; model/optics.py).
+OPTICS_LAYOUTS = ("uniform", "mirrored-halves")
 # Names under which saved runs and store records written before the current field names hold them.
 LEGACY_NAMES = {"amplitude": "defect_amplitude", "mode": "defect_mode", "defect_modes": "defect_mode_count"}
 # Smallest non-zero defect amplitude, as a fraction of L: the solvers scale their tolerances with a₀, and the
@@ -137,6 +148,13 @@ class SailParameters:
     bending_reference: str = "flat"  # bending springs at rest "flat" (the paper: an elastically loaded defect)
     #                                  or in the "initial" shape (a stress-free, manufactured defect)
     billow_radius: float = math.inf  # R_c, m: initial circular arc (shapes.py); > 0 concave to the laser; inf: flat
+    optics: str | None = None  # the slices' force law from a table: None (R, α above), "mirror", or a table file
+    optics_layout: str = "uniform"  # one of OPTICS_LAYOUTS: which slices carry the table turned over
+    payload_mass: float = 0.0  # m_p, kg: a payload on a rigid stem from the sail's middle (model/payload.py)
+    payload_inertia: float = 0.0  # J_p, kg·m²: its inertia about its own centre
+    payload_stem: float = 0.0  # d, m: the stem's length from the sail's middle towards the laser (−ŷ)
+    billow_rest: bool = False  # torsion springs at rest on the billowed arc (a sail made curved); False: flat
+    initial_tilt: float = 0.0  # rad: the initial shape turned counter-clockwise about the craft's centre of mass
 
     def __post_init__(self):
         check("model", self.model, self.model in MODELS, f"one of {', '.join(MODELS)}")
@@ -234,6 +252,18 @@ class SailParameters:
             math.isinf(R) or self.boundary == "free",
             "inf (flat) unless boundary='free' (the supports hold a flat chain)",
         )
+        self._check_optics()
+        self._check_payload()
+        check("billow_rest", self.billow_rest, isinstance(self.billow_rest, bool), "True or False")
+        v = finite("initial_tilt", self.initial_tilt)
+        check("initial_tilt", v, abs(v) < math.pi / 2, "|tilt| < π/2 rad")
+        check("initial_tilt", v, v == 0 or self.boundary == "free", "0 unless boundary='free'")
+        check(
+            "billow_rest",
+            self.billow_rest,
+            not self.billow_rest or not math.isinf(float(self.billow_radius)),
+            "False for a flat sail (billow_radius = inf)",
+        )
         self._check_sheet_fields()
         if self.bending is None:
             object.__setattr__(self, "bending", self.model in ("torsion", "sheet"))
@@ -275,6 +305,10 @@ class SailParameters:
         )
         check("tip_load", self.tip_load, self.tip_load == 0, "0 for a sheet (a chain validation)")
         check("billow_radius", self.billow_radius, self.billow_radius == math.inf, "inf (flat) for a sheet")
+        check("billow_rest", self.billow_rest, self.billow_rest is False, "False for a sheet")
+        check("initial_tilt", self.initial_tilt, self.initial_tilt == 0, "0 for a sheet")
+        check("optics", self.optics, self.optics is None, "None for a sheet (its tiles: reflectivity, absorptivity)")
+        check("payload_mass", self.payload_mass, self.payload_mass == 0, "0 for a sheet")
         for name in ("torsional_damping", "axial_damping"):
             check(name, getattr(self, name), getattr(self, name) == 0, "0 for a sheet (its damping: stiffness_damping)")
         if self.defect_mode_y is not None:
@@ -317,6 +351,49 @@ class SailParameters:
             f"one of {', '.join(BENDING_REFERENCES)}",
         )
 
+    def _check_optics(self) -> None:
+        check("optics_layout", self.optics_layout, self.optics_layout in OPTICS_LAYOUTS, " or ".join(OPTICS_LAYOUTS))
+        if self.optics is None:
+            check("optics_layout", self.optics_layout, self.optics_layout == "uniform", "'uniform' without optics")
+            return
+        allowed = "None, 'mirror' or the path of an optical table file (.npz, from lightsail-mbs optics … --out)"
+        check("optics", self.optics, isinstance(self.optics, str) and self.optics != "", allowed)
+        for name in ("reflectivity", "absorptivity"):
+            check(name, getattr(self, name), getattr(self, name) == (name == "reflectivity"), "its default with optics")
+        self.optical_table()  # reads the file now: a bad one is refused before any solving
+
+    def _check_payload(self) -> None:
+        for name in ("payload_mass", "payload_inertia", "payload_stem"):
+            v = finite(name, getattr(self, name))
+            check(name, v, v >= 0, "≥ 0")
+        if self.payload_mass == 0:
+            for name in ("payload_inertia", "payload_stem"):
+                check(name, getattr(self, name), getattr(self, name) == 0, "0 without a payload (payload_mass = 0)")
+            return
+        check("payload_mass", self.payload_mass, self.boundary == "free", "0 unless boundary='free'")
+        check("payload_mass", self.payload_mass, self.n >= 3, "0 for n < 3 (the payload slice is not an end slice)")
+        check(
+            "payload_mass",
+            self.payload_mass,
+            not (self.model == "tnt" and self.axial_springs),
+            "0 for the extensible TnT chain (axial_springs=False: its inextensible limit carries one)",
+        )
+
+    def optical_table(self):
+        """The slices' force law as a :class:`~lightsail_mbs.model.optics.OpticalTable`: the file `optics`
+        (read once per path and modification time), the built-in mirror for 'mirror', and for None the
+        built-in mirror or facet of reflectivity and absorptivity."""
+        from lightsail_mbs.model import optics
+
+        if self.optics is None:
+            return optics.for_case(self)
+        if self.optics == "mirror":
+            return optics.mirror()
+        try:
+            return optics.read_table(self.optics)
+        except optics.OpticsFileError as exc:
+            raise ParameterError(f"optics={self.optics!r} is invalid: {exc}") from None
+
     # ---- derived quantities (paper Sec. III) -------------------------------------------------
     @property
     def slice_length(self) -> float:
@@ -344,6 +421,14 @@ class SailParameters:
         if self.model == "rigid" or not self.bending:
             return 0.0
         return self.youngs_modulus * self.second_moment_of_area / self.slice_length
+
+    @property
+    def rest_turn(self) -> float:
+        """δ = θ_{k+1} − θ_k of the unstressed sail: −2 asin(l/(2R_c)) when the springs are at rest on the billowed
+        arc (billow_rest), else 0 (flat); the torsion springs act on θ_{k+1} − θ_k − δ."""
+        if not self.billow_rest:
+            return 0.0
+        return -2.0 * math.asin(self.slice_length / (2.0 * float(self.billow_radius)))
 
     @property
     def axial_stiffness(self) -> float:
@@ -401,8 +486,20 @@ class SailParameters:
     @property
     def nominal_acceleration(self) -> float:
         """g₀ = (2R + α) Ī / (c ρ h): the flat sail's acceleration (Eq. 4, first order, for R = 1,
-        α = 0 and a uniform beam: 2 I₀ / (c ρ h))."""
-        momentum = 2.0 * self.reflectivity + self.absorptivity
+        α = 0 and a uniform beam: 2 I₀ / (c ρ h)); with an optical table, c_n(0) Ī / (c ρ h); with a payload
+        of mass m_p, times M_sail/(M_sail + m_p) (the whole craft accelerates)."""
+        if self.optics is None:
+            momentum = 2.0 * self.reflectivity + self.absorptivity
+        else:
+            momentum = self.optical_table().normal_at_zero
+        if self.payload_mass > 0:  # the whole craft accelerates: c_n(0) Ī L W / (c (M_sail + m_p))
+            sail = self.density * self.thickness * self.length * self.width
+            return (
+                momentum
+                * self.mean_intensity
+                / (SPEED_OF_LIGHT * self.density * self.thickness)
+                * (sail / (sail + self.payload_mass))
+            )
         return momentum * self.mean_intensity / (SPEED_OF_LIGHT * self.density * self.thickness)
 
     @property

@@ -232,7 +232,24 @@ def initial_state(p: SailParameters, profile=None) -> ChainState:
     half = 0.5 * p.slice_length
     x = pts[:-1, 0] + half * np.cos(theta)
     y = pts[:-1, 1] + half * np.sin(theta)
+    if p.initial_tilt != 0.0:
+        x, y, theta = _tilted(p, x, y, theta)
     return ChainState(x=x, y=y, theta=theta, z=initial_spring_extension(p))
+
+
+def _tilted(p: SailParameters, x, y, theta):
+    """The shape turned by p.initial_tilt (counter-clockwise) about the craft's centre of mass, the payload
+    (model/payload.py) included: a rigid tilt that leaves the centre of mass where it was."""
+    from lightsail_mbs.model import payload
+
+    m, mp = p.slice_mass, p.payload_mass
+    gx, gy = m * x.sum(), m * y.sum()
+    if mp > 0:
+        px, py = payload.position(p.replace(initial_tilt=0.0), x, y, theta)
+        gx, gy = gx + mp * px, gy + mp * py
+    gx, gy = gx / (m * p.n + mp), gy / (m * p.n + mp)
+    c, s = np.cos(p.initial_tilt), np.sin(p.initial_tilt)
+    return gx + c * (x - gx) - s * (y - gy), gy + s * (x - gx) + c * (y - gy), theta + p.initial_tilt
 
 
 MIN_SLICES_PER_HALF_WAVE = 4  # fewer slices per half wavelength do not draw the defect's shape

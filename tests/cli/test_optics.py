@@ -123,3 +123,47 @@ def test_theta_range_and_step_reach_the_table(tmp_path):
     table = optics.OpticalTable.load(out)
     assert table.theta_range == pytest.approx((-math.radians(30), math.radians(30)))
     assert np.max(np.diff(table.theta)) <= math.radians(3) + 1e-15
+
+
+def test_simulate_takes_a_table_and_refuses_a_bad_one(tmp_path, capsys):
+    """simulate --optics: the mirror table's run is the Eq. (11) run's, a grating's is not, and a missing or
+    foreign file is one line naming the option before any solving."""
+    from lightsail_mbs import Result
+
+    out = tmp_path / "big.npz"
+    grating = ["optics", "grating", "--design", "bigrating", "--harmonics", "6", "--step", "5", "--tolerance", "0"]
+    assert main([*grating, "--grade", "2", "--out", str(out)]) == 0
+    base = ["simulate", "--solver", "reduced", "--n", "8", "--t-final", "0.02", "--quiet"]
+    runs = {}
+    for name, extra in {"eq11": [], "mirror": ["--optics", "mirror"], "grating": ["--optics", str(out)]}.items():
+        assert main([*base, *extra, "--out", str(tmp_path / name)]) == 0
+        runs[name] = Result.load(tmp_path / f"{name}.npz")
+    assert runs["grating"].params.optics == str(out)
+    assert np.array_equal(runs["eq11"].theta, runs["mirror"].theta)
+    assert not np.allclose(runs["eq11"].x, runs["grating"].x, rtol=0, atol=1e-6)  # c_t(0) ≠ 0 drives it sideways
+    capsys.readouterr()
+    (tmp_path / "junk.npz").write_text("junk")
+    for bad in (tmp_path / "missing.npz", tmp_path / "junk.npz"):
+        assert main([*base, "--optics", str(bad)]) == 2
+        err = capsys.readouterr().err.strip()
+        assert err.startswith("lightsail-mbs: error: optics=") and "\n" not in err
+
+
+def test_payload_and_curved_rest_options_make_the_case():
+    from lightsail_mbs import SailParameters
+    from lightsail_mbs.cli import build_parser
+    from lightsail_mbs.cli.options import params_from_args
+
+    args = ["simulate", "--n", "9", "--billow-radius", "2", "--billow-rest", "--payload-mass", "1e-3"]
+    args += ["--payload-stem", "6", "--payload-inertia", "1e-6", "--optics", "mirror"]
+    p = params_from_args(build_parser().parse_args(args))
+    assert p == SailParameters(
+        n=9,
+        billow_radius=2.0,
+        billow_rest=True,
+        payload_mass=1e-3,
+        payload_stem=6.0,
+        payload_inertia=1e-6,
+        optics="mirror",
+    )
+    assert main(["simulate", "--payload-stem", "6", "--t-final", "0.01"]) == 2  # a stem without a payload

@@ -347,3 +347,116 @@ def test_grating_geometry_is_validated():
     g = rcwa.GRATINGS["bigrating"]
     assert rcwa.Grating.from_dict(g.to_dict()) == g and g.key() == rcwa.Grating.from_dict(g.to_dict()).key()
     assert g.mirrored().mirrored().key() == g.key() != g.mirrored().key()
+
+
+# ---- the table as both solvers' slice load -------------------------------------------------------------
+def coarse_grating_file(tmp_path, polarization="TE"):
+    """The bigrating's table at FAST harmonics on 7.5° nodes, written to a file (a second or two of RCWA)."""
+    g = rcwa.GRATINGS["bigrating"]
+    table = optics.grating_table(
+        g, polarization, harmonics=FAST, step=math.radians(7.5), cache_dir=tmp_path, tolerance=0.0, grade=0
+    )
+    return str(table.save(tmp_path / "bigrating.npz"))
+
+
+def test_case_reads_and_validates_its_table(tmp_path):
+    path = coarse_grating_file(tmp_path)
+    p = SailParameters(optics=path, optics_layout="mirrored-halves")
+    table = p.optical_table()
+    assert table.kind == "grating" and p.optical_table() is table  # read once
+    assert p.nominal_acceleration == pytest.approx(table.nominal_acceleration(p), rel=1e-15)
+    assert p.nominal_acceleration < SailParameters().nominal_acceleration  # c_n(0) ≈ 1.3 < 2
+    assert SailParameters.from_dict(p.to_dict()) == p
+    assert "optics" not in SailParameters().to_dict()  # records of cases without a table are unchanged
+    assert list(optics.slice_flags(p.replace(n=5))) == [0, 0, 0, 1, 1]
+    (tmp_path / "junk.npz").write_bytes(b"not a table")
+    for bad, name in [
+        (dict(optics=str(tmp_path / "missing.npz")), "optics="),
+        (dict(optics=str(tmp_path / "junk.npz")), "junk.npz"),
+        (dict(optics=path, reflectivity=0.9), "reflectivity="),
+        (dict(optics=path, optics_layout="sideways"), "optics_layout="),
+        (dict(optics_layout="mirrored-halves"), "optics_layout="),
+        (dict(optics=""), "optics="),
+    ]:
+        with pytest.raises(ParameterError, match=name) as info:
+            SailParameters(**bad)
+        assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("model", ["torsion", "tnt"])
+def test_mirror_table_load_is_eq11_to_the_bit_in_both_solvers(model):
+    """The built-in mirror through the table path gives the Eq. (11) path's loads bit for bit (uniform beam)."""
+    from lightsail_mbs.solvers.exudyn.tree import ChainLayout, generalized_force
+    from lightsail_mbs.solvers.reduced.dynamics import ChainDynamics
+    from lightsail_mbs.solvers.reduced.kinematics import ChainModel
+
+    p = SailParameters(model=model, n=13, tension=1e-4 if model == "tnt" else 0.0, youngs_modulus=1e11)
+    table = p.replace(optics="mirror")
+    layout = ChainLayout.of(p)
+    reduced, reduced_table = (ChainDynamics(ChainModel.from_params(c)) for c in (p, table))
+    for _ in range(5):
+        q = rng.normal(0, 0.3, layout.size)
+        assert np.array_equal(generalized_force(p, layout)(q), generalized_force(table, layout)(q))
+        y = rng.normal(0, 0.3, 2 * reduced.model.dof)
+        assert np.array_equal(reduced.rhs(0.0, y), reduced_table.rhs(0.0, y))
+
+
+@pytest.mark.parametrize("solver", ["reduced", "exudyn"])
+def test_mirror_table_run_reproduces_eq11(solver):
+    from lightsail_mbs import RunSettings, solve
+
+    p = SailParameters(n=12, youngs_modulus=4.5e12, defect_amplitude=1e-4)
+    settings = RunSettings(t_final=0.05, stop_at_failure=False)
+    a, b = solve(p, solver, settings), solve(p.replace(optics="mirror"), solver, settings)
+    assert b.params.optics == "mirror" and a.error is None and b.error is None
+    for name in ("x", "y", "theta"):
+        u, v = getattr(a, name), getattr(b, name)
+        assert np.max(np.abs(u - v)) <= 1e-12 * np.max(np.abs(u))
+
+
+def test_both_solvers_agree_on_a_grating_table_run(tmp_path):
+    """Bigrating halves turned over (each half pushes outward): the two solvers' angles agree while the
+    load is a grating's, not a mirror's (its c_n has a first-order slope term)."""
+    from lightsail_mbs import RunSettings, solve
+
+    p = SailParameters(
+        n=10, youngs_modulus=4.5e13, optics=coarse_grating_file(tmp_path), optics_layout="mirrored-halves"
+    )
+    settings = RunSettings(t_final=0.01, output_interval=1e-3, stop_at_failure=False)
+    exudyn = solve(p, "exudyn", settings, step_size=2e-6)
+    reduced = solve(p, "reduced", settings, rtol=1e-10)
+    mirror = solve(p.replace(optics="mirror", optics_layout="uniform"), "reduced", settings, rtol=1e-10)
+    scale = np.max(np.abs(reduced.theta - reduced.theta[0]))
+    assert np.max(np.abs(mirror.theta - reduced.theta)) > 0.1 * scale  # the grating moves the sail differently
+    assert np.max(np.abs(exudyn.theta - reduced.theta)) < 1e-6 * scale  # measured 2.8e-9
+    np.testing.assert_allclose(exudyn.x, reduced.x, rtol=0, atol=1e-9)
+
+
+def test_net_force_form_cancels_the_frame_force_analytically(tmp_path):
+    """packed_net_force: for the mirror, the analytic net force of Eq. (11) (the formula written out here) to the
+    bit; for a grating table, radiation minus c_n(0) Ī A/c to round-off of f₀; exactly zero on a flat slice in
+    the mean intensity, where the plain sum leaves round-off."""
+    p = SailParameters(intensity=3e9, beam_waist=0.8)
+    area_c = p.slice_length * p.width / optics.SPEED_OF_LIGHT
+    mirror = optics.mirror().packed()
+    for theta in rng.uniform(-1.2, 1.2, 50):
+        c, s, local = math.cos(theta), math.sin(theta), rng.uniform(0.2, 1.0) * p.intensity
+        push = local * area_c
+        half = math.sin(0.5 * theta)
+        omc = 2.0 * half * half
+        expected_x = -push * 2.0 * c * c * s
+        expected_y = -push * (2.0 * omc * (1.0 + c + c * c) + 0.0 * omc) + 2.0 * area_c * (local - p.mean_intensity)
+        got = optics.packed_net_force(mirror, local, p.mean_intensity, area_c, c, s, theta, False, 2.0)
+        assert got == (expected_x, expected_y)
+    table = optics.read_table(coarse_grating_file(tmp_path))
+    packed, q0 = table.packed(), table.normal_at_zero
+    f0 = 2 * p.intensity * area_c
+    for theta in rng.uniform(-0.5, 0.5, 50):
+        for mirrored in (False, True):
+            c, s = math.cos(theta), math.sin(theta)
+            local = rng.uniform(0.2, 1.0) * p.intensity
+            fx, fy = optics.packed_force(packed, local * area_c, theta, mirrored)
+            nx, ny = optics.packed_net_force(packed, local, p.mean_intensity, area_c, c, s, theta, mirrored, q0)
+            assert abs(nx - fx) < 1e-15 * f0 and abs(ny - (fy - q0 * p.mean_intensity * area_c)) < 1e-15 * f0
+    mean = p.mean_intensity
+    assert optics.packed_net_force(packed, mean, mean, area_c, 1.0, 0.0, 0.0, False, q0)[1] == 0.0

@@ -37,8 +37,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lightsail_mbs.model import loads, shapes
-from lightsail_mbs.model.parameters import SailParameters
+from lightsail_mbs.model import loads, optics, payload, shapes
+from lightsail_mbs.model.parameters import SPEED_OF_LIGHT, SailParameters
 
 
 @dataclass(frozen=True)
@@ -122,7 +122,8 @@ def generalized_force(p: SailParameters, layout: ChainLayout):
     The frame force −m g₀ is not included: the tree applies it as gravity. Written for speed
     (≈ 20 numpy calls on length-n arrays): it runs at every Newton iterate. For the paper's
     beam (uniform, R = 1, α = 0) the load is Eq. (11) inline, f = f₀ cos²θ n, the same
-    expression as loads.radiation_forces; otherwise loads.radiation_forces is called.
+    expression as loads.radiation_forces; otherwise loads.radiation_forces is called; with an optical
+    table (case.optics) its law, optics.normal_tangential_into.
     """
     size, idx, zidx = layout.size, layout.angle_index, layout.stretch_index
     l = layout.slice_length
@@ -131,6 +132,10 @@ def generalized_force(p: SailParameters, layout: ChainLayout):
     i_f0 = 1j * p.flat_force
     ideal = p.uniform_beam and p.reflectivity == 1.0 and p.absorptivity == 0.0
     extensible = bool(zidx.size)
+    if p.optics is not None:  # an optical table: components along n and t from model/optics.py, compiled
+        packed, flags = p.optical_table().packed(), optics.slice_flags(p)
+        push = np.full(p.n, 0.5 * p.flat_force)  # I l W / c of the uniform beam
+        normal, tangential = np.empty(p.n), np.empty(p.n)
     acc = np.add.accumulate
     Q = np.zeros(size)
 
@@ -141,7 +146,13 @@ def generalized_force(p: SailParameters, layout: ChainLayout):
         e = np.exp(1j * theta)
         c = e.real
         seg = layout.segments(q) if extensible else l
-        if ideal:
+        if p.optics is not None:
+            if not p.uniform_beam:
+                x = q[0] + _exclusive_cumsum(seg * c) + half * c
+                push[:] = loads.intensity(p, x) * (p.slice_length * p.width / SPEED_OF_LIGHT)
+            optics.normal_tangential_into(packed, flags, push, c, e.imag, theta, normal, tangential)
+            f = (tangential + 1j * normal) * e
+        elif ideal:
             f = i_f0 * (c * c) * e  # Eq. (11): f₀ cos²θ n
         else:
             x = q[0] + _exclusive_cumsum(seg * c) + half * c
@@ -167,7 +178,9 @@ def tree_arguments(p: SailParameters, layout: ChainLayout, exu) -> dict:
     """Keyword arguments of ObjectKinematicTree (without node and user function): massless
     PrismaticX/PrismaticY base links, one RevoluteZ link per slice (mass m at l/2, inertia J;
     joint offset l from the previous slice's hinge, or 0 after a slide), massless PrismaticX
-    slides at l along the previous slice; P/D control = springs/dampers with offset 0."""
+    slides at l along the previous slice; P/D control = springs/dampers with offset 0. A payload makes its
+    slice's link the composite body of model/payload.py (mass M, centre of mass ρ_c from the slice centre,
+    inertia J_c); the tree's gravity −g₀ then carries the payload's frame force too."""
     l, m, J = p.slice_length, p.slice_mass, p.slice_inertia
     size = layout.size
     types = [exu.JointType.PrismaticX, exu.JointType.PrismaticY] + [None] * (size - 2)
@@ -177,6 +190,7 @@ def tree_arguments(p: SailParameters, layout: ChainLayout, exu) -> dict:
     inertias = [np.zeros((3, 3)) for _ in range(size)]
     stiffness = np.zeros(size)
     damping = np.zeros(size)
+    rest = np.zeros(size)  # joint P control's set point: the rest angle of a sail made curved
     for k, i in enumerate(layout.angle_index):
         types[i] = exu.JointType.RevoluteZ
         masses[i] = m
@@ -185,8 +199,16 @@ def tree_arguments(p: SailParameters, layout: ChainLayout, exu) -> dict:
         if k > 0:
             stiffness[i] = p.torsional_stiffness
             damping[i] = p.total_torsional_damping
+            rest[i] = p.rest_turn
             if not layout.stretch_index.size:
                 offsets[i] = [l, 0.0, 0.0]
+    attached = payload.attachment(p)
+    if attached is not None:  # slice j and the payload as one composite link (model/payload.py)
+        i = layout.angle_index[attached.slice_index]
+        centre = np.array([0.5 * l + attached.centre_along, attached.centre_across])
+        masses[i] = attached.mass
+        coms[i] = [centre[0], centre[1], 0.0]
+        inertias[i] = np.diag([attached.inertia] * 3)
     for i in layout.stretch_index:
         types[i] = exu.JointType.PrismaticX
         offsets[i] = [l, 0.0, 0.0]
@@ -203,6 +225,6 @@ def tree_arguments(p: SailParameters, layout: ChainLayout, exu) -> dict:
         linkMasses=masses,
         jointPControlVector=stiffness,
         jointDControlVector=damping,
-        jointPositionOffsetVector=np.zeros(size),
+        jointPositionOffsetVector=rest,
         jointVelocityOffsetVector=np.zeros(size),
     )

@@ -51,6 +51,8 @@ import math
 import numpy as np
 from numba import njit
 
+from lightsail_mbs.model import optics, payload
+from lightsail_mbs.model.optics import packed_slice_force
 from lightsail_mbs.model.parameters import SPEED_OF_LIGHT
 from lightsail_mbs.solvers.reduced.kinematics import ChainModel
 
@@ -74,8 +76,16 @@ from lightsail_mbs.solvers.reduced.kinematics import ChainModel
     FRAME,
     EXTENSIBLE,
     UNIFORM,
-) = range(18)
-N_CONSTANTS = 18
+    PAY_SLICE,
+    PAY_MASS,
+    PAY_INERTIA,
+    PAY_CE,
+    PAY_CP,
+    PAY_RE,
+    PAY_RP,
+    REST_TURN,
+) = range(26)
+N_CONSTANTS = 26
 
 # rows of the workspace of one right-hand-side evaluation
 (COS, SIN, ARM, ABSCISSA, AX, AY, AL, I_XX, I_XY, I_YY, U_XX, U_XY, U_YY, R_X, R_Y) = range(15)
@@ -94,6 +104,15 @@ def constants(model: ChainModel) -> np.ndarray:
     k[CENTER], k[REFL], k[ABSORB] = p.beam_center, p.reflectivity, p.absorptivity
     k[FRAME] = -p.slice_mass * p.nominal_acceleration
     k[EXTENSIBLE], k[UNIFORM] = float(model.extensible), float(p.uniform_beam)
+    k[REST_TURN] = p.rest_turn  # the springs' rest angle between neighbours (a sail made curved)
+    k[PAY_SLICE] = -1.0  # a payload (model/payload.py): its composite slice j, M, J_c, ρ_c, ρ in slice j's axes
+    attached = payload.attachment(p)
+    if attached is not None:
+        k[PAY_SLICE], k[PAY_MASS], k[PAY_INERTIA] = attached.slice_index, attached.mass, attached.inertia
+        k[PAY_CE], k[PAY_CP] = attached.centre_along, attached.centre_across
+        k[PAY_RE], k[PAY_RP] = attached.along, attached.across
+    if p.optics is not None:  # an optical table: the slices' flags and the packed table follow the constants
+        k = np.concatenate([k, optics.solver_block(p)])
     return k
 
 
@@ -110,16 +129,23 @@ def slice_forces_into(theta, cth, sth, x, k, fx, fy):
 
     theta, cth, sth: slice angles θ_i and their cosines and sines; x: abscissae of the centres (read
     only by the Gaussian beam). Radiation f_i = (I(x_i) l W / c) cos θ_i [2R cos θ_i n_i + α ŷ]
-    (Eq. 11 for R = 1, α = 0; I = I₀ or I₀ exp(−2(x − x_c)²/w²)), plus the frame force −m g₀ ŷ.
+    (Eq. 11 for R = 1, α = 0; I = I₀ or I₀ exp(−2(x − x_c)²/w²)), plus the frame force −m g₀ ŷ; with an
+    optical table after the constants (case.optics), its law instead (optics.packed_slice_force).
     """
     inten0, area_c, refl, absorb, frame = k[INTENSITY], k[AREA_C], k[REFL], k[ABSORB], k[FRAME]
     uniform = k[UNIFORM] != 0.0
-    for i in range(theta.size):
+    n = theta.size
+    table = k[N_CONSTANTS + n :]  # an optical table (model/optics.py), after the n slices' mirrored flags
+    for i in range(n):
         c, s = cth[i], sth[i]
         inten = inten0
         if not uniform:
             dx = (x[i] - k[CENTER]) / k[WAIST]
             inten *= math.exp(-2.0 * dx * dx)
+        if table.size:
+            fx[i], fy[i] = packed_slice_force(table, inten * area_c, c, s, theta[i], k[N_CONSTANTS + i] != 0.0)
+            fy[i] += frame
+            continue
         scale = inten * area_c * c
         normal = 2.0 * refl * c * scale
         fx[i] = -normal * s
@@ -153,14 +179,15 @@ def _free_accelerations(q, qd, k, work, extensible):
         ay[n - 1] += tension * sth[n - 1]
     k_t, c_t, k_s, c_s = k[K_T], k[C_T], k[K_S], k[C_S]
     springs = k_t != 0.0 or c_t != 0.0
+    rest = k[REST_TURN]
     for i in range(n):
         c, s = cth[i], sth[i]
         fx, fy, tau = ax[i], ay[i], 0.0
         if springs:
             if i > 0:
-                tau -= k_t * (q[2 + i] - q[1 + i]) + c_t * (qd[2 + i] - qd[1 + i])
+                tau -= k_t * (q[2 + i] - q[1 + i] - rest) + c_t * (qd[2 + i] - qd[1 + i])
             if i < n - 1:
-                tau += k_t * (q[3 + i] - q[2 + i]) + c_t * (qd[3 + i] - qd[2 + i])
+                tau += k_t * (q[3 + i] - q[2 + i] - rest) + c_t * (qd[3 + i] - qd[2 + i])
         if extensible:  # axial spring forces s_j e_j: +s on slice j+1, −s on slice j
             if i > 0:
                 sp = -k_s * q[n + 1 + i] - c_s * qd[n + 1 + i]
@@ -174,6 +201,106 @@ def _free_accelerations(q, qd, k, work, extensible):
         ax[i] = fx * inv_m
         ay[i] = fy * inv_m
         al[i] = tau * inv_j
+        if i == k[PAY_SLICE]:
+            _payload_free_acceleration(k, c, s, fx, fy, tau, ax, ay, al, i)
+
+
+@njit(cache=True)
+def _payload_free_acceleration(k, c, s, fx, fy, tau, ax, ay, al, j):
+    """A⁰ of the composite slice j (slice + payload, model/payload.py) at its centre of mass: the applied
+    force F_j at the slice centre, the payload's frame force F_p = −m_p g₀ ŷ at the payload, the spring
+    torques τ; moments about the composite centre of mass ρ_c (offsets ρ_c, ρ in slice j's axes)."""
+    mp = k[PAY_MASS] - k[MASS]
+    fpy = k[FRAME] * mp / k[MASS]  # −m_p g₀ (k[FRAME] = −m g₀)
+    cx = k[PAY_CE] * c - k[PAY_CP] * s  # ρ_c in inertial axes
+    cy = k[PAY_CE] * s + k[PAY_CP] * c
+    rx = k[PAY_RE] * c - k[PAY_RP] * s - cx  # payload from the composite centre of mass (x; F_p is along y)
+    moment = tau + (-cx * fy + cy * fx) + rx * fpy
+    ax[j] = fx / k[PAY_MASS]
+    ay[j] = (fy + fpy) / k[PAY_MASS]
+    al[j] = moment / k[PAY_INERTIA]
+
+
+@njit(cache=True)
+def _arms(k, cth, sth, i):
+    """Arms of slice i from its reference point (centre, or the composite centre of mass) to its left and right
+    joints, (L_x, L_y, R_x, R_y), and its inverse mass and inertia."""
+    b = k[HALF]
+    c, s = cth[i], sth[i]
+    lx, ly, rx, ry = -b * c, -b * s, b * c, b * s
+    if i == k[PAY_SLICE]:
+        cx = k[PAY_CE] * c - k[PAY_CP] * s
+        cy = k[PAY_CE] * s + k[PAY_CP] * c
+        return lx - cx, ly - cy, rx - cx, ry - cy, 1.0 / k[PAY_MASS], 1.0 / k[PAY_INERTIA]
+    return lx, ly, rx, ry, 1.0 / k[MASS], 1.0 / k[INERTIA]
+
+
+@njit(cache=True)
+def _inextensible_payload(qd, k, work, qdd):
+    """Sweeps 2–3 of a chain with rigid joints and a composite (payload) slice: slice i's arms L_i, R_i from
+    its reference point to its joints are general vectors there, and with v⊥ = (−v_y, v_x)
+
+        K_ii = (1/m_i + 1/m_{i+1}) I + R⊥_i R⊥_iᵀ/J_i + L⊥_{i+1} L⊥_{i+1}ᵀ/J_{i+1},
+        K_i,i+1 = −(1/m_{i+1}) I − L⊥_{i+1} R⊥_{i+1}ᵀ/J_{i+1} = K_i+1,iᵀ,
+        −g_i(0) = ω²_{i+1} L_{i+1} − ω²_i R_i − (A⁰_{i+1} + α⁰_{i+1} L⊥_{i+1} − A⁰_i − α⁰_i R⊥_i);
+
+    K is still symmetric and block tridiagonal (the off-diagonal blocks are not symmetric): block LDLᵀ."""
+    n = int(k[N])
+    cth, sth, ax, ay, al = work[COS], work[SIN], work[AX], work[AY], work[AL]
+    joints = n - 1
+    inv = np.empty((3, joints))  # D'⁻¹ (xx, xy, yy)
+    up = np.empty((4, joints))  # U = K_i,i+1 (xx, xy, yx, yy)
+    rr = np.empty((2, joints))
+    for i in range(joints):
+        _, _, rix, riy, im_i, ij_i = _arms(k, cth, sth, i)
+        ljx, ljy, rjx, rjy, im_j, ij_j = _arms(k, cth, sth, i + 1)
+        oi, oj = qd[2 + i], qd[3 + i]
+        pr_x, pr_y = -riy, rix  # R⊥_i
+        pl_x, pl_y = -ljy, ljx  # L⊥_{i+1}
+        r_x = oj * oj * ljx - oi * oi * rix - (ax[i + 1] + al[i + 1] * pl_x - ax[i] - al[i] * pr_x)
+        r_y = oj * oj * ljy - oi * oi * riy - (ay[i + 1] + al[i + 1] * pl_y - ay[i] - al[i] * pr_y)
+        d_xx = im_i + im_j + ij_i * pr_x * pr_x + ij_j * pl_x * pl_x
+        d_xy = ij_i * pr_x * pr_y + ij_j * pl_x * pl_y
+        d_yy = im_i + im_j + ij_i * pr_y * pr_y + ij_j * pl_y * pl_y
+        if i > 0:  # D −= Uᵀ D'⁻¹ U, r −= Uᵀ D'⁻¹ r' with U, D'⁻¹, r' of joint i − 1
+            uxx, uxy, uyx, uyy = up[0, i - 1], up[1, i - 1], up[2, i - 1], up[3, i - 1]
+            axx, axy, ayy = inv[0, i - 1], inv[1, i - 1], inv[2, i - 1]
+            # W = Uᵀ D'⁻¹
+            w11 = uxx * axx + uyx * axy
+            w12 = uxx * axy + uyx * ayy
+            w21 = uxy * axx + uyy * axy
+            w22 = uxy * axy + uyy * ayy
+            d_xx -= w11 * uxx + w12 * uyx
+            d_xy -= w11 * uxy + w12 * uyy
+            d_yy -= w21 * uxy + w22 * uyy
+            r_x -= w11 * rr[0, i - 1] + w12 * rr[1, i - 1]
+            r_y -= w21 * rr[0, i - 1] + w22 * rr[1, i - 1]
+        inv_det = 1.0 / (d_xx * d_yy - d_xy * d_xy)
+        inv[0, i], inv[1, i], inv[2, i] = d_yy * inv_det, -d_xy * inv_det, d_xx * inv_det
+        rr[0, i], rr[1, i] = r_x, r_y
+        if i < joints - 1:
+            qr_x, qr_y = -rjy, rjx  # R⊥_{i+1}
+            up[0, i] = -im_j - ij_j * pl_x * qr_x
+            up[1, i] = -ij_j * pl_x * qr_y
+            up[2, i] = -ij_j * pl_y * qr_x
+            up[3, i] = -im_j - ij_j * pl_y * qr_y
+    lx_next, ly_next = 0.0, 0.0
+    for i in range(joints - 1, -1, -1):  # Λ_i = D'⁻¹ (r' − U Λ_{i+1}), then slice i+1's angular acceleration
+        r_x, r_y = rr[0, i], rr[1, i]
+        if i < joints - 1:
+            r_x -= up[0, i] * lx_next + up[1, i] * ly_next
+            r_y -= up[2, i] * lx_next + up[3, i] * ly_next
+        lx = inv[0, i] * r_x + inv[1, i] * r_y
+        ly = inv[1, i] * r_x + inv[2, i] * r_y
+        work[R_X, i], work[R_Y, i] = lx, ly
+        ljx, ljy, rjx, rjy, _, ij_j = _arms(k, cth, sth, i + 1)
+        # slice i+1: +Λ_i at its left joint, −Λ_{i+1} at its right joint
+        qdd[3 + i] = al[i + 1] + ij_j * ((-ljy * lx + ljx * ly) - (-rjy * lx_next + rjx * ly_next))
+        lx_next, ly_next = lx, ly
+    _, _, r0x, r0y, im0, ij0 = _arms(k, cth, sth, 0)
+    qdd[0] = ax[0] - lx_next * im0
+    qdd[1] = ay[0] - ly_next * im0
+    qdd[2] = al[0] - ij0 * (-r0y * lx_next + r0x * ly_next)
 
 
 @njit(cache=True)
@@ -318,6 +445,8 @@ def rhs_into(y, k, work, ydot):
     _free_accelerations(q, qd, k, work, extensible)
     if extensible:
         _extensible(qd, k, work, ydot[dof:])
+    elif k[PAY_SLICE] >= 0.0:
+        _inextensible_payload(qd, k, work, ydot[dof:])
     else:
         _inextensible(qd, k, work, ydot[dof:])
 

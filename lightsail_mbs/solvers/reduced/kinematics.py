@@ -154,7 +154,7 @@ def torsion_torques(model: ChainModel, theta: np.ndarray, omega: np.ndarray) -> 
     tau = np.zeros_like(theta)
     if not (model.torsional_stiffness or model.torsional_damping):
         return tau
-    moment = model.torsional_stiffness * (theta[1:] - theta[:-1])
+    moment = model.torsional_stiffness * (theta[1:] - theta[:-1] - model.params.rest_turn)
     if model.torsional_damping:
         moment += model.torsional_damping * (omega[1:] - omega[:-1])
     tau[:-1] = moment
