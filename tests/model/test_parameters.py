@@ -206,6 +206,10 @@ def test_sheet_fields_round_trip_and_defaults():
         (dict(tension=1.0), "tension", "edge_tension"),
         (dict(torsional_damping=1.0), "torsional_damping", "stiffness_damping"),
         (dict(beam_center_y=math.nan), "beam_center_y", "finite"),
+        (dict(optics="mirror"), "optics", "None for a sheet"),
+        (dict(payload_mass=1e-3), "payload_mass", "0 for a sheet"),
+        (dict(initial_tilt=0.1), "initial_tilt", "0 for a sheet"),
+        (dict(billow_radius=2.0), "billow_radius", "inf (flat) for a sheet"),
     ],
 )
 def test_bad_sheet_values_name_the_parameter(changes, name, words):
