@@ -42,9 +42,9 @@ from __future__ import annotations
 import math
 import time as _time
 
-import numba as nb
 import numpy as np
 import scipy.sparse as sp
+from numba import njit
 
 from lightsail_mbs import analysis
 from lightsail_mbs.model import sheet
@@ -63,7 +63,7 @@ DEFAULT_MAX_STEP = 0.01
 OPTIONS = ("rtol", "max_step", "perturbation")
 
 
-@nb.njit(cache=True)
+@njit(cache=True)
 def _rotation_minus_identity(q0, q1, q2, q3, R):
     """R − I of the rotation of the (not necessarily unit) quaternion q, from small products only."""
     n = 1.0 / (q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
@@ -78,7 +78,7 @@ def _rotation_minus_identity(q0, q1, q2, q3, R):
     R[2, 2] = -2.0 * (q1 * q1 + q2 * q2) * n
 
 
-@nb.njit(cache=True)
+@njit(cache=True)
 def rhs_kernel(y, flat, mass, inertia, ta, tb, la, lb, gap, K, Dm, off, fol_tile, fol_point, fol_force, load, out):
     """dy/dt of the sheet (module docstring). load = (Ī, A/c, I₀, x_c, y_c, w, R, α, p·A)."""
     N = flat.shape[0]
@@ -227,7 +227,7 @@ def rhs_kernel(y, flat, mass, inertia, ta, tb, la, lb, gap, K, Dm, off, fol_tile
         out[b + 12] = (tb2 - (w0 * J1 * w1 - w1 * J0 * w0)) / J2
 
 
-@nb.njit(cache=True)
+@njit(cache=True)
 def _fill_jacobian(data, indptr, indices, f0, fpert, group_cols, group_eps):
     """Scatter one coloured difference quotient into the CSC data: column c of the group owns the rows
     of its pattern."""
@@ -238,7 +238,7 @@ def _fill_jacobian(data, indptr, indices, f0, fpert, group_cols, group_eps):
             data[p] = (fpert[indices[p]] - f0[indices[p]]) / e
 
 
-@nb.njit(cache=True)
+@njit(cache=True)
 def _unpack_kernel(Y, angles, omega):
     R = np.empty((3, 3))
     for t in range(Y.shape[0]):
