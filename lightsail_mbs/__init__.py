@@ -32,12 +32,14 @@ if TYPE_CHECKING:
 
 # the package's files that hold numba kernels compiled with cache=True (tests/test_package.py checks the list)
 KERNEL_SOURCES = (
+    "model/loads.py",
     "model/optics.py",
     "solvers/reduced/dop853.py",
     "solvers/reduced/dynamics.py",
     "solvers/reduced/newton.py",
     "solvers/reduced/radau.py",
     "solvers/reduced/sampling.py",
+    "solvers/reduced/sheet.py",
 )
 
 

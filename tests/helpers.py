@@ -30,6 +30,20 @@ def growing_sine(model="torsion", n=20, steps=41, rate=1.0, t_final=1.0, **chang
     )
 
 
+def synthetic_sheet(steps=5, t_final=1.0) -> Result:
+    """A sheet run on w = a₀ e^t sin(3πx) sin(πy) (tile centres; angles and rates zero), as Result.from_tiles
+    builds it: the amplitude ratio at time t is e^t."""
+    from lightsail_mbs.model import sheet
+
+    p = SailParameters(model="sheet", n=8, ny=6, defect_mode_y=0.5)
+    flat = sheet.flat_centres(p)
+    times = np.linspace(0, t_final, steps)
+    w = p.defect_amplitude * np.sin(3 * np.pi * flat[:, 0]) * np.sin(np.pi * flat[:, 1])
+    centres = np.stack([flat + np.outer([0, 0, 1], np.exp(t) * w).T for t in times])
+    zero = np.zeros_like(centres)
+    return Result.from_tiles(p, "synthetic", times, centres, zero, zero, zero, settings=RunSettings(t_final=t_final))
+
+
 def read_csv(path) -> list[dict]:
     with open(path, newline="") as handle:
         return list(csv.DictReader(handle))

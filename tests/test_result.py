@@ -12,8 +12,9 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from lightsail_mbs import Result, RunSettings, SailParameters
-from lightsail_mbs.result import ARRAYS, FORMAT_VERSION, RunFileError, code_version
+from lightsail_mbs.result import ARRAYS, FORMAT_VERSION, TILE_ARRAYS, RunFileError, code_version
 from tests import strategies as hs
+from tests.helpers import synthetic_sheet
 
 ONE_SECOND = RunSettings(t_final=1.0)
 
@@ -102,6 +103,28 @@ def test_loads_the_files_of_the_format_before_run_settings(tmp_path):
     assert back.failure_time == r.failure_time
 
 
+def test_sheet_result_amplitude_summary_and_roundtrip(tmp_path):
+    r = synthetic_sheet()
+    np.testing.assert_allclose(r.amplitude / r.amplitude[0], np.exp(r.time), rtol=1e-12)
+    assert r.is_sheet and r.x.shape == (5, 0) and r.tile_centres.shape == (5, 48, 3)
+    assert r.failure_time == pytest.approx(0.6931, abs=0.03)  # e^t = 2, interpolated on 0.25 s samples
+    s = r.summary()
+    assert s["ny"] == 6 and s["tiles"] == 48 and s["dissipated_energy"] is None
+    path = r.save(tmp_path / "sheet")
+    back = Result.load(path)
+    assert back.is_sheet and back.params == r.params
+    for name in ("tile_centres", "tile_angles", "tile_velocities", "tile_angular_velocities", "amplitude"):
+        np.testing.assert_array_equal(getattr(back, name), getattr(r, name))
+    np.testing.assert_array_equal(back.deflection(), r.deflection())
+
+
+def test_chain_runs_are_saved_without_tile_arrays(tmp_path, run):
+    path = run.save(tmp_path / "chain")
+    with np.load(path) as data:
+        assert not [k for k in data.files if k.startswith("tile_")]
+    assert not Result.load(path).is_sheet and "ny" not in run.summary()
+
+
 def test_save_load_keeps_every_field(tmp_path):
     """Velocities, info, error, warnings, provenance, wall time and settings come back, not just positions."""
     r = synthetic(model="tnt")
@@ -117,7 +140,7 @@ def test_save_load_keeps_every_field(tmp_path):
 def assert_same_run(back: Result, r: Result) -> None:
     """Bit for bit: every array (bytes, dtype, shape), the case, the settings and every summary entry."""
     assert back.params == r.params and back.solver == r.solver and back.settings == r.settings
-    for name in ARRAYS:
+    for name in ARRAYS + (TILE_ARRAYS if r.is_sheet else ()):
         a, b = getattr(r, name), getattr(back, name)
         assert b.dtype == a.dtype and b.shape == a.shape and b.tobytes() == a.tobytes(), name
     for name in ("error", "info", "warnings", "provenance"):
@@ -140,9 +163,14 @@ def test_any_saved_run_round_trips_bit_exactly_through_npz_and_json(examples, tm
     def round_trip(data):
         p = data.draw(hs.accepted_cases(), label="case")
         steps = data.draw(st.integers(1, 12), label="steps")
-        springs = p.n - 1 if p.extensible else 0
+        sheet = p.model == "sheet"
+        springs = p.n - 1 if p.extensible and not sheet else 0
         shapes = {"time": (steps,), "amplitude": (steps,), "z": (steps, springs), "z_rate": (steps, springs)}
-        arrays = {name: data.draw(hs.float_arrays(shapes.get(name, (steps, p.n))), label=name) for name in ARRAYS}
+        if sheet:  # slice arrays empty, the tile arrays (T, N, 3)
+            shapes.update({name: (steps, p.n * p.ny, 3) for name in TILE_ARRAYS})
+        names = ARRAYS + TILE_ARRAYS if sheet else ARRAYS
+        slices = (steps, 0) if sheet else (steps, p.n)
+        arrays = {name: data.draw(hs.float_arrays(shapes.get(name, slices)), label=name) for name in names}
         steps_in_time = data.draw(st.lists(st.floats(1e-9, 1e3), min_size=steps - 1, max_size=steps - 1))
         arrays["time"] = np.cumsum([0.0, *steps_in_time])  # a time axis: 0, strictly increasing
         r = Result(

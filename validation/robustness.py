@@ -422,6 +422,27 @@ def run_all(work: Path) -> None:
     ):
         cli_row(["simulate", *QUICK, option, value], work, "error", names=[name])
     cli_row(["simulate", *QUICK, "--model", "tnt", "--tension", "-1"], work, "error", names=["tension"])
+    # the sheet's options (checked before any tile is built)
+    sheet = ["simulate", "--model", "sheet", "--t-final", "0.05", "--solver", "reduced", "--quiet"]
+    for option, value, name in (
+        ("--nx", "1", "n"),
+        ("--ny", "0", "ny"),
+        ("--ny", "2.5", "--ny"),
+        ("--mode-y", "-1", "defect_mode_y"),
+        ("--membrane-modulus", "nan", "membrane_modulus"),
+        ("--edge-tension", "-1", "edge_tension"),
+        ("--beam-center-y", "inf", "beam_center_y"),
+    ):
+        cli_row([*sheet, option, value], work, "error", names=[name])
+    cli_row(["simulate", *QUICK, "--ny", "3"], work, "error", names=["ny", "model='sheet'"])
+
+    def sheet_saved(out, err):
+        r = Result.load(work / "sheet.npz")
+        ok = r.is_sheet and r.tile_centres.shape[1:] == (12, 3) and np.all(np.isfinite(r.tile_centres))
+        return ok, "a 4 × 3 sheet run saved with its tile arrays (T, 12, 3)"
+
+    cli_row([*sheet, "--nx", "4", "--ny", "3", "--out", "sheet.npz"], work, "result", check=sheet_saved)
+    cli_row(["render", "sheet.npz", "--out", "frames", "--compare", "good.npz"], work, "error", names=["--compare"])
     cli_row(["frobnicate"], work, "error", names=["frobnicate"])
 
     def warned(out, err):

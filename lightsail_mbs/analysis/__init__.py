@@ -6,7 +6,15 @@ The failure rule and the energy functions are also reachable from the package it
 """
 
 from lightsail_mbs.analysis.energy import dissipated_energy, dissipated_power, mechanical_energy
-from lightsail_mbs.analysis.failure import amplitude, fails_at_trough, failure_time, hinge_heights, line_offsets
+from lightsail_mbs.analysis.failure import (
+    amplitude,
+    fails_at_trough,
+    failure_time,
+    hinge_heights,
+    line_offsets,
+    plane_amplitude,
+    plane_offsets,
+)
 
 __all__ = [
     "amplitude",
@@ -17,4 +25,6 @@ __all__ = [
     "hinge_heights",
     "line_offsets",
     "mechanical_energy",
+    "plane_amplitude",
+    "plane_offsets",
 ]

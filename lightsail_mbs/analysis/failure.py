@@ -1,9 +1,16 @@
-"""Amplitude and failure of chain states and trajectories: the one failure rule of every solver.
+"""Amplitude and failure of chain and sheet states and trajectories: the one failure rule of every solver.
 
 Failure criterion: amplitude(t) is half the peak-to-peak spread of the slice
 centres' perpendicular offsets from their least-squares line, which removes rigid drift
 and rotation. The sail has failed when amplitude(t) ≥ ratio · amplitude(0) (the paper's
 "amplitude doubled" for ratio = 2).
+
+The sheet's rule is the same one dimension up (:func:`plane_amplitude`): half the peak-to-peak spread
+of the tile centres' signed offsets from their total-least-squares plane (through the centroid, normal
+along a principal axis of the centred point cloud). Of the three principal axes the one with the
+largest |z| component is the normal: for any sheet-like cloud that is the smallest-variance axis, and
+for a single row of tiles (ny = 1, no variance across the width, so the plane must contain ŷ) it makes
+the rule exactly the chain's line rule in the x–z plane.
 """
 
 from __future__ import annotations
@@ -63,3 +70,22 @@ def hinge_heights(result) -> np.ndarray:
     left = result.y - half * np.sin(result.theta)
     right = result.y[:, -1:] + half * np.sin(result.theta[:, -1:])
     return np.concatenate([left, right], axis=1)
+
+
+def plane_offsets(centres: np.ndarray) -> np.ndarray:
+    """Signed offsets of tile centres (..., N, 3) from their total-least-squares plane, (..., N) (m);
+    positive towards +z (the beam's push), so a trough has a negative offset (module docstring)."""
+    c = np.asarray(centres, float)
+    d = c - c.mean(axis=-2, keepdims=True)
+    _, axes = np.linalg.eigh(np.einsum("...ki,...kj->...ij", d, d))  # columns: principal axes
+    pick = np.argmax(np.abs(axes[..., 2, :]), axis=-1)
+    normal = np.take_along_axis(axes, pick[..., None, None], axis=-1)[..., 0]
+    normal = normal * np.where(normal[..., 2:3] < 0, -1.0, 1.0)
+    return np.einsum("...ki,...i->...k", d, normal)
+
+
+def plane_amplitude(centres: np.ndarray):
+    """Half the peak-to-peak spread of plane_offsets: a float for one state (N, 3), (T,) for a trajectory."""
+    off = plane_offsets(centres)
+    amp = 0.5 * (off.max(axis=-1) - off.min(axis=-1))
+    return float(amp) if np.ndim(amp) == 0 else amp

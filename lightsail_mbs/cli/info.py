@@ -21,7 +21,8 @@ def run(args) -> int:
         print(json.dumps(summary, default=str))
         return 0
     p = result.params
-    print(f"{args.run}: {summary['solver']} run of a {p.model} sail, n = {p.n}, t_end = {summary['t_end']:.6g} s")
+    size = f"{p.n} x {p.ny} tiles" if p.model == "sheet" else f"n = {p.n}"
+    print(f"{args.run}: {summary['solver']} run of a {p.model} sail, {size}, t_end = {summary['t_end']:.6g} s")
     verdict = f"failed at t = {summary['failure_time']:.6g} s" if summary["failed"] else "did not fail"
     print(f"  {verdict}; max amplitude ratio {summary['max_amplitude_ratio']:.4g}")
     if summary["error"]:

@@ -12,8 +12,9 @@ from lightsail_mbs.solvers.settings import RunSettings
 
 # option name -> (SailParameters field, type, help)
 CASE_OPTIONS = {
-    "--model": ("model", str, "rigid | torsion | tnt"),
-    "--n": ("n", int, "number of slices"),
+    "--model": ("model", str, "rigid | torsion | tnt | sheet"),
+    "--n": ("n", int, "number of slices (sheet: tiles along L, also --nx)"),
+    "--ny": ("ny", int, "sheet: tiles across the width W"),
     "--length": ("length", float, "sail length L (m)"),
     "--width": ("width", float, "sail width W (m)"),
     "--thickness": ("thickness", float, "thickness h (m)"),
@@ -23,9 +24,17 @@ CASE_OPTIONS = {
     "--intensity": ("intensity", float, "laser intensity I₀ (W/m²)"),
     "--defect-amplitude": ("defect_amplitude", float, "initial defect amplitude a₀ (m)"),
     "--defect-mode": ("defect_mode", float, "defect mode number ν (wavelengths over L)"),
+    "--mode-y": (
+        "defect_mode_y",
+        float,
+        "sheet: defect mode ν_y across the width, w = a₀ sin(2πνx/L) sin(2πν_y y/W); unset: uniform across W",
+    ),
+    "--membrane-modulus": ("membrane_modulus", float, "sheet: in-plane (membrane) modulus E_m (Pa); unset: E"),
+    "--edge-tension": ("edge_tension", float, "sheet: follower tension on all four edges (N per metre of edge)"),
     "--billow-radius": ("billow_radius", float, "initial arc radius R_c (m), > 0 concave to the laser; inf = flat"),
     "--beam-waist": ("beam_waist", float, "Gaussian beam waist w (m); inf = uniform beam"),
     "--beam-center": ("beam_center", float, "Gaussian beam axis x_c (m); default L/2"),
+    "--beam-center-y": ("beam_center_y", float, "sheet: Gaussian beam axis y_c (m); default W/2"),
     "--reflectivity": ("reflectivity", float, "specular reflectivity R"),
     "--absorptivity": ("absorptivity", float, "absorptivity α"),
     "--optics": (
@@ -58,7 +67,7 @@ RUN_OPTIONS = {
     "--failure-ratio": ("failure_ratio", float, "failure when amplitude ≥ ratio × initial"),
 }
 # shorter spellings accepted for some options
-ALIASES = {"--defect-amplitude": ["--amplitude"], "--defect-mode": ["--mode"]}
+ALIASES = {"--defect-amplitude": ["--amplitude"], "--defect-mode": ["--mode"], "--n": ["--nx"]}
 
 
 def add_case_options(parser: argparse.ArgumentParser, run: bool = True) -> None:

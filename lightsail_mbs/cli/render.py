@@ -11,13 +11,19 @@ COLOR_CHOICES = {"curvature": "curvature", "moment": "moment", "none": None}
 
 
 def register(sub) -> None:
-    p = sub.add_parser("render", help="render a saved run (.npz) as PNG frames and optionally a movie, no display")
+    p = sub.add_parser(
+        "render",
+        help="render a saved run (.npz) as PNG frames and optionally a movie, no display (a sheet run: "
+        "deflection map and 3-D view)",
+    )
     p.add_argument("run", help="a Result saved by `lightsail-mbs simulate --out RUN.npz`")
     p.add_argument("--out", required=True, help="output folder: frame_0000.png, ... (and RUN.mp4 / RUN.gif)")
     which = p.add_mutually_exclusive_group()
     which.add_argument("--frames", type=int, help="number of frames, evenly spaced in time [default 100]")
     which.add_argument("--every-seconds", type=float, help="one frame per this much simulated time (s)")
-    p.add_argument("--size", default=None, help="WIDTHxHEIGHT in pixels [default 800x400; 800x800 with --compare]")
+    p.add_argument(
+        "--size", default=None, help="WIDTHxHEIGHT in pixels [default 800x400; 800x800 with --compare; sheet 1000x450]"
+    )
     p.add_argument("--exaggeration", type=float, help="deflection factor [default: automatic, printed on each frame]")
     p.add_argument(
         "--renderer",
@@ -34,8 +40,9 @@ def register(sub) -> None:
     p.add_argument(
         "--color-scale",
         choices=("frame", "run"),
-        default="frame",
-        help="colour range: each frame its own (where it concentrates) or one for the run (growth) [default frame]",
+        default=None,
+        help="colour range: each frame its own (where it concentrates) or one for the run (growth) "
+        "[default frame; run for a sheet]",
     )
     p.add_argument(
         "--no-arrows", dest="arrows", action="store_false", help="omit the radiation-load and boundary-tension arrows"
@@ -53,6 +60,8 @@ def run(args) -> int:
     from lightsail_mbs.viz.frames import check_fps, make_movie, parse_size, render_comparison, render_frames
 
     result = Result.load(args.run)
+    if result.is_sheet:
+        return run_sheet(args, result)
     other = Result.load(args.compare) if args.compare else None
     size = parse_size(args.size or ("800x800" if args.compare else "800x400"))
     if args.movie:
@@ -64,7 +73,7 @@ def run(args) -> int:
         exaggeration=args.exaggeration,
         renderer=args.renderer,
         color_by=COLOR_CHOICES[args.color_by],
-        color_scale=args.color_scale,
+        color_scale=args.color_scale or "frame",
         arrows=args.arrows,
         progress=not args.quiet,
     )
@@ -74,6 +83,38 @@ def run(args) -> int:
     else:
         paths = render_frames(result, args.out, size=size, **options)
     print(f"wrote {len(paths)} frames of {size[0]}x{size[1]} px to {args.out}/")
+    kinds = {"mp4": ["mp4"], "gif": ["gif"], "both": ["mp4", "gif"], None: []}[args.movie]
+    for kind in kinds:
+        movie = make_movie(paths, Path(args.out) / f"{Path(args.run).stem}.{kind}", fps=args.fps)
+        print(f"wrote {movie}")
+    return 0
+
+
+def run_sheet(args, result) -> int:
+    """A sheet run: deflection map and 3-D view per frame (viz.sheet), matplotlib only."""
+    from lightsail_mbs.model.parameters import ParameterError
+    from lightsail_mbs.viz.frames import check_fps, make_movie, parse_size
+    from lightsail_mbs.viz.sheet import render_sheet_frames
+
+    if args.compare:
+        raise ParameterError("--compare is invalid for a sheet run: allowed for chain runs only")
+    if args.renderer == "exudyn":
+        raise ParameterError("--renderer=exudyn is invalid for a sheet run: allowed auto or matplotlib")
+    size = parse_size(args.size or "1000x450")
+    if args.movie:
+        check_fps(args.fps)
+    writable_folder(args.out, "--out")
+    paths = render_sheet_frames(
+        result,
+        args.out,
+        frames=args.frames,
+        every_seconds=args.every_seconds,
+        size=size,
+        exaggeration=args.exaggeration,
+        color_scale=args.color_scale or "run",
+        progress=not args.quiet,
+    )
+    print(f"wrote {len(paths)} frames of {size[0]}x{size[1]} px to {args.out}/ (deflection map and 3-D view)")
     kinds = {"mp4": ["mp4"], "gif": ["gif"], "both": ["mp4", "gif"], None: []}[args.movie]
     for kind in kinds:
         movie = make_movie(paths, Path(args.out) / f"{Path(args.run).stem}.{kind}", fps=args.fps)

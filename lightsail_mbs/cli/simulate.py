@@ -10,7 +10,7 @@ from lightsail_mbs.solvers import SOLVERS
 
 
 def register(sub) -> None:
-    p = sub.add_parser("simulate", help="run one case (exudyn or reduced solver)")
+    p = sub.add_parser("simulate", help="run one case (exudyn or reduced solver; a chain or, --model sheet, a sheet)")
     add_case_options(p)
     p.add_argument("--solver", choices=sorted(SOLVERS), default="exudyn")
     p.add_argument("--out", help="write the Result to this .npz (and its .json summary)")
@@ -32,8 +32,9 @@ def run(args) -> int:
         print(json.dumps(summary))
     else:
         ft = summary["failure_time"]
+        size = f"{summary['n']}x{summary['ny']} tiles" if "ny" in summary else f"n={summary['n']}"
         print(
-            f"{summary['solver']} {summary['model']} n={summary['n']}: "
+            f"{summary['solver']} {summary['model']} {size}: "
             f"{f'FAILED at t = {ft:.6g} s' if summary['failed'] else 'not failed'} "
             f"(max amplitude ratio {summary['max_amplitude_ratio']:.4g}, t_end {summary['t_end']:.6g} s, "
             f"wall {summary['wall_time']:.3g} s)"

@@ -1,4 +1,5 @@
-"""`lightsail-mbs stability`: critical E (torsion) or T (TnT) of a case from short scaled runs.
+"""`lightsail-mbs stability`: critical E (torsion) or T (TnT) of a case from short scaled runs; for a sheet,
+the stable E or edge tension from full runs.
 
 The finite-amplitude scaling (lightsail_mbs.analysis.finite_amplitude) makes the doubling of the defect depend on
 E/E_cr,max (or T/T_cr,max), ν, n and the run length in units of t_c = 1/(k√(g₀a₀)) only; below the
@@ -7,6 +8,10 @@ stiffness ratio with runs of --tau-final·t_c (default 8) of the reduced solver 
 (the TnT chain in its inextensible limit); --run-time gives instead the boundary that a map with runs
 of that length finds (below ≈ 1.6 t_c nothing fails: an error says so). Optionally the flat state's
 linear spectrum is checked with and without the load (--linear).
+
+A sheet (--model sheet) has no scaled problem yet: its boundary is bisected in E/E_cr,max or
+T/T_cr,max (per metre of edge) with full runs of --run-time seconds (default 6) of --solver through a
+resumable store (studies.sheet.stability_boundaries).
 """
 
 from __future__ import annotations
@@ -37,7 +42,18 @@ def register(sub) -> None:
         help="instead: runs of this many seconds (τ = run-time/t_c), the boundary a stability map "
         "with runs of that length finds (e.g. the paper's 6)",
     )
-    p.add_argument("--factor", type=float, default=1.05, help="bisect until hi/lo ≤ factor [default 1.05]")
+    p.add_argument(
+        "--factor", type=float, default=None, help="bisect until hi/lo ≤ factor [default 1.05; 1.25 for a sheet]"
+    )
+    g = p.add_argument_group("sheet (--model sheet): full runs of --run-time (default 6 s) through a store")
+    g.add_argument(
+        "--quantity",
+        choices=("modulus", "edge-tension"),
+        default="modulus",
+        help="the stiffness bisected: E/E_cr,max or the edge tension T/T_cr,max per metre [default modulus]",
+    )
+    g.add_argument("--solver", choices=("reduced", "exudyn"), default="reduced", help="[default reduced]")
+    g.add_argument("--store", default=None, help="the store of the runs (resumable) [default: a temporary folder]")
     p.add_argument(
         "--linear",
         action="store_true",
@@ -55,6 +71,9 @@ def run(args) -> int:
     p = params_from_args(args)
     if args.run_time is not None:
         check("run_time", args.run_time, finite("run_time", args.run_time) > 0, "> 0 s")
+    if p.model == "sheet":
+        return run_sheet(args, p)
+    args.factor = 1.05 if args.factor is None else args.factor
     if p.model == "tnt":
         p = p.replace(axial_springs=False)
     start = time.perf_counter()
@@ -93,3 +112,51 @@ def run(args) -> int:
             text = value if isinstance(value, (bool, list, str)) or value is None else f"{value:.6g}"
             print(f"{key:26s} {text}")
     return 0
+
+
+def run_sheet(args, p) -> int:
+    """The sheet: bisect E/E_cr,max or T/T_cr,max with full runs (studies.sheet.stability_boundaries)."""
+    import tempfile
+
+    from lightsail_mbs.cli.options import writable_folder
+    from lightsail_mbs.solvers.settings import RunSettings
+    from lightsail_mbs.studies import sheet as sheet_study
+
+    quantity = args.quantity.replace("-", "_")
+    run_time = 6.0 if args.run_time is None else args.run_time
+    factor = 1.25 if args.factor is None else args.factor
+    start = time.perf_counter()
+    with tempfile.TemporaryDirectory(prefix="lightsail-stability-") as scratch:
+        store = writable_folder(args.store, "--store") if args.store else scratch
+        found = sheet_study.stability_boundaries(
+            {"sheet": p},
+            quantity,
+            store,
+            solver=args.solver,
+            settings=RunSettings(t_final=run_time),
+            factor=factor,
+            progress=not args.json,
+        )["sheet"]
+    name, scale = sheet_study.QUANTITIES[quantity]
+    analytic = scale(p)
+    out = {
+        "quantity": name,
+        "status": found.status,
+        "message": found.message,
+        "ratio_to_analytic": found.value,
+        "ratio_bracket": list(found.bracket) if found.bracket else None,
+        "value": None if found.value is None else found.value * analytic,
+        "analytic": analytic,
+        "analytic_name": "e_cr_max" if quantity == "modulus" else "t_cr_max_per_metre",
+        "run_length": run_time,
+        "runs": len(found.evaluations),
+        "solver": args.solver,
+        "wall_time": time.perf_counter() - start,
+    }
+    if args.json:
+        print(json.dumps(out))
+    else:
+        for key, value in out.items():
+            text = value if not isinstance(value, float) else f"{value:.6g}"
+            print(f"{key:26s} {text}")
+    return 0 if found.status == "converged" else 1

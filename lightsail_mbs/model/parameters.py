@@ -4,6 +4,14 @@ Paper: Sections III–IV. Derived quantities follow the paper's definitions:
 slice length l = L/n, slice mass m = ρ h W l, centroidal inertia J = m l²/12,
 bending stiffness k_T = E I / l with I = W h³/12 (Sec. III.B),
 axial stiffness k_s = (n − 1) E h W / L (Sec. III.C).
+
+Two model families share this one parameter class. The chains ("rigid", "torsion", "tnt") are the
+paper's strip of n slices. The "sheet" is the sail cut into n × ny rigid tiles moving in 3-D
+(:mod:`lightsail_mbs.model.sheet`); its own fields (ny, defect_mode_y, membrane_modulus,
+edge_tension, beam_center_y, pressure, membrane_damping, membrane_reference, bending_reference) are listed in
+SHEET_DEFAULTS, rejected away from their defaults for a chain, and left out of :meth:`to_dict` at
+their defaults, so the record (and the store key) of every chain case is what it was before the
+sheet existed.
 """
 
 from __future__ import annotations
@@ -14,14 +22,32 @@ import numbers
 from dataclasses import dataclass
 
 SPEED_OF_LIGHT = 299_792_458.0  # m/s
-MODELS = ("rigid", "torsion", "tnt")
+MODELS = ("rigid", "torsion", "tnt", "sheet")
+CHAIN_MODELS = ("rigid", "torsion", "tnt")
 # Supports of the chain's ends (validations, paper Appendices A–B): "free" (the sail, both ends free),
 # "cantilever" (slice 1 clamped at its initial pose, Appendix A), "pinned" (hinge 0 pinned, hinge n on a
 # roller along x that lets the end tension T through: a string or simply supported beam, Appendix B).
 BOUNDARIES = ("free", "cantilever", "pinned")
+# Supports of the sheet's four edges (the plate and membrane validations): "free" (the sail),
+# "simply_supported" (w = 0 along every edge, no bending moment), "clamped" (w = 0 and no rotation).
+SHEET_BOUNDARIES = ("free", "simply_supported", "clamped")
 # Fields of the validations that to_dict omits at their defaults (a free, unloaded sail), so that the
 # record of a sail lists only what describes it.
 VALIDATION_DEFAULTS = {"boundary": "free", "tip_load": 0.0, "tip_load_time_constant": 0.0}
+# The sheet's own fields at their defaults: omitted by to_dict, and the only values a chain accepts.
+SHEET_DEFAULTS = {
+    "ny": 1,
+    "defect_mode_y": None,
+    "membrane_modulus": None,
+    "edge_tension": 0.0,
+    "beam_center_y": None,
+    "pressure": 0.0,
+    "membrane_damping": None,
+    "membrane_reference": "initial",
+    "bending_reference": "flat",
+}
+MEMBRANE_REFERENCES = ("initial", "flat")
+BENDING_REFERENCES = ("flat", "initial")
 # Fields added after the store's keys were first written, omitted by to_dict at their defaults so that the
 # record (and store key) of every case that does not use them stays what it was.
 LATER_DEFAULTS = {
@@ -110,6 +136,17 @@ class SailParameters:
     boundary: str = "free"  # end supports, one of BOUNDARIES
     tip_load: float = 0.0  # P₀, N: transverse (+y) dead load at the centre of slice n (Eq. 43)
     tip_load_time_constant: float = 0.0  # τ, s: P(t) = P₀(1 − e^(−t/τ)) (Eq. 43); 0: P₀ from t = 0
+    # ---- the sheet (model="sheet": n × ny tiles; model.sheet) -------------------------------------
+    ny: int = 1  # tiles across the width W (n tiles along L)
+    defect_mode_y: float | None = None  # ν_y: w = a₀ sin(2πνx/L) sin(2πν_y y/W); None: uniform across W
+    membrane_modulus: float | None = None  # E_m, Pa, of the in-plane (membrane) springs; None: E
+    edge_tension: float = 0.0  # T, N per metre of edge: follower tension on all four edges + pre-stress
+    beam_center_y: float | None = None  # y_c, m, of the Gaussian beam; None: W/2
+    pressure: float = 0.0  # p, Pa: dead pressure along the beam (+z) (the plate validations)
+    membrane_damping: float | None = None  # β_m, s: damping β_m k on the stiff springs; None: critical
+    membrane_reference: str = "initial"  # in-plane springs at rest in the "initial" (defect) or "flat" shape
+    bending_reference: str = "flat"  # bending springs at rest "flat" (the paper: an elastically loaded defect)
+    #                                  or in the "initial" shape (a stress-free, manufactured defect)
     billow_radius: float = math.inf  # R_c, m: initial circular arc (shapes.py); > 0 concave to the laser; inf: flat
     optics: str | None = None  # the slices' force law from a table: None (R, α above), "mirror", or a table file
     optics_layout: str = "uniform"  # one of OPTICS_LAYOUTS: which slices carry the table turned over
@@ -194,9 +231,8 @@ class SailParameters:
             "tension",
             self.tension,
             self.tension == 0 or self.model == "tnt",
-            "0 unless model='tnt' (boundary tension exists only in the TnT model)",
+            "0 unless model='tnt' (boundary tension exists only in the TnT model; a sheet's is edge_tension, N/m)",
         )
-        check("boundary", self.boundary, self.boundary in BOUNDARIES, f"one of {', '.join(BOUNDARIES)}")
         finite("tip_load", self.tip_load)
         v = finite("tip_load_time_constant", self.tip_load_time_constant)
         check("tip_load_time_constant", v, v >= 0, "≥ 0 (0: the full load from t = 0)")
@@ -228,8 +264,9 @@ class SailParameters:
             not self.billow_rest or not math.isinf(float(self.billow_radius)),
             "False for a flat sail (billow_radius = inf)",
         )
+        self._check_sheet_fields()
         if self.bending is None:
-            object.__setattr__(self, "bending", self.model == "torsion")
+            object.__setattr__(self, "bending", self.model in ("torsion", "sheet"))
         check("bending", self.bending, isinstance(self.bending, bool), "True, False or None")
         check(
             "defect_amplitude",
@@ -244,6 +281,74 @@ class SailParameters:
             self.defect_amplitude < self.length / (2 * math.pi * self.defect_mode),
             f"< L/(2πν) = {self.length / (2 * math.pi * self.defect_mode):.3g} m (a sine steeper than 45° "
             "is outside the model)",
+        )
+
+    def _check_sheet_fields(self) -> None:
+        """The sheet's fields: at their defaults for a chain; in range for a sheet."""
+        if self.model != "sheet":
+            for name, default in SHEET_DEFAULTS.items():
+                check(name, getattr(self, name), getattr(self, name) == default, f"{default!r} unless model='sheet'")
+            check("boundary", self.boundary, self.boundary in BOUNDARIES, f"one of {', '.join(BOUNDARIES)}")
+            return
+        check(
+            "ny",
+            self.ny,
+            isinstance(self.ny, int) and not isinstance(self.ny, bool) and 1 <= self.ny <= 500,
+            "an integer 1 ≤ ny ≤ 500",
+        )
+        check("n", self.n, self.n <= 500, "an integer 2 ≤ n ≤ 500 for a sheet (n × ny tiles)")
+        check(
+            "boundary",
+            self.boundary,
+            self.boundary in SHEET_BOUNDARIES,
+            f"one of {', '.join(SHEET_BOUNDARIES)} for a sheet",
+        )
+        check("tip_load", self.tip_load, self.tip_load == 0, "0 for a sheet (a chain validation)")
+        check("billow_radius", self.billow_radius, self.billow_radius == math.inf, "inf (flat) for a sheet")
+        check("billow_rest", self.billow_rest, self.billow_rest is False, "False for a sheet")
+        check("initial_tilt", self.initial_tilt, self.initial_tilt == 0, "0 for a sheet")
+        check("optics", self.optics, self.optics is None, "None for a sheet (its tiles: reflectivity, absorptivity)")
+        check("payload_mass", self.payload_mass, self.payload_mass == 0, "0 for a sheet")
+        for name in ("torsional_damping", "axial_damping"):
+            check(name, getattr(self, name), getattr(self, name) == 0, "0 for a sheet (its damping: stiffness_damping)")
+        if self.defect_mode_y is not None:
+            v = finite("defect_mode_y", self.defect_mode_y)
+            check("defect_mode_y", v, v > 0, "None (uniform across the width) or > 0")
+            check(
+                "defect_amplitude",
+                self.defect_amplitude,
+                self.defect_amplitude < self.width / (2 * math.pi * v),
+                f"< W/(2πν_y) = {self.width / (2 * math.pi * v):.3g} m (a sine steeper than 45° is outside the model)",
+            )
+        for name in ("edge_tension", "pressure"):
+            finite(name, getattr(self, name))
+        check("edge_tension", self.edge_tension, self.edge_tension >= 0, "≥ 0 (N per metre of edge)")
+        if self.membrane_modulus is not None:
+            v = finite("membrane_modulus", self.membrane_modulus)
+            check("membrane_modulus", v, v > 0, "> 0 or None (= youngs_modulus)")
+        else:
+            check(
+                "membrane_modulus",
+                self.membrane_modulus,
+                self.youngs_modulus > 0,
+                "> 0 when youngs_modulus = 0 (the in-plane springs hold the tiles together)",
+            )
+        if self.membrane_damping is not None:
+            v = finite("membrane_damping", self.membrane_damping)
+            check("membrane_damping", v, v >= 0, "≥ 0 s or None (critical for the top in-plane mode)")
+        if self.beam_center_y is not None:
+            finite("beam_center_y", self.beam_center_y)
+        check(
+            "membrane_reference",
+            self.membrane_reference,
+            self.membrane_reference in MEMBRANE_REFERENCES,
+            f"one of {', '.join(MEMBRANE_REFERENCES)}",
+        )
+        check(
+            "bending_reference",
+            self.bending_reference,
+            self.bending_reference in BENDING_REFERENCES,
+            f"one of {', '.join(BENDING_REFERENCES)}",
         )
 
     def _check_optics(self) -> None:
@@ -369,12 +474,14 @@ class SailParameters:
 
     @property
     def mean_intensity(self) -> float:
-        """Ī: the beam intensity averaged over the flat sail 0 ≤ x ≤ L (I₀ for the uniform beam)."""
+        """Ī: the beam intensity averaged over the flat sail 0 ≤ x ≤ L (and 0 ≤ y ≤ W for a sheet, whose
+        Gaussian beam is round; I₀ for the uniform beam)."""
         if self.uniform_beam:
             return self.intensity
-        w, xc, L = self.beam_waist, self.beam_center, self.length
-        r = math.sqrt(2.0) / w
-        return self.intensity * math.sqrt(math.pi / 8.0) * w / L * (math.erf(r * (L - xc)) + math.erf(r * xc))
+        mean = self.intensity * _gaussian_mean(self.beam_waist, self.beam_center, self.length)
+        if self.model == "sheet":  # the sheet's beam is round: I₀ exp(−2((x − x_c)² + (y − y_c)²)/w²)
+            mean *= _gaussian_mean(self.beam_waist, self.sheet_beam_center_y, self.width)
+        return mean
 
     @property
     def nominal_acceleration(self) -> float:
@@ -395,6 +502,11 @@ class SailParameters:
             )
         return momentum * self.mean_intensity / (SPEED_OF_LIGHT * self.density * self.thickness)
 
+    @property
+    def sheet_beam_center_y(self) -> float:
+        """y_c of the sheet's Gaussian beam (m): beam_center_y, or W/2 when it is None."""
+        return 0.5 * self.width if self.beam_center_y is None else float(self.beam_center_y)
+
     def replace(self, **changes) -> SailParameters:
         """A copy with some fields changed (validated again)."""
         if "model" in changes and "bending" not in changes:
@@ -408,9 +520,10 @@ class SailParameters:
         return self.tip_load * -math.expm1(-t / self.tip_load_time_constant)
 
     def to_dict(self) -> dict:
-        """The fields as a dict (the validation fields and the later ones omitted at their defaults)."""
+        """The fields as a dict (the validation fields, the later ones and the sheet's fields omitted at their
+        defaults)."""
         d = dataclasses.asdict(self)
-        for name, default in {**VALIDATION_DEFAULTS, **LATER_DEFAULTS}.items():
+        for name, default in {**VALIDATION_DEFAULTS, **LATER_DEFAULTS, **SHEET_DEFAULTS}.items():
             if d[name] == default:
                 del d[name]
         return d
@@ -428,6 +541,12 @@ class SailParameters:
             check("parameters", key, key in names, f"field names of SailParameters ({', '.join(sorted(names))})")
             known[key] = value
         return cls(**known)
+
+
+def _gaussian_mean(waist: float, center: float, span: float) -> float:
+    """(1/span) ∫₀^span exp(−2(s − center)²/waist²) ds."""
+    r = math.sqrt(2.0) / waist
+    return math.sqrt(math.pi / 8.0) * waist / span * (math.erf(r * (span - center)) + math.erf(r * center))
 
 
 def paper_case(name: str, **changes) -> SailParameters:

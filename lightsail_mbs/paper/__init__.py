@@ -6,7 +6,7 @@ Two registers of pipeline modules ``lightsail_mbs.paper.<module>``:
   has ``FIGURES``, the figure numbers it draws.
 * ``SCENARIOS`` (name -> module): the studies beyond the paper — beam profile and optics, material
   damping, random defects, linear and finite-amplitude stability, failure-time law, the documentation's
-  animations.
+  animations, the sheet against the strip.
 
 Every pipeline has ``run(out, *, solver, workers, scheduler, quick, store, progress, **options) -> dict``:
 it runs its cases (through the resumable sweep store, default OUT/store/<name>, where it has any),
@@ -42,6 +42,7 @@ SCENARIOS = {
     "stability_critical": "stability_critical",
     "stability_failure_time": "stability_failure_time",
     "animations": "animations",
+    "sheet_physics": "sheet_physics",
 }
 
 

@@ -11,7 +11,8 @@ How to run a case:
 4. Read the :class:`~lightsail_mbs.result.Result`: ``result.failure_time``, ``result.summary()``,
    ``result.save("run.npz")``.
 
-Each solver is a module ``lightsail_mbs.solvers.<name>`` exposing
+The chain and the sheet are dispatched by ``params.model`` (``SOLVERS``, ``SHEET_SOLVERS``). Each
+solver is a module exposing
 ``run(params, settings, *, progress=False, **options)`` that keeps the contract of
 :mod:`lightsail_mbs.solvers.skeleton` (sampling, stop rule, errors as results). A third solver is a
 new folder here and one line in ``SOLVERS``.
@@ -30,8 +31,15 @@ if TYPE_CHECKING:
     from lightsail_mbs.result import Result
 
 SOLVERS = {"exudyn": "exudyn.chain", "reduced": "reduced.solver"}
+# the same solvers for the sheet (model "sheet"): Exudyn's rigid tiles and the in-house tile solver
+SHEET_SOLVERS = {"exudyn": "exudyn.sheet", "reduced": "reduced.sheet"}
 
-__all__ = ["SOLVERS", "RunSettings", "paper_settings", "solve"]
+__all__ = ["SHEET_SOLVERS", "SOLVERS", "RunSettings", "paper_settings", "solve", "solver_module"]
+
+
+def solver_module(params: SailParameters, solver: str) -> str:
+    """The module (relative to this package) that runs `solver` for the model family of `params`."""
+    return (SHEET_SOLVERS if params.model == "sheet" else SOLVERS)[solver]
 
 
 def solve(
@@ -49,7 +57,9 @@ def solve(
     params : SailParameters
         The physical case.
     solver : {"exudyn", "reduced"}
-        The engine: Exudyn's KinematicTree chain or the in-house reduced-Lagrangian chain.
+        The engine: Exudyn's KinematicTree chain or the in-house reduced-Lagrangian chain; for
+        model "sheet", Exudyn's rigid tiles (solvers.exudyn.sheet) or the in-house tile solver
+        (solvers.reduced.sheet).
     settings : RunSettings, optional
         Duration, output interval and stop rule (default ``RunSettings()``: 6 s, stop at failure).
     progress : bool
@@ -63,6 +73,6 @@ def solve(
         settings = RunSettings()
     if not isinstance(settings, RunSettings):
         raise ParameterError(f"settings={settings!r} is invalid: allowed a RunSettings")
-    module = importlib.import_module(f".{SOLVERS[solver]}", __name__)
+    module = importlib.import_module(f".{solver_module(params, solver)}", __name__)
     with interrupts_propagate():
         return module.run(params, settings, progress=progress, **options)

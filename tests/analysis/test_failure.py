@@ -60,6 +60,38 @@ def test_failure_time_at_another_ratio():
     assert analysis.failure_time(t, np.exp(t), 3.0) == pytest.approx(chord, abs=1e-12)
 
 
+def test_plane_rule_is_the_line_rule_for_one_row_of_tiles():
+    """One row of tiles (ny = 1) or a 1-D shape repeated across the width: the plane rule gives the chain's
+    line rule in the x–z plane."""
+    from lightsail_mbs import SailParameters
+    from lightsail_mbs.model import sheet
+
+    one = SailParameters(model="sheet", n=30, ny=1)
+    centres, _ = sheet.initial_state(one)
+    line = analysis.amplitude(centres[:, 0], centres[:, 2])
+    assert analysis.plane_amplitude(centres) == pytest.approx(line, rel=1e-12)
+    three, _ = sheet.initial_state(one.replace(ny=3))
+    assert analysis.plane_amplitude(three) == pytest.approx(line, rel=1e-12)
+    np.testing.assert_allclose(analysis.plane_offsets(centres), analysis.line_offsets(centres[:, 0], centres[:, 2]))
+
+
+def test_plane_rule_ignores_rigid_motion_and_vectorises():
+    rng = np.random.default_rng(3)
+    x, y = np.meshgrid(np.linspace(0, 1, 9), np.linspace(0, 0.7, 6))
+    w = 1e-5 * np.sin(3 * x) * np.cos(4 * y) + 1e-6 * rng.standard_normal(x.shape)
+    cloud = np.column_stack([x.ravel(), y.ravel(), w.ravel()])
+    a = analysis.plane_amplitude(cloud)
+    off = analysis.plane_offsets(cloud)
+    assert a == pytest.approx(0.5 * (off.max() - off.min()))
+    angle = 0.3
+    R = np.array([[np.cos(angle), 0, np.sin(angle)], [0, 1, 0], [-np.sin(angle), 0, np.cos(angle)]])
+    moved = cloud @ R.T + [1.0, -2.0, 5.0]
+    assert analysis.plane_amplitude(moved) == pytest.approx(a, rel=1e-9)
+    trajectory = np.stack([cloud, moved, 2 * cloud])
+    np.testing.assert_allclose(analysis.plane_amplitude(trajectory), [a, a, 2 * a], rtol=1e-9)
+    assert analysis.plane_amplitude(cloud * [1, 1, 0]) == pytest.approx(0.0, abs=1e-17)
+
+
 def test_failure_time_at_a_sample_and_of_a_flat_start():
     t = np.array([0.0, 0.5, 1.0])
     assert analysis.failure_time(t, np.array([1.0, 2.0, 3.0]), 2.0) == 0.5

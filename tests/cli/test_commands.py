@@ -217,6 +217,82 @@ def test_crosscheck_cli_rejects_unknown_case(tmp_path):
         main(["crosscheck", "--cases", "nonsense", "--out", str(tmp_path)])
 
 
+def test_simulate_and_render_a_sheet(tmp_path, capsys):
+    """`simulate --model sheet --nx --ny --mode-y`, then `info` and `render` of the saved run."""
+    run = tmp_path / "sheet.npz"
+    code = main(
+        [
+            "simulate",
+            "--model",
+            "sheet",
+            "--nx",
+            "6",
+            "--ny",
+            "4",
+            "--mode-y",
+            "1",
+            "--modulus",
+            "4.5e9",
+            "--t-final",
+            "0.3",
+            "--solver",
+            "reduced",
+            "--out",
+            str(run),
+            "--quiet",
+            "--json",
+        ]
+    )
+    assert code == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["model"] == "sheet" and summary["n"] == 6 and summary["ny"] == 4 and summary["tiles"] == 24
+    assert summary["parameters"]["defect_mode_y"] == 1.0 and summary["dissipated_energy"] is None
+    assert main(["info", str(run)]) == 0
+    assert "6 x 4 tiles" in capsys.readouterr().out
+    out = tmp_path / "frames"
+    assert main(["render", str(run), "--out", str(out), "--frames", "2", "--movie", "gif", "--quiet"]) == 0
+    assert len(list(out.glob("frame_*.png"))) == 2 and (out / "sheet.gif").exists()
+    assert main(["render", str(run), "--out", str(out), "--compare", str(run)]) == 2
+    assert "--compare" in capsys.readouterr().err
+
+
+def test_sheet_options_are_checked_before_solving(capsys):
+    assert main(["simulate", "--ny", "3"]) == 2
+    assert "ny=3 is invalid" in capsys.readouterr().err
+    assert main(["simulate", "--model", "sheet", "--edge-tension", "-1"]) == 2
+    assert "edge_tension" in capsys.readouterr().err
+
+
+def test_stability_of_a_small_sheet_json(tmp_path, capsys):
+    code = main(
+        [
+            "stability",
+            "--model",
+            "sheet",
+            "--nx",
+            "8",
+            "--ny",
+            "3",
+            "--modulus",
+            "4.5e9",
+            "--quantity",
+            "edge-tension",
+            "--run-time",
+            "3",
+            "--factor",
+            "2",
+            "--store",
+            str(tmp_path),
+            "--json",
+        ]
+    )
+    assert code == 0
+    out = json.loads(capsys.readouterr().out)
+    lo, hi = out["ratio_bracket"]
+    assert out["status"] == "converged" and hi / lo <= 2.0 and lo <= out["ratio_to_analytic"] <= hi
+    assert out["analytic"] == pytest.approx(3.336e-6, rel=1e-3) and list(tmp_path.glob("*.json"))
+
+
 HEAVY = ("matplotlib", "scipy", "exudyn", "numba", "dask", "PIL", "tqdm")
 
 

@@ -165,6 +165,59 @@ def test_bad_support_values_name_the_parameter(changes, name):
         SailParameters(**changes)
 
 
+# ---- the sheet (model="sheet") ---------------------------------------------------------------
+def test_chain_records_do_not_change_with_the_sheet_fields():
+    """The sheet's fields are left out of to_dict at their defaults, so every chain case keeps its
+    record and store key; a chain rejects them away from their defaults."""
+    from lightsail_mbs.model.parameters import SHEET_DEFAULTS
+
+    for p in (SailParameters(), paper_case("tnt-soft"), SailParameters(model="rigid", beam_waist=0.5)):
+        assert not set(SHEET_DEFAULTS) & set(p.to_dict())
+    for name, value in dict(
+        ny=3, defect_mode_y=1.5, membrane_modulus=1e9, edge_tension=1e-6, beam_center_y=0.2, pressure=1.0
+    ).items():
+        with pytest.raises(ParameterError, match=f"{name}.*unless model='sheet'"):
+            SailParameters(**{name: value})
+
+
+def test_sheet_fields_round_trip_and_defaults():
+    p = SailParameters(model="sheet", n=12, ny=8, defect_mode_y=1.5, membrane_modulus=4.5e9, edge_tension=1e-6)
+    d = p.to_dict()
+    assert d["ny"] == 8 and d["defect_mode_y"] == 1.5 and "pressure" not in d
+    assert SailParameters.from_dict(d) == p
+    assert p.bending is True  # plate bending on by default
+    assert p.sheet_beam_center_y == 0.5
+
+
+@pytest.mark.parametrize(
+    "changes, name, words",
+    [
+        (dict(ny=0), "ny", "1 ≤ ny ≤ 500"),
+        (dict(ny=2.0), "ny", "integer"),
+        (dict(n=600), "n", "≤ 500"),
+        (dict(defect_mode_y=-1.0), "defect_mode_y", "> 0"),
+        (dict(defect_mode_y=1.5, width=5e-5), "defect_amplitude", "W/(2πν_y)"),
+        (dict(edge_tension=-1.0), "edge_tension", "≥ 0"),
+        (dict(membrane_modulus=0.0), "membrane_modulus", "> 0"),
+        (dict(youngs_modulus=0.0), "membrane_modulus", "youngs_modulus = 0"),
+        (dict(membrane_damping=-1.0), "membrane_damping", "≥ 0"),
+        (dict(membrane_reference="curved"), "membrane_reference", "initial, flat"),
+        (dict(boundary="pinned"), "boundary", "simply_supported"),
+        (dict(tension=1.0), "tension", "edge_tension"),
+        (dict(torsional_damping=1.0), "torsional_damping", "stiffness_damping"),
+        (dict(beam_center_y=math.nan), "beam_center_y", "finite"),
+        (dict(optics="mirror"), "optics", "None for a sheet"),
+        (dict(payload_mass=1e-3), "payload_mass", "0 for a sheet"),
+        (dict(initial_tilt=0.1), "initial_tilt", "0 for a sheet"),
+        (dict(billow_radius=2.0), "billow_radius", "inf (flat) for a sheet"),
+    ],
+)
+def test_bad_sheet_values_name_the_parameter(changes, name, words):
+    with pytest.raises(ParameterError) as err:
+        SailParameters(model="sheet", **changes)
+    assert name in str(err.value) and words in str(err.value)
+
+
 @pytest.mark.parametrize("examples", EXAMPLES)
 def test_any_parameter_set_is_accepted_or_refused_naming_a_field(examples):
     """Property: whatever the values (wrong sign, NaN, inf, wrong type), SailParameters either accepts them

@@ -79,3 +79,21 @@ def test_stability_scenarios_quick(tmp_path):
     assert max(r["elastic_relative_shift"] for r in rows) < 1e-6
     for png in ("stability_linear.png", "stability_critical.png", "stability_failure_time.png"):
         assert (tmp_path / png).stat().st_size > 10_000
+
+
+@pytest.mark.slow
+def test_sheet_physics_scenario(tmp_path):
+    """paper.sheet_physics (quick): every boundary bracketed or reported, the frames and tables written, and
+    a narrower centred Gaussian fails the strip sooner."""
+    rows = scenario("sheet_physics").run(tmp_path, quick=True, workers=1, progress=False)
+    assert {p.name for p in tmp_path.iterdir()} >= {
+        "sheet_physics.png",
+        "sheet_physics_failure.png",
+        "sheet_physics_modulus.csv",
+        "sheet_physics_tension.csv",
+        "sheet_physics_gaussian.csv",
+        "sheet_physics.md",
+    }
+    assert all(r["status"] in ("converged", "unbracketed") for r in rows["modulus"] + rows["tension"])
+    strip = sorted((r for r in rows["gaussian"] if r["case"] == "strip"), key=lambda r: r["waist_m"])
+    assert all(a["failure_time_ms"] < b["failure_time_ms"] for a, b in zip(strip, strip[1:]))

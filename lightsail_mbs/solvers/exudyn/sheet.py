@@ -1,0 +1,389 @@
+"""The Exudyn solver of the sheet (`solve(params, "exudyn")` for model "sheet"): native rigid bodies and
+C++ edge connectors, one vectorised load exact at every Newton iterate.
+
+Model (model.sheet): one ``NodeRigidBodyRxyz`` + ``ObjectRigidBody`` per tile (6 ODE2 coordinates:
+centre displacement from the flat grid point and Tait–Bryan xyz angles, far from their singularity
+at φ₁ = ±π/2 for a sail that stays nearly flat), one ``ObjectConnectorRigidBodySpringDamper``
+(non-intrinsic) per shared edge and per supported boundary edge between edge-midpoint markers,
+``LoadForceVector(bodyFixed=True)`` follower loads for the edge tension. The closed loops of the grid
+rule out ``ObjectKinematicTree``.
+
+The load (radiation and frame force, net, model.sheet.tile_forces; dead pressure): one
+``ObjectGenericODE2`` spanning all tile nodes, whose constant ``forceVector`` (6N entries) is rewritten
+by a ``PreNewtonResidualUserFunction`` before every residual evaluation from the current Newton
+iterate, vectorised over the tiles with numpy. Exudyn calls that function before every residual,
+including the one that decides convergence, but not while it differentiates the residual for the
+Jacobian; so the converged state satisfies the equations with the load of that state, and the load's
+own Jacobian is simply absent from the Newton matrix (modified Newton converges in 1.0–1.2 iterations
+per step, one Jacobian per run; the load stiffness is ~1e-3 of the tiles' m/h²). Measured
+alternatives (docs: sheet, "where the time goes"): the same load as the GenericODE2's
+forceUserFunction is differentiated numerically at every Jacobian (×3 per step), one Python load
+function per tile costs 400 calls per residual (×4.5), full Newton a numerical Jacobian of every
+connector per iteration (×40), a dense LU ×9.
+
+Integrator: generalized-α (ρ∞ = 0.9), modified Newton, sparse LU (Eigen), one fixed step h that
+divides the output interval (default 0.026 √(L/g₀), 1 ms for the paper's sail, as the chain's);
+a post-step function records the state on the output grid, checks failure every SAMPLES_PER_CHECK
+samples and stops the solver there. A Newton failure, an Exudyn error or a non-finite state is
+recorded in Result.error with the trajectory up to there.
+
+Round-off: every connector differences marker positions of order L (Exudyn keeps positions as
+reference + displacement), so its force carries ~k_∥ ε L of noise (k_∥ = E_m h e/s). Newton's absolute
+tolerance is kept above that floor (default_abs_tol: requested below it, Newton iterates forever).
+Where the floor exceeds the load's transverse force on a tile, f₀ θ² (θ the defect's slope), the
+run's result depends on step and tolerance (measured: the stiff sail with E_m = E = 4.5e13 Pa), and
+the Result carries a warning (round_off_warning): use the reduced solver, or a smaller membrane
+modulus, which does not change 1-D results (docs: sheet).
+"""
+
+from __future__ import annotations
+
+import math
+import time as _time
+
+import numpy as np
+
+from lightsail_mbs import analysis
+from lightsail_mbs.model import sheet
+from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.result import Result
+from lightsail_mbs.solvers.exudyn.console import silenced
+from lightsail_mbs.solvers.progress import Progress
+from lightsail_mbs.solvers.settings import RunSettings
+from lightsail_mbs.solvers.skeleton import FailureMonitor
+
+STEP_FACTOR = 0.026  # h = STEP_FACTOR · sqrt(L/g₀), as the chain's
+SPECTRAL_RADIUS = 0.9
+NEWTON_REL_TOL = 1e-8
+NEWTON_ABS_FACTOR = 1e-8  # the chain's rule: 1e-8 f₀ × defect slope
+ROUND_OFF_FACTOR = 2.0  # Newton's absolute tolerance ≥ this × the residual's round-off floor
+SAMPLES_PER_CHECK = 20
+OPTIONS = ("step_size", "newton_rel_tol", "newton_abs_tol", "spectral_radius", "perturbation")
+
+
+def default_step_size(p: SailParameters, settings: RunSettings) -> float:
+    """h = STEP_FACTOR · sqrt(L/g₀), at most the output interval (which it then divides)."""
+    g0 = p.nominal_acceleration
+    h = STEP_FACTOR * math.sqrt(p.length / g0) if g0 > 0 else math.inf
+    return min(h, settings.sample_interval)
+
+
+def round_off_floor(p: SailParameters, conn: sheet.Connectors | None = None) -> float:
+    """Estimated 2-norm of the residual's round-off (N): each connector differences marker positions of
+    size ~max(L, W), so its force carries ~k_∥ ε max(L, W)."""
+    conn = sheet.connectors(p) if conn is None else conn
+    k = conn.stiffness[:, :2].max(axis=1)
+    return float(np.finfo(float).eps * max(p.length, p.width) * np.sqrt(np.sum(k * k)))
+
+
+def defect_slope(p: SailParameters) -> float:
+    mode = p.defect_mode if p.defect_mode_y is None else max(p.defect_mode, p.defect_mode_y)
+    return 2.0 * math.pi * mode * p.defect_amplitude / p.length
+
+
+def default_abs_tol(p: SailParameters, conn: sheet.Connectors | None = None) -> float:
+    """max(NEWTON_ABS_FACTOR × f₀ × defect slope (the chain's rule, f₀ per tile), ROUND_OFF_FACTOR ×
+    round_off_floor): Newton cannot go below the round-off of the stiff in-plane springs (5e-11 N for
+    the 30-tile chain limit at E = 4.5e9 Pa against 2e-14 N from the chain's rule)."""
+    t = sheet.Tiles.of(p)
+    flat_force = 2.0 * p.intensity / 299_792_458.0 * t.area
+    scale = flat_force if flat_force > 0 else max(abs(p.pressure) * t.area, t.mass)
+    slope = defect_slope(p)
+    return max(NEWTON_ABS_FACTOR * scale * (slope if slope > 0 else 1.0), ROUND_OFF_FACTOR * round_off_floor(p, conn))
+
+
+def round_off_warning(p: SailParameters, conn: sheet.Connectors | None = None) -> str | None:
+    """A warning when one connector's round-off force k_∥ ε L exceeds the load's transverse force on a
+    tile, f₀ θ² (module docstring); None otherwise or for an unlit sheet."""
+    conn = sheet.connectors(p) if conn is None else conn
+    t = sheet.Tiles.of(p)
+    transverse = 2.0 * p.intensity / 299_792_458.0 * t.area * defect_slope(p) ** 2
+    noise = np.finfo(float).eps * max(p.length, p.width) * float(conn.stiffness[:, :2].max())
+    if transverse <= 0 or noise <= transverse:
+        return None
+    return (
+        f"Exudyn's connector round-off (~{noise:.2g} N per connector at E_m = {t.membrane_modulus:.3g} Pa) exceeds "
+        f"the load's transverse force on a tile (~{transverse:.2g} N): the result can depend on step and "
+        "tolerance; use solver 'reduced' (no such floor) or a smaller membrane_modulus"
+    )
+
+
+def angular_velocity_xyz(angles: np.ndarray, rates: np.ndarray) -> np.ndarray:
+    """Global angular velocity of R = R_x(φ₀)R_y(φ₁)R_z(φ₂): ω = φ̇₀ x̂ + R_x φ̇₁ ŷ + R_x R_y φ̇₂ ẑ."""
+    p0, p1 = angles[..., 0], angles[..., 1]
+    d0, d1, d2 = rates[..., 0], rates[..., 1], rates[..., 2]
+    c0, s0, c1, s1 = np.cos(p0), np.sin(p0), np.cos(p1), np.sin(p1)
+    return np.stack([d0 + s1 * d2, c0 * d1 - s0 * c1 * d2, s0 * d1 + c0 * c1 * d2], axis=-1)
+
+
+class SheetSystem:
+    """The assembled Exudyn system of one sheet case (module docstring).
+
+    Attributes: SC, mbs, flat (grid points), centres0 and q0 (the initial shape), conn (connectors),
+    generic (the load's ObjectGenericODE2), load_calls and load_time (the load updates so far).
+    """
+
+    def __init__(self, p: SailParameters, perturbation: float = 0.0):
+        import exudyn as exu
+        from exudyn.itemInterface import (
+            LoadForceVector,
+            MarkerBodyRigid,
+            NodeRigidBodyRxyz,
+            ObjectConnectorRigidBodySpringDamper,
+            ObjectGenericODE2,
+            ObjectGround,
+            ObjectRigidBody,
+        )
+
+        self.p = p
+        self.tiles = sheet.Tiles.of(p)
+        N = self.tiles.count
+        self.flat = sheet.flat_centres(p)
+        self.centres0, self.q0 = sheet.initial_quaternions(p)
+        start = sheet.perturbed(p, self.centres0, perturbation)
+        angles0 = sheet.angles_xyz(sheet.quaternion_rotation(self.q0))
+        self.conn = sheet.connectors(p, self.centres0, self.q0)
+        self.SC = exu.SystemContainer()
+        mbs = self.mbs = self.SC.AddSystem()
+        inertia = [*self.tiles.inertia, 0.0, 0.0, 0.0]
+        self.nodes, self.bodies = [], []
+        for k in range(N):
+            node = mbs.AddNode(
+                NodeRigidBodyRxyz(
+                    referenceCoordinates=[*self.flat[k], 0.0, 0.0, 0.0],
+                    initialCoordinates=[*(start[k] - self.flat[k]), *angles0[k]],
+                    initialVelocities=[0.0] * 6,
+                )
+            )
+            self.nodes.append(node)
+            self.bodies.append(mbs.AddObject(ObjectRigidBody(mass=self.tiles.mass, inertia=inertia, nodeNumber=node)))
+        ground = mbs.AddObject(ObjectGround())
+        c = self.conn
+        for q in range(len(c)):
+            body_a = ground if c.tile_a[q] < 0 else self.bodies[c.tile_a[q]]
+            ma = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body_a, localPosition=list(c.local_a[q])))
+            mb = mbs.AddMarker(MarkerBodyRigid(bodyNumber=self.bodies[c.tile_b[q]], localPosition=list(c.local_b[q])))
+            mbs.AddObject(
+                ObjectConnectorRigidBodySpringDamper(
+                    markerNumbers=[ma, mb],
+                    stiffness=np.diag(c.stiffness[q]),
+                    damping=np.diag(c.damping[q]),
+                    offset=list(c.offset[q]),
+                )
+            )
+        for tile, point, force in zip(*sheet.edge_followers(p)):
+            marker = mbs.AddMarker(MarkerBodyRigid(bodyNumber=self.bodies[tile], localPosition=list(point)))
+            mbs.AddLoad(LoadForceVector(markerNumber=marker, loadVector=list(force), bodyFixed=True))
+        self.force = np.zeros(6 * N)
+        self.load_calls, self.load_time = 0, 0.0
+        self.generic = mbs.AddObject(ObjectGenericODE2(nodeNumbers=self.nodes, forceVector=self.force.tolist()))
+        mbs.Assemble()
+        self.update_load()
+        mbs.SetPreNewtonResidualUserFunction(lambda mbs_, t, iteration, discontinuous: self.update_load())
+
+    def force_vector(self, q: np.ndarray) -> np.ndarray:
+        """The load's generalised force (6N) at coordinates q: tile forces at the centres, no torques."""
+        t0 = _time.perf_counter()
+        q = np.asarray(q)[: 6 * self.tiles.count].reshape(-1, 6)
+        self.force.reshape(-1, 6)[:, :3] = sheet.tile_forces(self.p, self.flat + q[:, :3], sheet.normal_xyz(q[:, 3:]))
+        self.load_calls += 1
+        self.load_time += _time.perf_counter() - t0
+        return self.force
+
+    def update_load(self) -> None:
+        q = self.mbs.systemData.GetODE2Coordinates()
+        self.mbs.SetObjectParameter(self.generic, "forceVector", self.force_vector(q))
+
+    def centres(self, q: np.ndarray) -> np.ndarray:
+        """Tile centres (…, N, 3) of coordinate rows (…, 6N)."""
+        q = np.asarray(q)[..., : 6 * self.tiles.count]
+        return self.flat + q.reshape(q.shape[:-1] + (self.tiles.count, 6))[..., :3]
+
+    def state(self, q: np.ndarray, q_t: np.ndarray):
+        """(centres, angles, velocities, angular velocities), each (…, N, 3), of coordinate rows (…, 6N)."""
+        N = self.tiles.count
+        q = np.asarray(q)[..., : 6 * N]
+        q = q.reshape(q.shape[:-1] + (N, 6))
+        v = np.asarray(q_t)[..., : 6 * N].reshape(q.shape)
+        return (
+            self.flat + q[..., :3],
+            q[..., 3:].copy(),
+            v[..., :3].copy(),
+            angular_velocity_xyz(q[..., 3:], v[..., 3:]),
+        )
+
+
+def simulation_settings(t_final: float, step_size: float, rel_tol: float, abs_tol: float, spectral_radius: float):
+    """Exudyn's SimulationSettings of one generalized-α run (fixed step, modified Newton, sparse LU)."""
+    import exudyn as exu
+
+    s = exu.SimulationSettings()
+    ti = s.timeIntegration
+    ti.endTime = t_final
+    ti.numberOfSteps = max(1, int(round(t_final / step_size)))
+    ti.newton.relativeTolerance = rel_tol
+    ti.newton.absoluteTolerance = abs_tol
+    ti.generalizedAlpha.spectralRadius = spectral_radius
+    ti.minimumStepSize = step_size * 1e-4
+    ti.verboseMode = 0
+    s.solution.file.write = False
+    s.solution.sensors.active = False
+    s.linearSolver.solverType = exu.LinearSolverType.EigenSparse
+    return s
+
+
+def run(params: SailParameters, settings: RunSettings, *, progress: bool = False, **options) -> Result:
+    """Integrate one sheet case to t_final or to failure (module docstring); options: step_size,
+    newton_rel_tol, newton_abs_tol, spectral_radius, perturbation (m, seeded tile offsets at the start)."""
+    import exudyn as exu
+
+    unknown = sorted(set(options) - set(OPTIONS))
+    if unknown:
+        raise ParameterError(f"option {unknown[0]!r} is invalid for a sheet: allowed {', '.join(OPTIONS)}")
+    p = params
+    dt = settings.sample_interval
+    h = options.get("step_size") or default_step_size(p, settings)
+    if not (h > 0 and math.isfinite(h)):
+        raise ParameterError(f"step_size={h!r} is invalid: allowed a finite value > 0 (s)")
+    h = dt / math.ceil(dt / h * (1 - 1e-12))  # whole steps per output sample
+    spectral_radius = float(options.get("spectral_radius", SPECTRAL_RADIUS))
+    if not 0 <= spectral_radius <= 1:
+        raise ParameterError(f"spectral_radius={spectral_radius!r} is invalid: allowed 0 ≤ ρ∞ ≤ 1")
+    start = _time.perf_counter()
+    cpu = _time.process_time()
+    system = SheetSystem(p, float(options.get("perturbation") or 0.0))
+    rel_tol = float(options.get("newton_rel_tol") or NEWTON_REL_TOL)
+    abs_tol = options.get("newton_abs_tol")
+    abs_tol = default_abs_tol(p, system.conn) if abs_tol is None else float(abs_tol)
+    mbs = system.mbs
+    s = simulation_settings(settings.t_final, h, rel_tol, abs_tol, spectral_radius)
+    steps_per_sample = int(round(dt / h))
+    monitor = FailureMonitor(analysis.plane_amplitude(system.centres(mbs.systemData.GetODE2Coordinates())), settings)
+    rows_q = [np.array(mbs.systemData.GetODE2Coordinates())]
+    rows_v = [np.array(mbs.systemData.GetODE2Coordinates_t())]
+    times = [0.0]
+    watch = {"steps": 0, "failed": False}
+    bar = Progress(settings.t_final, progress, label=f"exudyn sheet {p.n}x{p.ny}")
+
+    def after_step(mbs_, t) -> bool:
+        if t < 0.5 * h:  # Exudyn also calls this once at initialisation
+            return True
+        watch["steps"] += 1
+        if watch["steps"] % steps_per_sample:
+            return True
+        rows_q.append(np.array(mbs_.systemData.GetODE2Coordinates()))
+        rows_v.append(np.array(mbs_.systemData.GetODE2Coordinates_t()))
+        times.append(t)
+        if (len(times) - 1) % SAMPLES_PER_CHECK == 0:
+            bar.update(t)
+            if monitor.active:
+                centres = system.centres(np.array(rows_q[-SAMPLES_PER_CHECK:]))
+                if monitor.first_failure(analysis.plane_amplitude(centres)) is not None:
+                    watch["failed"] = True
+                    return False
+        return True
+
+    mbs.SetPostStepUserFunction(after_step)
+    solver = exu.MainSolverImplicitSecondOrder()
+    error = None
+    try:
+        with silenced():
+            solver.InitializeSolver(mbs, s)
+            ok = solver.SolveSteps(mbs, s)
+            if not ok and not watch["failed"]:
+                error = (
+                    f"Newton did not converge at t = {solver.it.currentTime:.9g} s (exudyn: {solver.GetErrorString()})"
+                )
+            elif not np.all(np.isfinite(mbs.systemData.GetODE2Coordinates())):
+                error = f"non-finite state at t = {solver.it.currentTime:.9g} s"
+            solver.FinalizeSolver(mbs, s)
+    except exu.ExudynError as exc:
+        error = f"exudyn: {exc}".strip()
+    finally:
+        bar.update(float(solver.it.currentTime))
+        bar.close()
+    wall = _time.perf_counter() - start
+    centres, angles, velocities, omega = system.state(np.array(rows_q), np.array(rows_v))
+    stop = monitor.first_failure(analysis.plane_amplitude(centres))
+    if stop is not None:  # end at the first sample past failure
+        centres, angles, velocities, omega = (a[: stop + 1] for a in (centres, angles, velocities, omega))
+        times = times[: stop + 1]
+    info = {
+        "formulation": "rigid tiles (NodeRigidBodyRxyz) and ObjectConnectorRigidBodySpringDamper edges, "
+        "generalized-alpha, modified Newton, sparse LU",
+        "step_size": h,
+        "newton_rel_tol": rel_tol,
+        "newton_abs_tol": abs_tol,
+        "spectral_radius": spectral_radius,
+        "perturbation": float(options.get("perturbation") or 0.0),
+        "steps": watch["steps"],
+        "newton_iterations": int(solver.it.newtonStepsCount),
+        "jacobian_evaluations": int(solver.it.newtonJacobiCount),
+        "load_calls": system.load_calls,
+        "load_time": system.load_time,
+        "coordinates": 6 * system.tiles.count,
+        "connectors": len(system.conn),
+        "membrane_modulus": system.tiles.membrane_modulus,
+        "membrane_damping": system.tiles.membrane_damping,
+        "cpu_time": _time.process_time() - cpu,
+    }
+    result = Result.from_tiles(
+        p,
+        "exudyn",
+        times,
+        centres,
+        angles,
+        velocities,
+        omega,
+        wall_time=wall,
+        error=error,
+        info=info,
+        settings=settings,
+    )
+    note = round_off_warning(p, system.conn)
+    if note:
+        result.warnings.append(note)
+    return result
+
+
+def static_centres(p: SailParameters, rel_tol: float = 1e-10) -> np.ndarray:
+    """Tile centres (N, 3) at static equilibrium under the case's loads: Exudyn's static solver, one load
+    step, Newton tolerance above the round-off floor. For supported boundaries only."""
+    import exudyn as exu
+
+    if p.boundary == "free":
+        raise ParameterError("boundary='free' is invalid for a static solve: allowed a supported sheet")
+    system = SheetSystem(p)
+    s = simulation_settings(1.0, 1.0, rel_tol, 1.0, SPECTRAL_RADIUS)
+    st = s.staticSolver
+    st.newton.relativeTolerance = rel_tol
+    t = system.tiles
+    st.newton.absoluteTolerance = max(
+        1e-14 * max(abs(p.pressure), 1e-30) * t.area * t.count, ROUND_OFF_FACTOR * round_off_floor(p, system.conn)
+    )
+    st.numberOfLoadSteps = 1
+    st.verboseMode = 0
+    with silenced():
+        exu.MainSolverStatic().SolveSystem(system.mbs, s)
+    q = np.asarray(system.mbs.systemData.GetODE2Coordinates())
+    return system.centres(q)
+
+
+def eigenfrequencies(p: SailParameters, count: int | None = None) -> np.ndarray:
+    """Undamped ω (rad/s) of the linearised sheet at its initial state, ascending, by Exudyn's
+    ComputeODE2Eigenvalues (dense numerical K and M; practical up to ~20 × 20 tiles).
+
+    Wrong for a pre-stressed sheet (edge_tension > 0): the pre-stressed connector's tangent stiffness is
+    not symmetric, and the routine solves the symmetric generalised eigenproblem (measured +24–27 % on
+    the tensioned membrane; the time-domain frequencies of the same Exudyn model are right). Raises
+    ParameterError then."""
+    if p.edge_tension > 0:
+        raise ParameterError(
+            "edge_tension > 0 is invalid for Exudyn's eigenvalue solver (non-symmetric pre-stressed stiffness): "
+            "allowed 0; use the reduced solver's eigenfrequencies or a time-domain fit"
+        )
+    system = SheetSystem(p)
+    with silenced():
+        values, _ = system.mbs.ComputeODE2Eigenvalues(useAbsoluteValues=True)
+    omega = np.sqrt(np.sort(np.asarray(values)))
+    return omega if count is None else omega[:count]

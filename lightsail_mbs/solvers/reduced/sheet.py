@@ -1,0 +1,560 @@
+"""The in-house sheet solver (`solve(params, "reduced")` for model "sheet"), independent of Exudyn.
+
+Why a second implementation of the *same* discrete model, not a continuum plate: the cross-check
+holds failure times to 1 % and deflections to 1e-3 a₀ on an unstable sail that amplifies every model
+difference, so two discretisations (tiles and finite differences) would differ by their own
+O((a/L)²) error long before that. A second implementation of the same tiles and connectors checks
+the Exudyn build (connector frames and offsets, load, frame force, follower tension) to solver
+tolerance; the plate and membrane validations then check the discrete model against continuum theory.
+
+What is independent of Exudyn:
+
+* coordinates: per tile the centre displacement u from its flat grid point, a unit quaternion
+  (scalar first) and the body-frame angular velocity ω_b; first-order Newton–Euler equations
+      u̇ = v,  q̇ = ½ q ⊗ (0, ω_b),  m v̇ = F,  J ω̇_b = τ_b − ω_b × J ω_b
+  (Exudyn: Tait–Bryan angles, a second-order system with a state-dependent mass matrix). The springs'
+  relative displacement is formed from small quantities only,
+  p_b − p_a = gap + (u_b − u_a) + (R_b − I) l_b − (R_a − I) l_a (gap: the markers' small known
+  mismatch on the flat grid, model.sheet.Connectors), so its
+  round-off is ~1e-21 m where Exudyn's, formed from ~1 m positions, is ~1e-16 m;
+* the load: the compiled facet law (loads.net_facet_force) on the normal's components
+  (2(q₁q₃ + q₀q₂), 2(q₂q₃ − q₀q₁), …)/|q|², never a difference of O(1) numbers;
+* integrator: Radau IIA, order 5, adaptive (sheet_radau: velocity-reduced sparse solve, quantised
+  steps), with a sparse Jacobian from graph-coloured finite differences: tiles (i, j) with equal
+  (i + 2j) mod 5 are at least 3 grid steps apart, so their closed neighbourhoods never overlap, and
+  13 × 5 = 65 right-hand sides give the whole Jacobian (Exudyn: generalized-α, fixed step, modified
+  Newton);
+* code: the right-hand side is one numba-compiled pass over tiles, connectors, followers and loads.
+
+What is shared on purpose: the model data (model.sheet: connectors, offsets, initial shape, edge
+followers) and the connector law, which follows Exudyn's ObjectConnectorRigidBodySpringDamper
+(non-intrinsic): δ = A₀ᵀ(p₁ − p₀), φ = xyz angles of A₀ᵀA₁, f_loc = K(δ − δ₀) + D A₀ᵀ(ṗ₁ − ṗ₀),
+m_loc = K_r(φ − φ₀) + D_r A₀ᵀ(ω₁ − ω₀), force A₀f_loc on body 0 at p₀ and −A₀f_loc on body 1 at p₁,
+torques ±A₀m_loc.
+
+Options: rtol (default 1e-7: deflections within 1.4e-7 a₀ of rtol 1e-9 on the cross-check cases),
+max_step (default 10 ms; output samples between steps come from the collocation polynomial, O(h⁴)),
+perturbation (m: seeded tile offsets along z at the start, model.sheet.perturbed).
+"""
+
+from __future__ import annotations
+
+import math
+import time as _time
+
+import numpy as np
+import scipy.sparse as sp
+from numba import njit
+
+from lightsail_mbs import analysis
+from lightsail_mbs.model import sheet
+from lightsail_mbs.model.loads import net_facet_force, round_gaussian_intensity
+from lightsail_mbs.model.parameters import SPEED_OF_LIGHT, ParameterError, SailParameters
+from lightsail_mbs.result import Result
+from lightsail_mbs.solvers.progress import Progress
+from lightsail_mbs.solvers.reduced.sheet_radau import SheetRadau
+from lightsail_mbs.solvers.settings import RunSettings
+from lightsail_mbs.solvers.skeleton import FailureMonitor
+
+STATE = 13  # u(3) q(4) v(3) ω_b(3) per tile
+COLOURS = 5
+DEFAULT_RTOL = 1e-7
+DEFAULT_MAX_STEP = 0.01
+OPTIONS = ("rtol", "max_step", "perturbation")
+
+
+@njit(cache=True)
+def _rotation_minus_identity(q0, q1, q2, q3, R):
+    """R − I of the rotation of the (not necessarily unit) quaternion q, from small products only."""
+    n = 1.0 / (q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
+    R[0, 0] = -2.0 * (q2 * q2 + q3 * q3) * n
+    R[0, 1] = 2.0 * (q1 * q2 - q0 * q3) * n
+    R[0, 2] = 2.0 * (q1 * q3 + q0 * q2) * n
+    R[1, 0] = 2.0 * (q1 * q2 + q0 * q3) * n
+    R[1, 1] = -2.0 * (q1 * q1 + q3 * q3) * n
+    R[1, 2] = 2.0 * (q2 * q3 - q0 * q1) * n
+    R[2, 0] = 2.0 * (q1 * q3 - q0 * q2) * n
+    R[2, 1] = 2.0 * (q2 * q3 + q0 * q1) * n
+    R[2, 2] = -2.0 * (q1 * q1 + q2 * q2) * n
+
+
+@njit(cache=True)
+def rhs_kernel(y, flat, mass, inertia, ta, tb, la, lb, gap, K, Dm, off, fol_tile, fol_point, fol_force, load, out):
+    """dy/dt of the sheet (module docstring). load = (Ī, A/c, I₀, x_c, y_c, w, R, α, p·A)."""
+    N = flat.shape[0]
+    R = np.empty((N, 3, 3))
+    RmI = np.empty((N, 3, 3))
+    W = np.empty((N, 3))  # global angular velocity
+    F = np.zeros((N, 3))
+    T = np.zeros((N, 3))  # global torque about the centre
+    for k in range(N):
+        b = STATE * k
+        _rotation_minus_identity(y[b + 3], y[b + 4], y[b + 5], y[b + 6], RmI[k])
+        for i in range(3):
+            for j in range(3):
+                R[k, i, j] = RmI[k, i, j] + (1.0 if i == j else 0.0)
+        for i in range(3):
+            W[k, i] = R[k, i, 0] * y[b + 10] + R[k, i, 1] * y[b + 11] + R[k, i, 2] * y[b + 12]
+    ra = np.empty(3)
+    rb = np.empty(3)
+    sa = np.empty(3)
+    sb = np.empty(3)
+    d = np.empty(3)
+    dv = np.empty(3)
+    dw = np.empty(3)
+    loc = np.empty(6)
+    RA = np.empty((3, 3))
+    Rrel = np.empty((3, 3))
+    fg = np.empty(3)
+    mg = np.empty(3)
+    for c in range(ta.shape[0]):
+        A = ta[c]
+        B = tb[c]
+        bB = STATE * B
+        for i in range(3):
+            sb[i] = RmI[B, i, 0] * lb[c, 0] + RmI[B, i, 1] * lb[c, 1] + RmI[B, i, 2] * lb[c, 2]
+            rb[i] = lb[c, i] + sb[i]
+        if A >= 0:
+            bA = STATE * A
+            for i in range(3):
+                for j in range(3):
+                    RA[i, j] = R[A, i, j]
+            for i in range(3):
+                sa[i] = RmI[A, i, 0] * la[c, 0] + RmI[A, i, 1] * la[c, 1] + RmI[A, i, 2] * la[c, 2]
+                ra[i] = la[c, i] + sa[i]
+            for i in range(3):
+                d[i] = (y[bB + i] - y[bA + i]) + sb[i] - sa[i] + gap[c, i]
+            wa0, wa1, wa2 = W[A, 0], W[A, 1], W[A, 2]
+            va0 = y[bA + 7] + wa1 * ra[2] - wa2 * ra[1]
+            va1 = y[bA + 8] + wa2 * ra[0] - wa0 * ra[2]
+            va2 = y[bA + 9] + wa0 * ra[1] - wa1 * ra[0]
+        else:
+            for i in range(3):
+                for j in range(3):
+                    RA[i, j] = 1.0 if i == j else 0.0
+                ra[i] = 0.0
+                d[i] = y[bB + i] + sb[i] + gap[c, i]
+            wa0 = wa1 = wa2 = 0.0
+            va0 = va1 = va2 = 0.0
+        wb0, wb1, wb2 = W[B, 0], W[B, 1], W[B, 2]
+        dv[0] = y[bB + 7] + wb1 * rb[2] - wb2 * rb[1] - va0
+        dv[1] = y[bB + 8] + wb2 * rb[0] - wb0 * rb[2] - va1
+        dv[2] = y[bB + 9] + wb0 * rb[1] - wb1 * rb[0] - va2
+        dw[0] = wb0 - wa0
+        dw[1] = wb1 - wa1
+        dw[2] = wb2 - wa2
+        for i in range(3):
+            for j in range(3):
+                Rrel[i, j] = RA[0, i] * R[B, 0, j] + RA[1, i] * R[B, 1, j] + RA[2, i] * R[B, 2, j]
+        phi1 = math.atan2(Rrel[0, 2], math.sqrt(Rrel[1, 2] ** 2 + Rrel[2, 2] ** 2))
+        phi0 = math.atan2(-Rrel[1, 2], Rrel[2, 2])
+        phi2 = math.atan2(-Rrel[0, 1], Rrel[0, 0])
+        for i in range(3):
+            dl = RA[0, i] * d[0] + RA[1, i] * d[1] + RA[2, i] * d[2]
+            vl = RA[0, i] * dv[0] + RA[1, i] * dv[1] + RA[2, i] * dv[2]
+            wl = RA[0, i] * dw[0] + RA[1, i] * dw[1] + RA[2, i] * dw[2]
+            loc[i] = K[c, i] * (dl - off[c, i]) + Dm[c, i] * vl
+            loc[3 + i] = Dm[c, 3 + i] * wl
+        loc[3] += K[c, 3] * (phi0 - off[c, 3])
+        loc[4] += K[c, 4] * (phi1 - off[c, 4])
+        loc[5] += K[c, 5] * (phi2 - off[c, 5])
+        for i in range(3):
+            fg[i] = RA[i, 0] * loc[0] + RA[i, 1] * loc[1] + RA[i, 2] * loc[2]
+            mg[i] = RA[i, 0] * loc[3] + RA[i, 1] * loc[4] + RA[i, 2] * loc[5]
+        F[B, 0] -= fg[0]
+        F[B, 1] -= fg[1]
+        F[B, 2] -= fg[2]
+        T[B, 0] -= rb[1] * fg[2] - rb[2] * fg[1] + mg[0]
+        T[B, 1] -= rb[2] * fg[0] - rb[0] * fg[2] + mg[1]
+        T[B, 2] -= rb[0] * fg[1] - rb[1] * fg[0] + mg[2]
+        if A >= 0:
+            F[A, 0] += fg[0]
+            F[A, 1] += fg[1]
+            F[A, 2] += fg[2]
+            T[A, 0] += ra[1] * fg[2] - ra[2] * fg[1] + mg[0]
+            T[A, 1] += ra[2] * fg[0] - ra[0] * fg[2] + mg[1]
+            T[A, 2] += ra[0] * fg[1] - ra[1] * fg[0] + mg[2]
+    for f in range(fol_tile.shape[0]):
+        k = fol_tile[f]
+        for i in range(3):
+            ra[i] = R[k, i, 0] * fol_point[f, 0] + R[k, i, 1] * fol_point[f, 1] + R[k, i, 2] * fol_point[f, 2]
+            fg[i] = R[k, i, 0] * fol_force[f, 0] + R[k, i, 1] * fol_force[f, 1] + R[k, i, 2] * fol_force[f, 2]
+        F[k, 0] += fg[0]
+        F[k, 1] += fg[1]
+        F[k, 2] += fg[2]
+        T[k, 0] += ra[1] * fg[2] - ra[2] * fg[1]
+        T[k, 1] += ra[2] * fg[0] - ra[0] * fg[2]
+        T[k, 2] += ra[0] * fg[1] - ra[1] * fg[0]
+    mean_intensity, area_c, peak, cx, cy, waist, refl, absorb, pressure_force = (
+        load[0],
+        load[1],
+        load[2],
+        load[3],
+        load[4],
+        load[5],
+        load[6],
+        load[7],
+        load[8],
+    )
+    for k in range(N):
+        b = STATE * k
+        local = round_gaussian_intensity(flat[k, 0] + y[b], flat[k, 1] + y[b + 1], peak, cx, cy, waist)
+        # the normal R ẑ: its x, y components are the small entries of R − I
+        f0, f1, f2 = net_facet_force(
+            RmI[k, 0, 2], RmI[k, 1, 2], R[k, 2, 2], local, mean_intensity, area_c, refl, absorb
+        )
+        F[k, 0] += f0
+        F[k, 1] += f1
+        F[k, 2] += f2 + pressure_force
+        q0, q1, q2, q3 = y[b + 3], y[b + 4], y[b + 5], y[b + 6]
+        w0, w1, w2 = y[b + 10], y[b + 11], y[b + 12]
+        out[b] = y[b + 7]
+        out[b + 1] = y[b + 8]
+        out[b + 2] = y[b + 9]
+        out[b + 3] = 0.5 * (-q1 * w0 - q2 * w1 - q3 * w2)
+        out[b + 4] = 0.5 * (q0 * w0 + q2 * w2 - q3 * w1)
+        out[b + 5] = 0.5 * (q0 * w1 + q3 * w0 - q1 * w2)
+        out[b + 6] = 0.5 * (q0 * w2 + q1 * w1 - q2 * w0)
+        out[b + 7] = F[k, 0] / mass
+        out[b + 8] = F[k, 1] / mass
+        out[b + 9] = F[k, 2] / mass
+        tb0 = R[k, 0, 0] * T[k, 0] + R[k, 1, 0] * T[k, 1] + R[k, 2, 0] * T[k, 2]
+        tb1 = R[k, 0, 1] * T[k, 0] + R[k, 1, 1] * T[k, 1] + R[k, 2, 1] * T[k, 2]
+        tb2 = R[k, 0, 2] * T[k, 0] + R[k, 1, 2] * T[k, 1] + R[k, 2, 2] * T[k, 2]
+        J0, J1, J2 = inertia[0], inertia[1], inertia[2]
+        out[b + 10] = (tb0 - (w1 * J2 * w2 - w2 * J1 * w1)) / J0
+        out[b + 11] = (tb1 - (w2 * J0 * w0 - w0 * J2 * w2)) / J1
+        out[b + 12] = (tb2 - (w0 * J1 * w1 - w1 * J0 * w0)) / J2
+
+
+@njit(cache=True)
+def _fill_jacobian(data, indptr, indices, f0, fpert, group_cols, group_eps):
+    """Scatter one coloured difference quotient into the CSC data: column c of the group owns the rows
+    of its pattern."""
+    for g in range(group_cols.shape[0]):
+        c = group_cols[g]
+        e = group_eps[g]
+        for p in range(indptr[c], indptr[c + 1]):
+            data[p] = (fpert[indices[p]] - f0[indices[p]]) / e
+
+
+@njit(cache=True)
+def _unpack_kernel(Y, angles, omega):
+    R = np.empty((3, 3))
+    for t in range(Y.shape[0]):
+        for k in range(Y.shape[1]):
+            _rotation_minus_identity(Y[t, k, 3], Y[t, k, 4], Y[t, k, 5], Y[t, k, 6], R)
+            for i in range(3):
+                R[i, i] += 1.0
+            angles[t, k, 1] = math.atan2(R[0, 2], math.sqrt(R[1, 2] ** 2 + R[2, 2] ** 2))
+            angles[t, k, 0] = math.atan2(-R[1, 2], R[2, 2])
+            angles[t, k, 2] = math.atan2(-R[0, 1], R[0, 0])
+            for i in range(3):
+                omega[t, k, i] = R[i, 0] * Y[t, k, 10] + R[i, 1] * Y[t, k, 11] + R[i, 2] * Y[t, k, 12]
+
+
+class SheetModel:
+    """The right-hand side, sparse Jacobian and initial state of one sheet case."""
+
+    def __init__(self, p: SailParameters, perturbation: float = 0.0):
+        self.p = p
+        self.tiles = sheet.Tiles.of(p)
+        N = self.tiles.count
+        self.flat = sheet.flat_centres(p)
+        self.centres0, self.q0 = sheet.initial_quaternions(p)
+        c = sheet.connectors(p, self.centres0, self.q0)
+        self.conn = c
+        self.start = sheet.perturbed(p, self.centres0, perturbation)
+        self.ta, self.tb = c.tile_a.astype(np.int64), c.tile_b.astype(np.int64)
+        self.la, self.lb = np.ascontiguousarray(c.local_a), np.ascontiguousarray(c.local_b)
+        self.gap = np.ascontiguousarray(c.gap)
+        self.K, self.Dm = np.ascontiguousarray(c.stiffness), np.ascontiguousarray(c.damping)
+        self.off = np.ascontiguousarray(c.offset)
+        ft, fp, ff = sheet.edge_followers(p)
+        self.followers = (ft.astype(np.int64), np.ascontiguousarray(fp), np.ascontiguousarray(ff))
+        self.load = np.array(
+            [
+                p.mean_intensity,
+                self.tiles.area / SPEED_OF_LIGHT,
+                p.intensity,
+                p.beam_center,
+                p.sheet_beam_center_y,
+                p.beam_waist,
+                p.reflectivity,
+                p.absorptivity,
+                p.pressure * self.tiles.area,
+            ]
+        )
+        self.inertia = np.asarray(self.tiles.inertia, float)
+        self.n = STATE * N
+        self.calls = 0
+        self._pattern()
+
+    def y0(self) -> np.ndarray:
+        y = np.zeros((self.tiles.count, STATE))
+        y[:, 0:3] = self.start - self.flat
+        y[:, 3:7] = self.q0
+        return y.ravel()
+
+    def rhs(self, t, y, out=None):
+        out = np.empty(self.n) if out is None else out
+        self.calls += 1
+        rhs_kernel(
+            y,
+            self.flat,
+            self.tiles.mass,
+            self.inertia,
+            self.ta,
+            self.tb,
+            self.la,
+            self.lb,
+            self.gap,
+            self.K,
+            self.Dm,
+            self.off,
+            *self.followers,
+            self.load,
+            out,
+        )
+        return out
+
+    def _pattern(self):
+        """CSC sparsity of ∂ẏ/∂y (each tile's 13 rows depend on its own and its neighbours' 13 columns) and
+        the 5-colouring of the tiles."""
+        N, nx = self.tiles.count, self.tiles.nx
+        neighbours = [{k} for k in range(N)]
+        for a, b in zip(self.ta, self.tb):
+            if a >= 0:
+                neighbours[a].add(b)
+                neighbours[b].add(a)
+        rows, cols = [], []
+        for ct in range(N):
+            for rt in sorted(neighbours[ct]):
+                r = STATE * rt + np.arange(STATE)
+                for s in range(STATE):
+                    rows.append(r)
+                    cols.append(np.full(STATE, STATE * ct + s))
+        rows, cols = np.concatenate(rows), np.concatenate(cols)
+        M = sp.csc_matrix((np.ones(rows.size), (rows, cols)), shape=(self.n, self.n))
+        M.sort_indices()
+        self.indptr, self.indices = M.indptr.astype(np.int64), M.indices.astype(np.int64)
+        k = np.arange(N)
+        colour = (k % nx + 2 * (k // nx)) % COLOURS
+        for col in range(COLOURS):  # no two tiles of one colour share a neighbour
+            seen = set()
+            for t in np.nonzero(colour == col)[0]:
+                if neighbours[t] & seen:
+                    raise RuntimeError("the tile colouring overlaps")
+                seen |= neighbours[t]
+        self.groups = [np.nonzero(colour == col)[0] for col in range(COLOURS)]
+        size = max(self.p.length, self.p.width)
+        self.scale = np.tile(np.r_[[size] * 3, [1.0] * 4, [size] * 3, [1.0] * 3], N)
+
+    def jacobian(self, t, y):
+        f0 = self.rhs(t, y)
+        data = np.empty(self.indices.size)
+        fp = np.empty(self.n)
+        for tiles in self.groups:
+            for s in range(STATE):
+                cols = STATE * tiles + s
+                eps = 1e-8 * np.maximum(np.abs(y[cols]), 1e-3 * self.scale[cols])
+                yp = y.copy()
+                yp[cols] += eps
+                eps = yp[cols] - y[cols]
+                self.rhs(t, yp, fp)
+                _fill_jacobian(data, self.indptr, self.indices, f0, fp, cols.astype(np.int64), eps)
+        return sp.csc_matrix((data, self.indices, self.indptr), shape=(self.n, self.n))
+
+    @property
+    def position_indices(self) -> np.ndarray:
+        """Indices of X = (u, q) of every tile in the state vector."""
+        return (STATE * np.arange(self.tiles.count)[:, None] + np.arange(7)).ravel()
+
+    @property
+    def velocity_indices(self) -> np.ndarray:
+        """Indices of V = (v, ω_b) of every tile in the state vector."""
+        return (STATE * np.arange(self.tiles.count)[:, None] + np.arange(7, 13)).ravel()
+
+    def kinematics(self, y: np.ndarray) -> sp.csr_matrix:
+        """B(X) with Ẋ = B V: per tile I₃ (u̇ = v) and ½ Q(q) (q̇ = ½ q ⊗ (0, ω_b)), 7N × 6N."""
+        N = self.tiles.count
+        q0, q1, q2, q3 = y.reshape(N, STATE)[:, 3:7].T
+        blocks = np.zeros((N, 7, 6))
+        blocks[:, 0, 0] = blocks[:, 1, 1] = blocks[:, 2, 2] = 1.0
+        blocks[:, 3:7, 3:6] = 0.5 * np.stack(
+            [
+                np.stack([-q1, -q2, -q3], -1),
+                np.stack([q0, -q3, q2], -1),
+                np.stack([q3, q0, -q1], -1),
+                np.stack([-q2, q1, q0], -1),
+            ],
+            axis=1,
+        )
+        return sp.block_diag(list(blocks), format="csr")
+
+    def unpack(self, Y: np.ndarray):
+        """(centres, xyz angles, velocities, global angular velocities) of state rows (T, 13N), each (T, N, 3)."""
+        Y = np.ascontiguousarray(np.asarray(Y).reshape(len(Y), self.tiles.count, STATE))
+        angles = np.empty(Y.shape[:2] + (3,))
+        omega = np.empty(Y.shape[:2] + (3,))
+        _unpack_kernel(Y, angles, omega)
+        return self.flat + Y[..., 0:3], angles, Y[..., 7:10].copy(), omega
+
+    def stiffness(self, y: np.ndarray) -> sp.csc_matrix:
+        """K = ∂a/∂ξ = A_X B: accelerations per generalised displacement ξ = (Δu, Δθ_b) of every tile."""
+        J = self.jacobian(0.0, y).tocsr()
+        return (J[self.velocity_indices][:, self.position_indices] @ self.kinematics(y)).tocsc()
+
+
+def state_scales(p: SailParameters) -> np.ndarray:
+    """Absolute-tolerance scales per state component: a₀ for u, the defect slope for q, and both over the
+    instability time √(L/g₀) for the rates."""
+    a0 = p.displacement_scale
+    mode = p.defect_mode if p.defect_mode_y is None else max(p.defect_mode, p.defect_mode_y)
+    slope = max(2 * math.pi * mode * p.defect_amplitude / p.length, a0 / p.length)
+    tc = math.sqrt(p.length / p.nominal_acceleration) if p.nominal_acceleration > 0 else 1.0
+    return np.tile(np.r_[[a0] * 3, [slope] * 4, [a0 / tc] * 3, [slope / tc] * 3], p.n * p.ny)
+
+
+def run(params: SailParameters, settings: RunSettings, *, progress: bool = False, **options) -> Result:
+    """Integrate one sheet case to t_final or to failure and return its Result (solver "reduced");
+    options: rtol, max_step, perturbation (module docstring)."""
+    unknown = sorted(set(options) - set(OPTIONS))
+    if unknown:
+        raise ParameterError(f"option {unknown[0]!r} is invalid for a sheet: allowed {', '.join(OPTIONS)}")
+    rtol = float(options.get("rtol") or DEFAULT_RTOL)
+    if not 0 < rtol < 1:
+        raise ParameterError(f"rtol={rtol!r} is invalid: allowed 0 < rtol < 1")
+    max_step = float(options.get("max_step") or DEFAULT_MAX_STEP)
+    if not (max_step > 0 and math.isfinite(max_step)):
+        raise ParameterError(f"max_step={max_step!r} is invalid: allowed a finite value > 0 (s)")
+    perturbation = float(options.get("perturbation") or 0.0)
+    start = _time.perf_counter()
+    cpu = _time.process_time()
+    model = SheetModel(params, perturbation)
+    y0 = model.y0()
+    atol = rtol * state_scales(params)
+    dt = settings.sample_interval
+    if max_step >= dt:
+        h_max = dt * max(1, int(round(max_step / dt)))
+    else:
+        h_max = dt / 2 ** math.ceil(math.log2(dt / max_step))
+    solver = SheetRadau(
+        model.rhs,
+        0.0,
+        y0,
+        settings.t_final,
+        rtol=rtol,
+        atol=atol,
+        jac=model.jacobian,
+        kinematics=model.kinematics,
+        X=model.position_indices,
+        V=model.velocity_indices,
+        h_max=h_max,
+    )
+    times = settings.sample_times()
+    monitor = FailureMonitor(analysis.plane_amplitude(model.start), settings)
+    bar = Progress(settings.t_final, progress, label=f"reduced sheet {params.n}x{params.ny}")
+    states, error, k = [y0], None, 1
+    try:
+        while solver.status == "running" and k < len(times):
+            message = solver.step()
+            if solver.status == "failed":
+                error = f"Radau failed: {message}"
+                break
+            new = []
+            while k < len(times) and times[k] <= solver.t + 1e-9 * dt:
+                new.append(times[k])
+                k += 1
+            if not new:
+                continue
+            exact = abs(new[-1] - solver.t) <= 1e-9 * dt
+            between = new[:-1] if exact else new
+            batch = list(solver.sol(np.array(between)).T) if between else []
+            if exact:
+                batch.append(solver.y.copy())
+            states.extend(batch)
+            bar.update(solver.t)
+            centres = model.flat + np.array(batch).reshape(len(batch), -1, STATE)[..., :3]
+            stop = monitor.first_failure(analysis.plane_amplitude(centres))
+            if stop is not None:
+                del states[len(states) - len(batch) + stop + 1 :]
+                break
+    finally:
+        bar.close()
+    wall = _time.perf_counter() - start
+    centres, angles, velocities, omega = model.unpack(np.array(states))
+    info = {
+        "formulation": "tiles in maximal coordinates (quaternions), Radau IIA with a velocity-reduced sparse solve",
+        "rtol": rtol,
+        "max_step": h_max,
+        "perturbation": perturbation,
+        "steps": solver.nsteps,
+        "rejected_steps": solver.nrejected,
+        "rhs_calls": model.calls,
+        "jacobians": solver.njev,
+        "lu_factorisations": solver.nlu,
+        "states": model.n,
+        "connectors": len(model.conn),
+        "membrane_modulus": model.tiles.membrane_modulus,
+        "membrane_damping": model.tiles.membrane_damping,
+        "cpu_time": _time.process_time() - cpu,
+    }
+    return Result.from_tiles(
+        params,
+        "reduced",
+        times[: len(states)],
+        centres,
+        angles,
+        velocities,
+        omega,
+        wall_time=wall,
+        error=error,
+        info=info,
+        settings=settings,
+    )
+
+
+def _rotate_quaternions(y: np.ndarray, dtheta: np.ndarray) -> None:
+    """q ← q ⊗ exp(Δθ_b/2) in place for (N, 3) body-frame rotation increments."""
+    N = dtheta.shape[0]
+    Y = y.reshape(N, STATE)
+    angle = np.linalg.norm(dtheta, axis=1)
+    s = np.where(angle > 0, np.sin(0.5 * angle) / np.where(angle > 0, angle, 1.0), 0.5)
+    r = np.column_stack([np.cos(0.5 * angle), dtheta * s[:, None]])
+    q = Y[:, 3:7].copy()
+    Y[:, 3] = q[:, 0] * r[:, 0] - np.sum(q[:, 1:] * r[:, 1:], axis=1)
+    Y[:, 4:7] = q[:, 0:1] * r[:, 1:] + r[:, 0:1] * q[:, 1:] + np.cross(q[:, 1:], r[:, 1:])
+    Y[:, 3:7] /= np.linalg.norm(Y[:, 3:7], axis=1, keepdims=True)
+
+
+def static_centres(p: SailParameters, tol: float = 1e-12, max_iterations: int = 30) -> np.ndarray:
+    """Tile centres (N, 3) at static equilibrium under the case's loads: Newton on the accelerations
+    a(X) = 0 (V = 0) with the tangent K = A_X B in the 6 generalised displacements per tile. For
+    supported boundaries (a free sail has rigid-body modes)."""
+    from scipy.sparse.linalg import spsolve
+
+    if p.boundary == "free":
+        raise ParameterError("boundary='free' is invalid for a static solve: allowed a supported sheet")
+    model = SheetModel(p)
+    y = model.y0()
+    N = model.tiles.count
+    for _ in range(max_iterations):
+        a = model.rhs(0.0, y)[model.velocity_indices]
+        xi = spsolve(model.stiffness(y), -a).reshape(N, 6)
+        Y = y.reshape(N, STATE)
+        Y[:, 0:3] += xi[:, 0:3]
+        _rotate_quaternions(y, xi[:, 3:6])
+        if np.max(np.abs(xi[:, 0:3])) < tol * p.length:
+            break
+    return model.flat + y.reshape(N, STATE)[:, 0:3]
+
+
+def eigenfrequencies(p: SailParameters, count: int = 10) -> np.ndarray:
+    """The `count` lowest undamped ω (rad/s) at the initial state: eigenvalues −ω² of K = A_X B (exact for
+    pre-stressed connectors: K need not be symmetric), by shift-invert Arnoldi about a small shift."""
+    from scipy.sparse.linalg import eigs
+
+    model = SheetModel(p)
+    values = eigs(model.stiffness(model.y0()), k=count, sigma=-1e-9, which="LM", return_eigenvectors=False)
+    return np.sort(np.sqrt(np.abs(values.real)))

@@ -1,0 +1,124 @@
+"""The Exudyn sheet: the same accelerations as the in-house solver of the same tiles, the same motion on a
+small sheet, the chain it reduces to, plates against Kirchhoff theory, and the limits it reports."""
+
+import numpy as np
+import pytest
+
+from lightsail_mbs import ParameterError, RunSettings, SailParameters, solve
+from lightsail_mbs.model import plate_theory, sheet
+from lightsail_mbs.solvers.exudyn import sheet as exudyn_sheet
+from lightsail_mbs.solvers.reduced import sheet as reduced_sheet
+
+SOFT = dict(model="sheet", youngs_modulus=4.5e9)
+
+
+def test_initial_accelerations_equal_the_in_house_solvers():
+    """A 2-D defect, an off-centre round Gaussian beam, a partial reflector and edge tension: every tile's
+    acceleration at t = 0 from Exudyn's assembled system equals the in-house right-hand side."""
+    import exudyn as exu
+
+    p = SailParameters(
+        n=5,
+        ny=4,
+        defect_mode_y=1.5,
+        beam_waist=1.5,
+        beam_center=0.4,
+        beam_center_y=0.6,
+        edge_tension=1e-5,
+        reflectivity=0.9,
+        absorptivity=0.05,
+        **SOFT,
+    )
+    model = reduced_sheet.SheetModel(p)
+    expected = model.rhs(0.0, model.y0()).reshape(-1, reduced_sheet.STATE)[:, 7:10]
+    system = exudyn_sheet.SheetSystem(p)
+    s = exudyn_sheet.simulation_settings(1e-6, 1e-6, 1e-10, 1e-16, 0.9)
+    solver = exu.MainSolverImplicitSecondOrder()
+    from lightsail_mbs.solvers.exudyn.console import silenced
+
+    with silenced():
+        solver.InitializeSolver(system.mbs, s)  # computes the initial accelerations
+    got = np.asarray(system.mbs.systemData.GetODE2Coordinates_tt()).reshape(-1, 6)[:, :3]
+    assert np.max(np.abs(got - expected)) < 1e-6 * np.max(np.abs(expected))
+
+
+def test_exudyn_and_in_house_sheets_move_alike():
+    """6 × 5 tiles, doubly sinusoidal defect, 0.5 s: the tile deflections of the two solvers agree within
+    1e-3 a₀ (Exudyn at a quarter of its default step, as the cross-check)."""
+    p = SailParameters(n=6, ny=5, defect_mode_y=1.0, **SOFT)
+    settings = RunSettings(t_final=0.5, output_interval=0.01)
+    a = solve(p, "exudyn", settings, step_size=2.5e-4)
+    b = solve(p, "reduced", settings)
+    assert a.time.shape == b.time.shape
+    assert np.max(np.abs(a.deflection() - b.deflection())) < 1e-3 * p.defect_amplitude
+    assert abs(a.amplitude[-1] / a.amplitude[0] - 1) > 1e-3  # the sheet did move
+
+
+def test_sheet_with_one_defect_across_is_the_chain():
+    p = SailParameters(n=30, ny=1, **SOFT)
+    settings = RunSettings(t_final=3.0)
+    strip = solve(sheet.as_strip(p), "reduced", settings)
+    tiles = solve(p, "exudyn", settings)
+    assert tiles.failure_time == pytest.approx(strip.failure_time, rel=1e-3)
+    assert tiles.info["jacobian_evaluations"] <= 3  # modified Newton: the load is not in the Jacobian
+
+
+def test_plate_statics_and_modes_on_a_coarse_grid():
+    p = SailParameters(
+        model="sheet",
+        n=9,
+        ny=9,
+        thickness=0.01,
+        youngs_modulus=1.2e9,
+        intensity=0.0,
+        defect_amplitude=0.0,
+        pressure=0.01,
+        boundary="clamped",
+    )
+    w = exudyn_sheet.static_centres(p)[40, 2]
+    assert w == pytest.approx(reduced_sheet.static_centres(p)[40, 2], rel=1e-9)
+    assert w == pytest.approx(plate_theory.centre_deflection(p), rel=0.11)  # 9 × 9: +10 % (grid error)
+    supported = p.replace(boundary="simply_supported", pressure=0.0)
+    np.testing.assert_allclose(
+        exudyn_sheet.eigenfrequencies(supported, 4), reduced_sheet.eigenfrequencies(supported, 4), rtol=1e-6
+    )
+
+
+def test_limits_are_reported():
+    tensioned = SailParameters(
+        n=4,
+        ny=4,
+        bending=False,
+        edge_tension=1.0,
+        boundary="simply_supported",
+        intensity=0.0,
+        defect_amplitude=0.0,
+        **SOFT,
+    )
+    with pytest.raises(ParameterError, match="edge_tension"):
+        exudyn_sheet.eigenfrequencies(tensioned)
+    stiff = SailParameters(n=30, ny=1, model="sheet", youngs_modulus=4.5e13)
+    assert "round-off" in exudyn_sheet.round_off_warning(stiff)
+    assert exudyn_sheet.round_off_warning(stiff.replace(membrane_modulus=4.5e9)) is None
+    assert exudyn_sheet.default_abs_tol(stiff) >= 2 * exudyn_sheet.round_off_floor(stiff)
+    with pytest.raises(ParameterError, match="step_size"):
+        solve(stiff, "exudyn", RunSettings(t_final=0.01), step_size=-1.0)
+    with pytest.raises(ParameterError, match="rtol"):
+        solve(stiff, "exudyn", RunSettings(t_final=0.01), rtol=1e-3)
+
+
+@pytest.mark.slow
+def test_two_sheet_solvers_agree_to_failure_on_a_doubly_sinusoidal_defect():
+    """The cross-check's doubly sinusoidal case on 6 × 6 tiles, to failure: failure times within 1 % and
+    deflections within 1e-3 a₀ while both amplitudes are below 1.5 a₀ (studies.sheet; 20 × 20 in
+    validation/sheet_crosscheck.py)."""
+    from lightsail_mbs.studies import sheet as sheet_study
+
+    p = SailParameters(n=6, ny=6, defect_mode_y=1.5, **SOFT)
+    settings = RunSettings(t_final=3.0, output_interval=5e-3)
+    a = solve(p, "exudyn", settings, step_size=2.5e-4)
+    b = solve(p, "reduced", settings)
+    assert a.failed and b.failed and a.error is None and b.error is None
+    assert a.failure_time == pytest.approx(b.failure_time, rel=sheet_study.FAILURE_TIME_LIMIT)
+    difference, _ = sheet_study.compare_deflections(a, b)
+    assert difference <= sheet_study.DEFLECTION_LIMIT

@@ -1,0 +1,74 @@
+"""Sweeps, the store and the stability bisection take sheets like chains: a small sheet through the store,
+its boundary in the strip's units, and the solvers' comparison."""
+
+import numpy as np
+import pytest
+
+from lightsail_mbs import ParameterError, RunSettings, SailParameters
+from lightsail_mbs.model import plate_theory
+from lightsail_mbs.studies import sheet as sheet_study
+from lightsail_mbs.studies.store import CaseStore
+from lightsail_mbs.studies.sweep import Case, run_sweep
+from tests.helpers import synthetic_sheet
+
+SMALL = SailParameters(model="sheet", n=8, ny=3, youngs_modulus=4.5e9)
+
+
+def test_sheet_cases_sweep_through_the_store(tmp_path):
+    cases = [
+        Case(SMALL, "reduced", settings=RunSettings(t_final=0.2)),
+        Case(SMALL.replace(defect_mode_y=1.0), "reduced", save_result=True, settings=RunSettings(t_final=0.2)),
+    ]
+    records = run_sweep(cases, tmp_path, workers=1, progress=False)
+    assert [r["status"] for r in records] == ["ok", "ok"]
+    assert records[0]["ny"] == 3 and records[0]["parameters"]["model"] == "sheet"
+    assert len({c.key for c in cases}) == 2
+    again = run_sweep(cases, tmp_path, workers=1, progress=False)  # found, not rerun
+    assert [r["case_wall_time"] for r in again] == [r["case_wall_time"] for r in records]
+    assert len(CaseStore(tmp_path).records()) == 2
+
+
+def test_stability_bisection_of_a_small_sheet(tmp_path):
+    """The edge tension that keeps a 8 × 3 soft sheet from failing within 3 s is bracketed, and the
+    bracket's ends are a failed and a surviving run in the store."""
+    found = sheet_study.stability_boundaries(
+        {"sheet": SMALL},
+        "edge_tension",
+        tmp_path,
+        settings=RunSettings(t_final=3.0),
+        lo=0.25,
+        hi=8.0,
+        factor=2.0,
+        workers=1,
+        progress=False,
+    )["sheet"]
+    assert found.status == "converged" and found.monotone
+    lo, hi = found.bracket
+    assert hi / lo <= 2.0 and found.unstable_value == lo
+    records = {r["key"]: r for r in CaseStore(tmp_path).records()}
+    verdicts = {v: records[k]["failed"] for v, s, k in found.evaluations}
+    assert verdicts[lo] is True and verdicts[hi] is False
+    t = records[[k for v, s, k in found.evaluations if v == hi][0]]["parameters"]["edge_tension"]
+    assert t == pytest.approx(hi * plate_theory.critical_tension_per_width(SMALL))
+
+
+def test_with_ratio_and_its_errors():
+    p = sheet_study.with_ratio(SMALL, "modulus", 2.0)
+    assert p.youngs_modulus == pytest.approx(2 * 4.506e11, rel=1e-3)
+    with pytest.raises(ParameterError, match="quantity"):
+        sheet_study.with_ratio(SMALL, "density", 2.0)
+
+
+def test_compare_deflections_of_identical_and_shifted_runs():
+    a = synthetic_sheet(steps=9)
+    assert sheet_study.compare_deflections(a, a) == (0.0, pytest.approx(0.375))  # e^t < 1.5 up to 0.375 s
+    b = synthetic_sheet(steps=9)
+    b.tile_centres = b.tile_centres.copy()
+    b.tile_centres[:, 0, 2] += 1e-3 * a.amplitude[0]
+    d, _ = sheet_study.compare_deflections(a, b)
+    assert 5e-4 < d < 2e-3
+    with pytest.raises(ParameterError):
+        from tests.helpers import growing_sine
+
+        sheet_study.compare_deflections(a, growing_sine())
+    assert np.isfinite(d)
