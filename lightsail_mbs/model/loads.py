@@ -1,4 +1,4 @@
-"""The radiation load, one pure function of the chain state shared by both solvers.
+"""The radiation load and the frame force, one load model shared by both solvers.
 
 Paper Eq. (11), a uniform beam on perfect reflectors: f_i = (2I₀/c) A cos²θ_i n_i with
 A = l W and n_i = (−sin θ_i, cos θ_i), applied at the slice centre.
@@ -8,20 +8,43 @@ transmissivity 1 − R − α, lit by a beam travelling along +ŷ with local int
 (standard non-ideal flat-sail model, e.g. McInnes, *Solar Sailing*, 1999, Sec. 2.6, without
 diffuse reflection and thermal emission):
 
-    f_i = (I(x_i) A / c) cos θ_i [ 2R cos θ_i n_i + α ŷ ]
+    f_i = (I(x_i) A / c) cos θ_i [ 2R cos θ_i n_i + α ŷ ]                          (radiation_forces)
 
 The intercepted power is I A cos θ; absorbed photons push along the beam (ŷ), specularly
 reflected ones along the normal with twice their normal momentum, transmitted ones not at all.
 For R = 1, α = 0 this is exactly Eq. (11). The beam profile is uniform (the paper) or
 Gaussian, I(x) = I₀ exp(−2(x − x_c)²/w²).
 
-In the frame accelerating with the flat sail at g₀ (parameters.nominal_acceleration) every
-slice also carries the d'Alembert body force −m g₀ ŷ.
+The frame force. The solvers work in the frame accelerating with the flat sail at
+g₀ = (2R + α) Ī/(c ρ h) (parameters.nominal_acceleration, Ī the beam's mean intensity over the
+flat sail), so every slice also carries the d'Alembert force −m g₀ ŷ = −(2R + α) Ī A/c ŷ.
+
+The net force, computed without cancellation. On a flat slice in the mean intensity the load
+and the frame force cancel exactly; what deforms the sail is their small remainder, for the paper's
+mirror −(3/2) f₀ θ² ŷ, about 1e-8 f₀ at its slopes. Summed in floating point, f₀ cos³θ − m g₀ keeps
+that remainder with only ~8 of its 16 digits, and the lost digits act as a random force at every
+wavelength that the chain's unstable short waves amplify (docs: validation, round-off budget). So
+:func:`applied_forces` writes the net force with the cancellation done analytically, using
+1 − cos θ = 2 sin²(θ/2) and 1 − cos³θ = 2 sin²(θ/2)(1 + cos θ + cos²θ):
+
+    f_x = −(I A/c) 2R cos²θ sin θ
+    f_y = −(I A/c) [2R (1 − cos³θ) + α (1 − cos θ)] + (2R + α)(A/c)(I(x) − Ī)
+
+Every term is computed to a few ulps of itself. The last one is the beam's non-uniformity; it is
+exactly 0 for the uniform beam (I = Ī), and for a Gaussian beam it is a physical O(f₀) force that
+no cancellation threatens. For the mirror in a uniform beam f_y = −f₀ 2 sin²(θ/2)(1 + cos θ +
+cos²θ), f₀ = 2 I₀ A/c.
+
+:func:`net_slice_force` is the same formula for one slice, compiled (numba); the solvers' compiled
+right-hand sides and force functions call it, and the tests hold it to :func:`applied_forces`.
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
+from numba import njit
 
 from lightsail_mbs.model.parameters import SPEED_OF_LIGHT, SailParameters
 
@@ -35,10 +58,9 @@ def intensity(p: SailParameters, x: np.ndarray) -> np.ndarray:
 
 
 def radiation_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(f_x, f_y) on each slice centre at abscissa x and angle θ, inertial directions (N).
-
-    f = (I A / c) cos θ [2R cos θ n + α ŷ] with n = (−sin θ, cos θ); Eq. (11) for R = 1, α = 0.
-    """
+    """(f_x, f_y) of the radiation alone on each slice centre at abscissa x and angle θ, inertial
+    directions (N): f = (I A / c) cos θ [2R cos θ n + α ŷ] with n = (−sin θ, cos θ); Eq. (11) for R = 1,
+    α = 0. The solvers use :func:`applied_forces` (this load plus the frame force, without cancellation)."""
     c = np.cos(theta)
     s = np.sin(theta)
     if p.uniform_beam and p.reflectivity == 1.0 and p.absorptivity == 0.0:
@@ -50,11 +72,46 @@ def radiation_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tup
 
 
 def frame_force(p: SailParameters) -> float:
-    """y-component of the d'Alembert force −m g₀ on each slice in the accelerating frame (N)."""
-    return -p.slice_mass * p.nominal_acceleration
+    """y-component of the d'Alembert force −m g₀ = −(2R + α) Ī A/c on each slice in the accelerating
+    frame (N)."""
+    return -(2.0 * p.reflectivity + p.absorptivity) * p.mean_intensity * p.slice_length * p.width / SPEED_OF_LIGHT
 
 
 def applied_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Radiation load plus frame force on each slice centre, as used by the solvers (N)."""
-    fx, fy = radiation_forces(p, x, theta)
-    return fx, fy + frame_force(p)
+    """The net force on each slice centre in the accelerating frame, radiation load plus frame force (N),
+    with their cancellation done analytically (module docstring); the load every solver applies."""
+    theta = np.asarray(theta, float)
+    c = np.cos(theta)
+    s = np.sin(theta)
+    half = np.sin(0.5 * theta)
+    one_minus_cos = 2.0 * half * half
+    area_c = p.slice_length * p.width / SPEED_OF_LIGHT
+    local = intensity(p, np.broadcast_to(x, theta.shape))
+    push = local * area_c
+    two_r = 2.0 * p.reflectivity
+    fx = -push * two_r * c * c * s
+    fy = -push * (two_r * one_minus_cos * (1.0 + c + c * c) + p.absorptivity * one_minus_cos)
+    fy = fy + (two_r + p.absorptivity) * area_c * (local - p.mean_intensity)
+    return fx, fy
+
+
+@njit(cache=True)
+def net_slice_force(theta, cos_theta, sin_theta, local_intensity, mean_intensity, area_c, reflectivity, absorptivity):
+    """(f_x, f_y) of :func:`applied_forces` for one slice (compiled); area_c = l W / c."""
+    half = math.sin(0.5 * theta)
+    one_minus_cos = 2.0 * half * half
+    push = local_intensity * area_c
+    two_r = 2.0 * reflectivity
+    fx = -push * two_r * cos_theta * cos_theta * sin_theta
+    fy = -push * (two_r * one_minus_cos * (1.0 + cos_theta + cos_theta * cos_theta) + absorptivity * one_minus_cos)
+    fy += (two_r + absorptivity) * area_c * (local_intensity - mean_intensity)
+    return fx, fy
+
+
+@njit(cache=True)
+def gaussian_intensity(x, peak, center, waist):
+    """I(x) of the Gaussian beam for one abscissa (compiled); waist = inf gives the uniform peak."""
+    if math.isinf(waist):
+        return peak
+    d = (x - center) / waist
+    return peak * math.exp(-2.0 * d * d)

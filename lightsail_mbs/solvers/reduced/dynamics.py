@@ -23,18 +23,18 @@ in O(n). Extensible TnT chain (Eqs 29–31, l_s = 0): the massless spring fixes 
 scalar tridiagonal SPD system pᵀK p μ = −pᵀ g(s e); the projection on e_i then gives z̈_i = e_i·g_i.
 The result is exactly M⁻¹(Q − c) (tested against the dense form in reduced_kinematics.py).
 
-Loads (the compiled twin of loads.applied_forces, tested against it): radiation
-f_i = (I(x_i) l W / c) cos θ_i [2R cos θ_i n_i + α ŷ] (Eq. 11 for R = 1, α = 0), the frame force −m g₀ ŷ,
-and the follower end tensions −T e₁, T eₙ (Eq. 32). Torsion springs/dampers act on θ_{i+1} − θ_i (Eq. 23).
+Loads: the net slice force of the shared load model, radiation f_i = (I(x_i) l W / c) cos θ_i
+[2R cos θ_i n_i + α ŷ] (Eq. 11 for R = 1, α = 0) plus the frame force −m g₀ ŷ with their cancellation
+done analytically (loads.applied_forces; its compiled twin loads.net_slice_force is called here), and
+the follower end tensions −T e₁, T eₙ (Eq. 32). Torsion springs/dampers act on θ_{i+1} − θ_i (Eq. 23).
 """
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 
+from lightsail_mbs.model.loads import gaussian_intensity, net_slice_force
 from lightsail_mbs.model.parameters import SPEED_OF_LIGHT
 from lightsail_mbs.solvers.reduced.kinematics import ChainModel
 
@@ -55,7 +55,7 @@ from lightsail_mbs.solvers.reduced.kinematics import ChainModel
     CENTER,
     REFL,
     ABSORB,
-    FRAME,
+    MEAN_INTENSITY,
     EXTENSIBLE,
     UNIFORM,
 ) = range(18)
@@ -72,7 +72,7 @@ def constants(model: ChainModel) -> np.ndarray:
     k[INTENSITY], k[AREA_C] = p.intensity, p.slice_length * p.width / SPEED_OF_LIGHT
     k[WAIST] = 1.0 if p.uniform_beam else p.beam_waist
     k[CENTER], k[REFL], k[ABSORB] = p.beam_center, p.reflectivity, p.absorptivity
-    k[FRAME] = -p.slice_mass * p.nominal_acceleration
+    k[MEAN_INTENSITY] = p.mean_intensity  # the frame force is −(2R + α) Ī l W/c (loads.frame_force)
     k[EXTENSIBLE], k[UNIFORM] = float(model.extensible), float(p.uniform_beam)
     return k
 
@@ -194,7 +194,7 @@ def accelerations_into(q, qd, k, qdd):
     if extensible:
         a += q[n + 2 :]
         zd[:] = qd[n + 2 :]
-    # loads at the centres (x only matters for a non-uniform beam)
+    # net loads (radiation + frame force) at the centres (x only matters for a non-uniform beam)
     fx = np.empty(n)
     fy = np.empty(n)
     x = q[0]
@@ -203,12 +203,8 @@ def accelerations_into(q, qd, k, qdd):
             x += a[i - 1] * c[i - 1] + b * c[i]
         inten = k[INTENSITY]
         if k[UNIFORM] == 0.0:
-            dx = (x - k[CENTER]) / k[WAIST]
-            inten *= math.exp(-2.0 * dx * dx)
-        scale = inten * k[AREA_C] * c[i]
-        normal = 2.0 * k[REFL] * c[i] * scale
-        fx[i] = -normal * s[i]
-        fy[i] = normal * c[i] + k[ABSORB] * scale + k[FRAME]
+            inten = gaussian_intensity(x, k[INTENSITY], k[CENTER], k[WAIST])
+        fx[i], fy[i] = net_slice_force(th[i], c[i], s[i], inten, k[MEAN_INTENSITY], k[AREA_C], k[REFL], k[ABSORB])
     tension = k[TENSION]
     if tension != 0.0:
         fx[0] -= tension * c[0]
