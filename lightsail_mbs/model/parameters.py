@@ -21,6 +21,8 @@ BOUNDARIES = ("free", "cantilever", "pinned")
 # Fields of the validations that to_dict omits at their defaults (a free, unloaded sail), so that the
 # record of a sail lists only what describes it.
 VALIDATION_DEFAULTS = {"boundary": "free", "tip_load": 0.0, "tip_load_time_constant": 0.0}
+# Fields that to_dict also omits at their defaults: a sail without roughness is described as before.
+OPTIONAL_DEFAULTS = {"roughness": 0.0, "roughness_seed": 0}
 # Names under which saved runs and store records written before the current field names hold them.
 LEGACY_NAMES = {"amplitude": "defect_amplitude", "mode": "defect_mode", "defect_modes": "defect_mode_count"}
 # Run control that saved runs of that format kept with the case (now solvers.settings.RunSettings).
@@ -68,6 +70,8 @@ class SailParameters:
     defect_seed: int | None = None  # None: the paper's sine; an int: random multi-mode defect (shapes.py)
     defect_mode_count: int = 10  # multi-mode defect: modes ν_k = k/2, k = 1…K
     defect_spectrum: float = 1.0  # multi-mode defect: mean amplitude ∝ ν_k^(−β)
+    roughness: float = 0.0  # m: seeded roughness at every wavelength the chain carries (shapes.roughness_profile)
+    roughness_seed: int = 0  # seed of the roughness
     beam_waist: float = math.inf  # w, m: Gaussian beam I₀ exp(−2(x − x_c)²/w²); inf = uniform (paper)
     beam_center: float | None = None  # x_c, m; None: the sail's middle L/2
     reflectivity: float = 1.0  # R, specular (paper: 1)
@@ -123,6 +127,22 @@ class SailParameters:
             "an integer 1 ≤ K ≤ 200",
         )
         finite("defect_spectrum", self.defect_spectrum)
+        v = finite("roughness", self.roughness)
+        check(
+            "roughness",
+            v,
+            0 <= v < self.length / (2 * math.pi * self.n),
+            f"0 ≤ roughness < L/(2πn) = "
+            f"{self.length / (2 * math.pi * self.n):.3g} m (slopes of its shortest waves below 45°)",
+        )
+        check(
+            "roughness_seed",
+            self.roughness_seed,
+            isinstance(self.roughness_seed, int)
+            and not isinstance(self.roughness_seed, bool)
+            and self.roughness_seed >= 0,
+            "an integer ≥ 0",
+        )
         check(
             "beam_waist",
             self.beam_waist,
@@ -271,7 +291,7 @@ class SailParameters:
     def to_dict(self) -> dict:
         """The fields as a dict (the validation fields omitted at their defaults)."""
         d = dataclasses.asdict(self)
-        for name, default in VALIDATION_DEFAULTS.items():
+        for name, default in {**VALIDATION_DEFAULTS, **OPTIONAL_DEFAULTS}.items():
             if d[name] == default:
                 del d[name]
         return d

@@ -50,7 +50,7 @@ IMPLICIT = ("Radau", "BDF", "LSODA")
 # free vibration conserves energy to 1e-8, for < 2× the cost of 1e-6; Radau stays at 1e-6 (each decade
 # costs it ~2× more steps, and its L-stable damping of the axial modes is not energy-conserving anyway).
 DEFAULT_RTOL = {"DOP853": 1e-9, "Radau": 1e-6}
-OPTIONS = ("max_step", "first_step")
+OPTIONS = ("max_step", "first_step", "perturbation")
 
 
 def default_method(p: SailParameters) -> str:
@@ -72,7 +72,9 @@ def run(
 
     rtol: relative tolerance (default DEFAULT_RTOL[method], 1e-6 for scipy's methods); atol: absolute tolerance,
     a scalar or one value per state entry (default rtol × state_scales(model, ν)); method: DOP853, RK45,
-    Radau, BDF or LSODA (default: default_method(params)); options: max_step, first_step.
+    Radau, BDF or LSODA (default: default_method(params)); options: max_step, first_step, perturbation (m:
+    the amplitude of the seeded roughness shapes.initial_state adds to the start, the conditioning probe of
+    solvers.uncertainty).
     """
     if supports.needs_boundary(params):  # supports or a tip load (validations): dense constrained chain
         return supports.run(params, settings, progress=progress, rtol=rtol, atol=atol, method=method, **options)
@@ -92,7 +94,10 @@ def run(
     if atol is None:
         atol = rtol * state_scales(model, params.defect_mode)
 
-    start = shapes.initial_state(params)
+    perturbation = float(options.pop("perturbation", 0.0))
+    if not (perturbation >= 0 and np.isfinite(perturbation)):
+        raise ParameterError(f"perturbation={perturbation!r} is invalid: allowed a finite value ≥ 0 (m)")
+    start = shapes.initial_state(params, perturbation=perturbation)
     q0 = model.pack(start.x[0], start.y[0], start.theta, start.z)
     y0 = np.concatenate([q0, np.zeros_like(q0)])
     if method in COMPILED:
@@ -130,4 +135,6 @@ def run(
         coordinates=model.dof,
         formulation="minimal coordinates, O(n) joint-force recursion (block LDLT), compiled",
     )
+    if perturbation:
+        info["perturbation"] = perturbation
     return trajectory_result(model, settings, states, wall_time=wall, error=error, info=info)

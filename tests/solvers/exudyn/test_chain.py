@@ -160,6 +160,23 @@ def test_soft_torsion_fails_near_two_seconds():
     assert r.time[-1] < 2.5  # the run stopped at failure
 
 
+@pytest.mark.parametrize("options", [{}, {"method": "generalized-alpha", "step_size": 1e-3}])
+def test_stop_rule_is_the_first_output_sample_at_or_past_the_limit(options):
+    """Output every 40 ms, steps far shorter: the run ends at the first output sample whose amplitude
+    reaches twice the initial one, keeps it, and holds the same samples as the run that goes on."""
+    p = paper_case("torsion-soft")
+    settings = RunSettings(t_final=2.4, output_interval=0.04)
+    r = solve(p, "exudyn", settings, **options)
+    on = solve(p, "exudyn", settings.replace(stop_at_failure=False), **options)
+    limit = 2.0 * r.amplitude[0]
+    assert r.error is None and r.failed
+    assert r.amplitude[-1] >= limit and np.all(r.amplitude[:-1] < limit)
+    k = r.time.size - 1
+    assert r.time[-1] == pytest.approx(k * 0.04, abs=1e-12)
+    np.testing.assert_array_equal(r.theta, on.theta[: k + 1])
+    assert on.time[-1] == pytest.approx(2.4)
+
+
 def test_runs_on_past_failure_when_asked():
     r = solve(paper_case("torsion-soft"), "exudyn", RunSettings(t_final=2.2, stop_at_failure=False))
     assert r.error is None and r.failed and r.time[-1] == pytest.approx(2.2)
@@ -192,6 +209,7 @@ def test_impossible_newton_is_recorded_not_raised():
     """Zero tolerances cannot be met: the run ends with Result.error and the arrays so far."""
     p = SailParameters(n=6, youngs_modulus=4.5e9)
     r = solve(p, "exudyn", RunSettings(t_final=0.05), newton_rel_tol=0.0, newton_abs_tol=0.0)
+    assert r.info["method"] == "generalized-alpha"
     assert r.error
     assert r.time.shape[0] == r.x.shape[0] >= 1
 
