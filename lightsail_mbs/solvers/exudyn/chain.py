@@ -36,16 +36,18 @@ Integrators, chosen per case (``method="auto"``, the choice and its reason in Re
 3. Stiff chains (stable torsion, tensioned or extensible TnT) and chains with supports (constraints):
    generalized-α (implicit, second order, ρ∞ = 0.9, modified Newton) with the fixed step
    h = min(GA_STEP_FACTOR √(L/g₀), t_c/GA_STEPS_PER_TC) · √(rtol/DEFAULT_RTOL) (2 ms for the paper's
-   torsion case at the default rtol: its error falls as h², so as rtol), at most the output interval
-   and adjusted to divide it. Newton: relative 1e-8, absolute rtol · f₀ · 2πνa₀/L (the load and the
+   torsion case at the default rtol: its error falls as h², so as rtol), made to divide the output
+   interval when shorter than it. Newton: relative 1e-8, absolute rtol · f₀ · 2πνa₀/L (the load and the
    frame force cancel on a flat slice; what deforms the sail is f₀ times the defect slope).
    The whole run is one ``SolveSteps`` call: restarting it in chunks would perturb the generalized-α
    state at every restart.
 
-Sampling and the stop rule (the run skeleton's, solvers.skeleton): a post-step function reads q, q̇,
-q̈ after every step and interpolates the output samples t_k = k·Δt that the step passed, by the
-quintic Hermite polynomial of the two step ends (exact at the step ends, where the generalized-α
-samples lie); every SAMPLES_PER_CHECK samples (and at the end) it asks the skeleton's FailureMonitor
+Sampling and the stop rule (the run skeleton's, solvers.skeleton): a post-step function keeps q, q̇,
+q̈ after every step and interpolates the output samples t_k = k·Δt that the steps passed by the quintic
+Hermite polynomial of the two ends of each one's step (exact at a step end; the generalized-α steps
+divide the output interval when shorter than it). Every SAMPLES_PER_CHECK samples — sooner when the
+amplitude's growth since the last check predicts failure before the next one, so that no time is spent
+integrating the crumpling sail past failure — and at the end, it asks the skeleton's FailureMonitor
 for the first sample at or above the limit; the run stops there and keeps that sample.
 stop_at_failure=False runs on. A Newton failure, a too small step, an Exudyn error or a non-finite
 state is recorded in Result.error with the samples up to there.
@@ -260,6 +262,8 @@ class Sampler:
         self.failed_at = None  # index of the first sample at or above the limit
         self.steps = 0
         self._next_check = min(self.check_every, times.size - 1)
+        x, y, _, _ = layout.positions(q0)
+        self._last = (0.0, analysis.amplitude(x, y))  # time and amplitude of the last checked sample
 
     def __call__(self, mbs, t) -> bool:
         self.steps += 1
@@ -298,16 +302,33 @@ class Sampler:
             return True
         checked = len(self.q)
         self._sample()
-        self._next_check = min(len(self.q) - 1 + self.check_every, self.times.size - 1)
+        every = self.check_every
         if self.monitor.active and len(self.q) > checked:
             x, y, _, _ = self.layout.positions(np.asarray(self.q[checked:]))
-            over = self.monitor.first_failure(analysis.amplitude(x, y))
+            amplitude = np.atleast_1d(analysis.amplitude(x, y))
+            over = self.monitor.first_failure(amplitude)
             if over is not None:
                 self.failed_at = checked + over
                 del self.q[self.failed_at + 1 :]
                 del self.v[self.failed_at + 1 :]
                 return True
+            every = self._samples_to_next_check(self.times[len(self.q) - 1], float(amplitude[-1]))
+        self._next_check = min(len(self.q) - 1 + every, self.times.size - 1)
         return False
+
+    def _samples_to_next_check(self, t: float, amplitude: float) -> int:
+        """check_every, or fewer when the amplitude, growing exponentially at the rate measured since the
+        last check, would reach the limit within twice that many samples: then half the predicted time to
+        the limit (at least one sample), so the run stops within a few steps of failure instead of
+        integrating the crumpling sail past it."""
+        t_last, a_last = self._last
+        self._last = (t, amplitude)
+        if not (amplitude > a_last > 0 and t > t_last):
+            return self.check_every
+        rate = math.log(amplitude / a_last) / (t - t_last)
+        to_limit = math.log(self.monitor.limit / amplitude) / rate
+        dt = self.times[1] - self.times[0] if self.times.size > 1 else to_limit
+        return int(max(1, min(self.check_every, math.floor(0.5 * to_limit / dt))))
 
     def arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(time, q, q̇) of the samples taken."""
