@@ -2,9 +2,15 @@
 
 Provenance: every Result records what made it (:func:`provenance`): this package's version and
 ``code_version``, the git commit when it runs from a checkout, the versions of Exudyn, numpy, scipy and
-numba, Python and the platform, and the time it was made. ``code_version`` is a hash of the source files
-that decide a run's numbers (:data:`RESULT_SOURCES`: the case and its physics, the solvers, the Result
-and the failure rule), so a change to any of them, and only that, makes stored results stale.
+numba, Python and the platform, and the time it was made.
+
+``code_version`` is the version of everything that decides a run's numbers and its stored record: a
+hash of the source files in :data:`RESULT_SOURCES` (the case and its physics, the solvers, the Result,
+the failure rule and the energy of its summary, and the function that turns a run into a sweep record)
+together with the versions of the numerical libraries in :data:`LIBRARIES`. A change to any of them, and
+only that, makes stored results stale (:mod:`lightsail_mbs.studies.store` recomputes them). Python and the
+platform are recorded but not hashed: a numba-compiled loop may round differently on another CPU, which
+moves numbers at the level of round-off, not of the physics.
 """
 
 from __future__ import annotations
@@ -13,8 +19,12 @@ import functools
 import hashlib
 import json
 import math
+import os
 import platform
 import subprocess
+import tempfile
+import zipfile
+import zlib
 from dataclasses import dataclass, field
 from datetime import datetime, timezone
 from importlib import metadata
@@ -24,12 +34,14 @@ import numpy as np
 
 from lightsail_mbs import analysis
 from lightsail_mbs.model import shapes
-from lightsail_mbs.model.parameters import RUN_FIELDS, SailParameters
+from lightsail_mbs.model.parameters import RUN_FIELDS, ParameterError, SailParameters
 from lightsail_mbs.solvers.settings import RunSettings
 
 ARRAYS = ("time", "x", "y", "theta", "z", "vx", "vy", "omega", "z_rate", "amplitude")
 FORMAT = "lightsail-mbs result"  # the "format" entry of a saved run's summary
 FORMAT_VERSION = 2  # 1: no format entry, run control inside "parameters"
+# what a saved summary must hold (format 1 files too)
+SUMMARY_ENTRIES = ("solver", "parameters", "wall_time", "error", "info")
 
 
 class RunFileError(ValueError):
@@ -37,38 +49,50 @@ class RunFileError(ValueError):
 
 
 PACKAGE = Path(__file__).resolve().parent
-# the sources that decide the numbers of a run (globs relative to the package folder)
-RESULT_SOURCES = ("model/*.py", "solvers/*.py", "solvers/*/*.py", "result.py", "analysis/failure.py")
-LIBRARIES = ("exudyn", "numpy", "scipy", "numba")
+# the sources that decide the numbers of a run and of its sweep record (globs relative to the package folder)
+RESULT_SOURCES = (
+    "model/*.py",
+    "solvers/*.py",
+    "solvers/*/*.py",
+    "result.py",
+    "analysis/failure.py",
+    "analysis/energy.py",
+    "studies/runners.py",
+)
+LIBRARIES = ("exudyn", "numpy", "scipy", "numba")  # their versions are part of code_version
 
 
 @functools.cache
 def code_version() -> str:
-    """SHA-256 (first 16 hex digits) of the source files that decide a run's numbers (RESULT_SOURCES)."""
+    """SHA-256 (first 16 hex digits) of the source files that decide a run's numbers and its record
+    (RESULT_SOURCES) and of the versions of the numerical libraries (LIBRARIES)."""
     digest = hashlib.sha256()
     for pattern in RESULT_SOURCES:
         for path in sorted(PACKAGE.glob(pattern)):
             digest.update(path.relative_to(PACKAGE).as_posix().encode())
             digest.update(path.read_bytes())
+    for name in LIBRARIES:
+        digest.update(f"{name}=={_library_version(name)}".encode())
     return digest.hexdigest()[:16]
+
+
+def _library_version(name: str) -> str | None:
+    try:
+        return metadata.version(name)
+    except metadata.PackageNotFoundError:
+        return None
 
 
 @functools.cache
 def _static_provenance() -> dict:
     from lightsail_mbs import __version__
 
-    def version(name):
-        try:
-            return metadata.version(name)
-        except metadata.PackageNotFoundError:
-            return None
-
     return {
         "package": "lightsail-mbs",
         "version": __version__,
         "code_version": code_version(),
         **_git(),
-        **{name: version(name) for name in LIBRARIES},
+        **{name: _library_version(name) for name in LIBRARIES},
         "python": platform.python_version(),
         "platform": platform.platform(),
     }
@@ -139,8 +163,10 @@ class Result:
         error: str | None = None,
         info: dict | None = None,
         settings: RunSettings | None = None,
+        amplitude=None,
     ) -> Result:
-        """Build a Result from raw solver output; the amplitude is computed here (analysis.amplitude)."""
+        """Build a Result from raw solver output. The amplitude is computed here (analysis.amplitude)
+        unless the solver passes it (a compiled twin of analysis.amplitude, tested equal to it)."""
         time = np.asarray(time, float)
         steps = time.shape[0]
         empty = np.zeros((steps, 0))
@@ -148,7 +174,9 @@ class Result:
         arrays = {k: np.asarray(a, float).reshape(steps, -1) for k, a in zip(names, (x, y, theta, vx, vy, omega))}
         arrays["z"] = empty if z is None else np.asarray(z, float).reshape(steps, -1)
         arrays["z_rate"] = empty if z_rate is None else np.asarray(z_rate, float).reshape(steps, -1)
-        amplitude = np.atleast_1d(analysis.amplitude(arrays["x"], arrays["y"]))
+        if amplitude is None:
+            amplitude = analysis.amplitude(arrays["x"], arrays["y"])
+        amplitude = np.atleast_1d(np.asarray(amplitude, float))
         return cls(
             params,
             solver,
@@ -243,25 +271,34 @@ class Result:
 
     # ---- persistence -----------------------------------------------------------------------
     def save(self, path) -> Path:
-        """Write PATH.npz (arrays + summary) and PATH.json (summary); returns the .npz path."""
+        """Write PATH.npz (arrays + summary) and PATH.json (summary); returns the .npz path.
+
+        Each file is written to a temporary file in the same folder and then renamed over its name, so a
+        run killed while saving leaves the previous file or none, never a truncated one."""
         path = Path(path).with_suffix(".npz")
         path.parent.mkdir(parents=True, exist_ok=True)
         summary = json.dumps(self.summary(), indent=2, default=_jsonable)
-        np.savez_compressed(path, summary_json=np.array(summary), **{k: getattr(self, k) for k in ARRAYS})
-        path.with_suffix(".json").write_text(summary + "\n")
+        arrays = {k: getattr(self, k) for k in ARRAYS}
+        write_atomically(path, lambda handle: np.savez_compressed(handle, summary_json=np.array(summary), **arrays))
+        write_atomically(path.with_suffix(".json"), lambda handle: handle.write((summary + "\n").encode()))
         return path
 
     @classmethod
     def load(cls, path) -> Result:
         """Read a run saved by :meth:`save` (or by an earlier version of this package).
 
-        Raises RunFileError, naming the file, if it is missing or is not a saved run; ParameterError if
-        its parameters are not valid here.
+        Raises RunFileError, naming the file, if it is missing, is not a NumPy archive, is truncated or
+        corrupt, is not a whole saved run (a summary entry or an array missing, arrays of the wrong type
+        or of shapes that do not fit the case), or holds a case that is not valid here.
         """
         path = Path(path)
         if not path.is_file():
             raise RunFileError(f"{path}: no such file (expected a saved run, .npz)")
         try:
+            with path.open("rb") as handle:
+                magic = handle.read(4)
+            if magic not in (b"PK\x03\x04", b"PK\x05\x06"):
+                raise RunFileError(f"{path}: not a saved lightsail-mbs run (not a NumPy .npz archive)")
             with np.load(path, allow_pickle=False) as data:
                 missing = [k for k in ("summary_json", *ARRAYS) if k not in data.files]
                 if missing:
@@ -270,23 +307,36 @@ class Result:
                 arrays = {k: np.array(data[k]) for k in ARRAYS}
         except RunFileError:
             raise
-        except (OSError, ValueError, EOFError) as exc:  # not a zip, truncated, pickled objects, bad JSON
+        except (OSError, ValueError, EOFError, KeyError, zipfile.BadZipFile, zlib.error) as exc:
+            # truncated or damaged archive, pickled objects, bad JSON
             raise RunFileError(f"{path}: not a readable saved run ({type(exc).__name__}: {exc})") from None
+        if not isinstance(summary, dict):
+            raise RunFileError(f"{path}: not a saved lightsail-mbs run (its summary is not a JSON object)")
         version = summary.get("format_version", 1)
         if summary.get("format", FORMAT) != FORMAT or not isinstance(version, int) or version > FORMAT_VERSION:
             raise RunFileError(
                 f"{path}: format {summary.get('format')!r} version {version!r} is not one this "
                 f"version of lightsail-mbs reads (up to {FORMAT_VERSION})"
             )
+        absent = [k for k in SUMMARY_ENTRIES if k not in summary]
+        if absent:
+            raise RunFileError(f"{path}: not a whole saved run (its summary has no {', '.join(absent)})")
         parameters = summary["parameters"]
+        if not isinstance(parameters, dict):
+            raise RunFileError(f"{path}: not a whole saved run (its parameters are not a JSON object)")
         settings = summary.get("settings") or {k: parameters[k] for k in RUN_FIELDS if k in parameters}
+        try:
+            params, settings = SailParameters.from_dict(parameters), RunSettings.from_dict(settings)
+        except (ParameterError, TypeError) as exc:
+            raise RunFileError(f"{path}: its case is not valid in this version of lightsail-mbs ({exc})") from None
+        _check_arrays(path, arrays, params)
         return cls(
-            params=SailParameters.from_dict(parameters),
+            params=params,
             solver=summary["solver"],
             wall_time=summary["wall_time"],
             error=summary["error"],
             info=summary["info"],
-            settings=RunSettings.from_dict(settings),
+            settings=settings,
             provenance=summary.get("provenance", {}),
             warnings=summary.get("warnings", []),
             uncertainty=summary.get("uncertainty"),
@@ -314,6 +364,44 @@ def with_uncertainty(value: float | None, uncertainty: float | None, digits: int
     if decimals:
         return f"{value:.{decimals}f} ± {shown:.{decimals}f}"
     return f"{round(value / step) * step:.0f} ± {shown:.0f}"
+
+
+def write_atomically(path: Path, write) -> None:
+    """write(binary handle) into a temporary file beside path, flushed to disk, then renamed to path
+    (with the permissions a new file gets from the umask): a reader sees the old file or the whole new one."""
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        os.chmod(tmp, 0o666 & ~_umask())
+        with os.fdopen(fd, "wb") as handle:
+            write(handle)
+            handle.flush()
+            os.fsync(handle.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+@functools.cache
+def _umask() -> int:
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
+def _check_arrays(path: Path, arrays: dict, params: SailParameters) -> None:
+    """RunFileError unless the arrays are real numbers of the shapes a run of params has: time and
+    amplitude (T,) with T ≥ 1, the slice arrays (T, n), z and z_rate (T, n − 1) or (T, 0)."""
+    steps = arrays["time"].shape[0] if arrays["time"].ndim == 1 else -1
+    spring = (params.n - 1) if params.extensible else 0
+    expected = {"time": (steps,), "amplitude": (steps,), "z": (steps, spring), "z_rate": (steps, spring)}
+    for name, array in arrays.items():
+        shape = expected.get(name, (steps, params.n))
+        if array.dtype.kind != "f" or array.shape != shape or steps < 1:
+            raise RunFileError(
+                f"{path}: not a whole saved run ({name} is {array.dtype} {array.shape}, expected float {shape} "
+                f"for n = {params.n})"
+            )
 
 
 def _jsonable(value):

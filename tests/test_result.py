@@ -1,11 +1,19 @@
-"""Result: consistent shapes, summary keys, the run settings it keeps, save/load round trip (and the
-files of the format before RunSettings)."""
+"""Result: consistent shapes, summary keys, the run settings it keeps, provenance, save/load round trip bit for
+bit (property-based), the files of the format before RunSettings, and damaged or foreign files."""
 
 import json
+import struct
+import warnings
+from importlib import metadata
 
 import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from lightsail_mbs import Result, RunSettings, SailParameters
+from lightsail_mbs.result import ARRAYS, FORMAT_VERSION, RunFileError, code_version
+from tests import strategies as hs
 
 ONE_SECOND = RunSettings(t_final=1.0)
 
@@ -37,14 +45,21 @@ def test_summary_and_failure():
         "settings",
     ):
         assert key in s
-    assert s["failed"] and abs(s["failure_time"] - np.log(2)) < 0.02
+    t = r.time
+    k = int(np.argmax(r.amplitude >= 2 * r.amplitude[0]))  # the first sample at 2 a₀
+    a0, a1 = r.amplitude[k - 1 : k + 1] / r.amplitude[0]
+    chord = t[k - 1] + (2 - a0) / (a1 - a0) * (t[k] - t[k - 1])  # interpolated between the samples
+    assert s["failed"] and s["failure_time"] == pytest.approx(chord, abs=1e-12)
+    assert t[k - 1] < s["failure_time"] < t[k] and abs(s["failure_time"] - np.log(2)) < (t[1] - t[0]) ** 2 / 8
     assert s["max_amplitude_ratio"] > 2
     assert s["settings"] == RunSettings(t_final=1.0).to_dict() and "t_final" not in s["parameters"]
 
 
 def test_failure_time_follows_the_failure_ratio_of_the_settings():
     """The amplitude grows as e^t over 1 s: it reaches 2.5× at ln 2.5 and never 3× (e < 3)."""
-    assert abs(synthetic(settings=RunSettings(t_final=1.0, failure_ratio=2.5)).failure_time - np.log(2.5)) < 0.02
+    r = synthetic(settings=RunSettings(t_final=1.0, failure_ratio=2.5))
+    k = int(np.argmax(r.amplitude >= 2.5 * r.amplitude[0]))
+    assert r.time[k - 1] < r.failure_time < r.time[k] and abs(r.failure_time - np.log(2.5)) < 1e-3
     assert not synthetic(settings=RunSettings(t_final=1.0, failure_ratio=3.0)).failed
     assert synthetic().settings == RunSettings(t_final=1.0)
 
@@ -85,3 +100,129 @@ def test_loads_the_files_of_the_format_before_run_settings(tmp_path):
     assert back.params == r.params and back.settings == r.settings
     np.testing.assert_array_equal(back.amplitude, r.amplitude)
     assert back.failure_time == r.failure_time
+
+
+def test_save_load_keeps_every_field(tmp_path):
+    """Velocities, info, error, warnings, provenance, wall time and settings come back, not just positions."""
+    r = synthetic(model="tnt")
+    r.vx[:] = np.linspace(-1, 1, r.vx.size).reshape(r.vx.shape)
+    r.omega[:] = 3.0
+    r.z_rate[:] = -2.5e-9
+    r.error, r.warnings = "Newton did not converge at t = 0.5 s", ["n = 12 is coarse"]
+    r.info = {"steps": 12, "rtol": 1e-9, "method": "DOP853", "nested": {"a": [1, 2.5, None]}}
+    back = Result.load(r.save(tmp_path / "run"))
+    assert_same_run(back, r)
+
+
+def assert_same_run(back: Result, r: Result) -> None:
+    """Bit for bit: every array (bytes, dtype, shape), the case, the settings and every summary entry."""
+    assert back.params == r.params and back.solver == r.solver and back.settings == r.settings
+    for name in ARRAYS:
+        a, b = getattr(r, name), getattr(back, name)
+        assert b.dtype == a.dtype and b.shape == a.shape and b.tobytes() == a.tobytes(), name
+    for name in ("error", "info", "warnings", "provenance"):
+        assert canonical(getattr(back, name)) == canonical(getattr(r, name)), name
+    assert struct.pack("<d", back.wall_time) == struct.pack("<d", r.wall_time)
+
+
+def canonical(value) -> str:
+    return json.dumps(value, sort_keys=True)
+
+
+@pytest.mark.parametrize("examples", hs.EXAMPLES)
+def test_any_saved_run_round_trips_bit_exactly_through_npz_and_json(examples, tmp_path_factory):
+    """Property: any Result (any float64 values, NaN, ±inf and −0.0 included; any JSON info, error, warnings
+    and provenance) saved and loaded is the same run bit for bit, and its .json holds the same summary as
+    the .npz."""
+    folder = tmp_path_factory.mktemp("roundtrip")
+
+    @given(st.data())
+    def round_trip(data):
+        p = data.draw(hs.accepted_cases(), label="case")
+        steps = data.draw(st.integers(1, 12), label="steps")
+        springs = p.n - 1 if p.extensible else 0
+        shapes = {"time": (steps,), "amplitude": (steps,), "z": (steps, springs), "z_rate": (steps, springs)}
+        arrays = {name: data.draw(hs.float_arrays(shapes.get(name, (steps, p.n))), label=name) for name in ARRAYS}
+        steps_in_time = data.draw(st.lists(st.floats(1e-9, 1e3), min_size=steps - 1, max_size=steps - 1))
+        arrays["time"] = np.cumsum([0.0, *steps_in_time])  # a time axis: 0, strictly increasing
+        r = Result(
+            params=p,
+            solver=data.draw(st.sampled_from(["exudyn", "reduced", "synthetic"])),
+            wall_time=data.draw(st.floats(0.0, 1e6)),  # a measured time (JSON keeps no NaN payloads)
+            error=data.draw(st.one_of(st.none(), st.text())),
+            info=data.draw(st.dictionaries(st.text(max_size=10), hs.JSON_VALUES, max_size=5)),
+            settings=data.draw(hs.short_run(p)),
+            provenance=data.draw(st.dictionaries(st.text(max_size=10), hs.JSON_SCALARS, max_size=5)),
+            warnings=data.draw(st.lists(st.text(), max_size=3)),
+            **arrays,
+        )
+        path = r.save(folder / "run")
+        back = Result.load(path)
+        assert_same_run(back, r)
+        with np.load(path) as saved:
+            assert json.loads(path.with_suffix(".json").read_text()) == json.loads(str(saved["summary_json"]))
+        assert canonical(back.summary()) == canonical(r.summary())
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # summaries of arbitrary arrays (NaN, inf)
+        hs.check_property(round_trip, examples)
+
+
+def test_provenance_of_a_run_names_its_makers():
+    r = synthetic()
+    made = r.provenance
+    for key in ("package", "version", "code_version", "git_commit", "git_dirty", "python", "platform", "created"):
+        assert key in made
+    for library in ("exudyn", "numpy", "scipy", "numba"):
+        assert made[library] == metadata.version(library)
+    assert made["code_version"] == code_version() and len(made["code_version"]) == 16
+    assert r.summary()["provenance"] == made
+
+
+def damaged_copies(folder) -> dict:
+    """A saved run and damaged variants of it: file name -> words its RunFileError must contain."""
+    r = synthetic()
+    good = r.save(folder / "good")
+    with np.load(good) as data:
+        arrays = {k: data[k] for k in data.files}
+    summary = json.loads(str(arrays["summary_json"]))
+
+    def variant(name, summary_text=None, **changes):
+        np.savez(folder / name, **{**arrays, "summary_json": np.array(summary_text or json.dumps(summary)), **changes})
+
+    (folder / "text.npz").write_text("not a run\n")
+    (folder / "truncated.npz").write_bytes(good.read_bytes()[:2000])
+    np.savez(folder / "foreign.npz", a=np.arange(3.0))
+    np.save(folder / "pickle.npy", np.array([{}], dtype=object), allow_pickle=True)
+    (folder / "pickle.npy").rename(folder / "pickle.npz")
+    variant("badjson.npz", "{not json")
+    variant("list.npz", "[1, 2]")
+    variant("future.npz", json.dumps({**summary, "format_version": FORMAT_VERSION + 1}))
+    variant("alien.npz", json.dumps({**summary, "format": "someone else's"}))
+    variant("badcase.npz", json.dumps({**summary, "parameters": {**summary["parameters"], "n": -3}}))
+    variant("nosolver.npz", json.dumps({k: v for k, v in summary.items() if k != "solver"}))
+    variant("shapes.npz", x=arrays["x"][:3])
+    variant("strings.npz", y=np.array(["a"] * arrays["y"].size).reshape(arrays["y"].shape))
+    return {
+        "missing.npz": "no such file",
+        "text.npz": "not a NumPy",
+        "truncated.npz": "not a readable",
+        "foreign.npz": "no summary_json",
+        "pickle.npz": "not a NumPy",
+        "badjson.npz": "JSONDecodeError",
+        "list.npz": "not a JSON object",
+        "future.npz": f"version {FORMAT_VERSION + 1}",
+        "alien.npz": "someone else's",
+        "badcase.npz": "n=-3",
+        "nosolver.npz": "no solver",
+        "shapes.npz": "x is float64 (3, 12)",
+        "strings.npz": "y is <U1",
+    }
+
+
+def test_damaged_or_foreign_files_are_one_run_file_error_naming_the_file(tmp_path):
+    for name, words in damaged_copies(tmp_path).items():
+        with pytest.raises(RunFileError) as err:
+            Result.load(tmp_path / name)
+        message = str(err.value)
+        assert message.startswith(str(tmp_path / name)) and words in message and "\n" not in message, message

@@ -34,6 +34,9 @@ def dissipated_power(result) -> np.ndarray:
 def dissipated_energy(result) -> np.ndarray:
     """D(t) = ∫₀ᵗ P dt (J) by the cumulative Simpson rule on the output samples (error ∝ (ω Δt)⁴ for a
     mode at ω). In free vibration, mechanical_energy + D is constant."""
+    power = dissipated_power(result)
+    if not np.any(power):  # no dampers: nothing to integrate
+        return np.zeros_like(power)
     from scipy.integrate import cumulative_simpson
 
-    return cumulative_simpson(dissipated_power(result), x=result.time, initial=0.0)
+    return cumulative_simpson(power, x=result.time, initial=0.0)

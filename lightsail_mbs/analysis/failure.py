@@ -35,7 +35,10 @@ def amplitude(x: np.ndarray, y: np.ndarray):
 
 
 def failure_time(time: np.ndarray, amp: np.ndarray, ratio: float = 2.0) -> float | None:
-    """First time amplitude(t) reaches ratio · amplitude(0), linearly interpolated; None if never."""
+    """First time amplitude(t) reaches ratio · amplitude(0), linearly interpolated; None if never, and for a
+    sail that starts flat (amplitude(0) = 0: no defect to grow, as the solvers' stop rule has it)."""
+    if not amp[0] > 0:
+        return None
     limit = ratio * amp[0]
     above = np.nonzero(amp >= limit)[0]
     if above.size == 0:

@@ -40,8 +40,9 @@ from scipy.integrate import solve_ivp
 
 from lightsail_mbs import analysis
 from lightsail_mbs.model import shapes, theory
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.model.parameters import ParameterError, SailParameters, check, finite
 
+MIN_FACTOR, MAX_FACTOR = 1.001, 10.0  # allowed final bracket widths hi/lo of critical_ratio
 BLOWUP_RATIO = 10.0  # scaled runs past failure end here (the sail has crumpled; slopes no longer small)
 STIFFNESS = theory.STIFFNESS  # swept stiffness of each model and its analytic critical value
 
@@ -192,7 +193,12 @@ def critical_ratio(
     p: SailParameters, tau_final: float = 8.0, *, lo: float = 1.0, hi: float = 30.0, factor: float = 1.02, **options
 ) -> CriticalRatio:
     """Bisect E/E_cr,max (or T/T_cr,max) in log space with runs of tau_final·t_c: the smallest
-    stiffness ratio at which the amplitude does not double within the run (failed below)."""
+    stiffness ratio at which the amplitude does not double within the run (failed below).
+    ParameterError before any run for tau_final ≤ 0 or a factor outside MIN_FACTOR…MAX_FACTOR."""
+    tau = finite("tau_final", tau_final)
+    check("tau_final", tau_final, tau > 0, "> 0 (run length in units of t_c)")
+    ratio = finite("factor", factor)
+    check("factor", factor, MIN_FACTOR <= ratio <= MAX_FACTOR, f"{MIN_FACTOR} ≤ factor ≤ {MAX_FACTOR} (final hi/lo)")
     runs = 0
 
     def fails(ratio):

@@ -10,20 +10,47 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
+import re
 import sys
 import tempfile
 import traceback
 from datetime import datetime
 
 from lightsail_mbs.model.parameters import ParameterError
-from lightsail_mbs.result import RunFileError
 
-# subcommand modules of this package; each defines register(subparsers) and sets `func`
-COMMANDS = ["theory", "simulate", "info", "render", "montecarlo", "reproduce", "crosscheck", "stability", "store"]
+# subcommand modules of this package; each defines register(subparsers) and sets `func`. Registering
+# imports no more than the options need (numpy, the parameter classes): each command imports the
+# library it calls inside its run(), so a command pays only for what it uses.
+COMMANDS = [
+    "theory",
+    "simulate",
+    "info",
+    "render",
+    "montecarlo",
+    "reproduce",
+    "crosscheck",
+    "stability",
+    "converge",
+    "store",
+    "optics",
+]
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse's parser whose usage errors are one line (naming the option) and exit status 2, and which
+    reads a negative number in scientific notation (``--thickness -1e-6``) as a value, not an option."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="lightsail-mbs", description=__doc__.splitlines()[0])
+    parser = Parser(prog="lightsail-mbs", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True)
     for name in COMMANDS:
         importlib.import_module(f".{name}", __name__).register(sub)
@@ -35,8 +62,11 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     try:
         return int(args.func(args) or 0)
-    except (ParameterError, RunFileError) as exc:
+    except ParameterError as exc:
         return _fail(str(exc))
+    except BrokenPipeError:  # the reader of stdout went away (e.g. `| head`): no message, as other tools
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 1
     except OSError as exc:
         where = f"{exc.filename}: " if exc.filename else ""
         return _fail(f"{where}{exc.strerror or exc}")
@@ -44,9 +74,17 @@ def main(argv=None) -> int:
         print("lightsail-mbs: interrupted", file=sys.stderr)
         return 130
     except Exception as exc:  # noqa: BLE001 - the last line of defence: one line, the traceback in a file
+        if _is_run_file_error(exc):
+            return _fail(str(exc))
         log = _write_traceback()
         print(f"lightsail-mbs: internal error: {type(exc).__name__}: {exc} (traceback in {log})", file=sys.stderr)
         return 1
+
+
+def _is_run_file_error(exc: Exception) -> bool:
+    """True for a RunFileError (a missing or foreign run file); result.py is loaded if one was raised."""
+    result = sys.modules.get("lightsail_mbs.result")
+    return result is not None and isinstance(exc, result.RunFileError)
 
 
 def _fail(message: str) -> int:

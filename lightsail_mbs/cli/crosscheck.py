@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 from lightsail_mbs.cli.options import writable_folder
-from lightsail_mbs.studies import crosscheck
 
 
 def register(sub) -> None:
+    from lightsail_mbs.studies import crosscheck  # the case names (numpy only)
+
     p = sub.add_parser("crosscheck", help="run the Exudyn and reduced solvers side by side (the cross-check report)")
     p.add_argument(
         "--cases",
@@ -27,6 +28,8 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from lightsail_mbs.studies import crosscheck
+
     writable_folder(args.out, "--out")
     rows = crosscheck.run(
         args.cases, out_dir=args.out, progress=not args.quiet, exudyn_step_scale=args.exudyn_step_scale

@@ -8,7 +8,8 @@ import json
 from lightsail_mbs.cli.options import add_case_options, params_from_args, settings_from_args, writable_folder
 from lightsail_mbs.model.parameters import ParameterError
 from lightsail_mbs.solvers import SOLVERS
-from lightsail_mbs.studies import montecarlo
+
+SWEEPABLE = ("youngs_modulus", "tension", "thickness", "intensity", "defect_amplitude")  # studies.montecarlo's
 
 
 def register(sub) -> None:
@@ -16,7 +17,7 @@ def register(sub) -> None:
     add_case_options(p)
     p.add_argument(
         "--vary",
-        choices=montecarlo.SWEEPABLE,
+        choices=SWEEPABLE,
         default="youngs_modulus",
         help="the parameter swept [default youngs_modulus]",
     )
@@ -31,17 +32,22 @@ def register(sub) -> None:
     p.add_argument("--workers", type=int, default=None, help="local processes [all cores]")
     p.add_argument("--scheduler", default=None, help="Dask scheduler address, e.g. tcp://host:8786")
     p.add_argument("--json", action="store_true", help="print the table as JSON")
+    p.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
+    from lightsail_mbs.studies import montecarlo
+
     base = params_from_args(args).replace(
         defect_mode_count=args.defect_mode_count, defect_spectrum=args.defect_spectrum, defect_seed=0
     )
     try:
         values = [float(v) for v in args.values.split(",") if v.strip()]
     except ValueError:
-        raise ParameterError(f"values={args.values!r} is invalid: allowed comma-separated numbers") from None
+        values = []
+    if not values:
+        raise ParameterError(f"values={args.values!r} is invalid: allowed one or more comma-separated numbers")
     writable_folder(args.store, "--store")
     rows = montecarlo.run(
         base,
@@ -53,6 +59,7 @@ def run(args) -> int:
         settings=settings_from_args(args),
         workers=args.workers,
         scheduler=args.scheduler,
+        progress=not args.quiet,
     )
     if args.json:
         print(json.dumps([dataclasses.asdict(r) for r in rows]))

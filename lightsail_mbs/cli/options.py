@@ -23,6 +23,7 @@ CASE_OPTIONS = {
     "--intensity": ("intensity", float, "laser intensity I₀ (W/m²)"),
     "--defect-amplitude": ("defect_amplitude", float, "initial defect amplitude a₀ (m)"),
     "--defect-mode": ("defect_mode", float, "defect mode number ν (wavelengths over L)"),
+    "--billow-radius": ("billow_radius", float, "initial arc radius R_c (m), > 0 concave to the laser; inf = flat"),
     "--beam-waist": ("beam_waist", float, "Gaussian beam waist w (m); inf = uniform beam"),
     "--beam-center": ("beam_center", float, "Gaussian beam axis x_c (m); default L/2"),
     "--reflectivity": ("reflectivity", float, "specular reflectivity R"),
@@ -87,18 +88,18 @@ def add_case_options(parser: argparse.ArgumentParser, run: bool = True) -> None:
     )
 
 
-def params_from_args(args: argparse.Namespace) -> SailParameters:
-    """The SailParameters of the given case options (defaults for the others)."""
+def params_from_args(args: argparse.Namespace, base: SailParameters | None = None) -> SailParameters:
+    """The SailParameters of the given case options (base's values, or the defaults, for the others)."""
     names = [v[0] for v in CASE_OPTIONS.values()] + ["bending", "axial_springs"]
     given = {k: getattr(args, k) for k in names if getattr(args, k, None) is not None}
-    return SailParameters(**given)
+    return base.replace(**given) if base is not None else SailParameters(**given)
 
 
-def settings_from_args(args: argparse.Namespace) -> RunSettings:
-    """The RunSettings of the given run options (defaults for the others)."""
+def settings_from_args(args: argparse.Namespace, base: RunSettings | None = None) -> RunSettings:
+    """The RunSettings of the given run options (base's values, or the defaults, for the others)."""
     names = [v[0] for v in RUN_OPTIONS.values()] + ["stop_at_failure"]
     given = {k: getattr(args, k) for k in names if getattr(args, k, None) is not None}
-    return RunSettings(**given)
+    return base.replace(**given) if base is not None else RunSettings(**given)
 
 
 def scenario_parser(doc: str, quick_help: str) -> argparse.ArgumentParser:

@@ -5,9 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from lightsail_mbs.cli.options import writable_folder
-from lightsail_mbs.result import Result
-from lightsail_mbs.viz.frames import RENDERERS, make_movie, parse_size, render_comparison, render_frames
 
+RENDERERS = ("auto", "matplotlib", "exudyn")  # viz.frames.RENDERERS
 COLOR_CHOICES = {"curvature": "curvature", "moment": "moment", "none": None}
 
 
@@ -50,9 +49,14 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from lightsail_mbs.result import Result
+    from lightsail_mbs.viz.frames import check_fps, make_movie, parse_size, render_comparison, render_frames
+
     result = Result.load(args.run)
     other = Result.load(args.compare) if args.compare else None
     size = parse_size(args.size or ("800x800" if args.compare else "800x400"))
+    if args.movie:
+        check_fps(args.fps)
     writable_folder(args.out, "--out")
     options = dict(
         frames=args.frames,

@@ -6,7 +6,7 @@ import json
 import sys
 
 from lightsail_mbs.cli.options import add_case_options, params_from_args, settings_from_args, writable_file
-from lightsail_mbs.solvers import SOLVERS, solve
+from lightsail_mbs.solvers import SOLVERS
 
 
 def register(sub) -> None:
@@ -33,6 +33,8 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from lightsail_mbs.solvers import solve
+
     params, settings = params_from_args(args), settings_from_args(args)
     out = writable_file(args.out, "--out", ".npz") if args.out else None
     options = {} if args.rtol is None else {"rtol": args.rtol}

@@ -14,10 +14,8 @@ from __future__ import annotations
 import json
 import time
 
-from lightsail_mbs.analysis import finite_amplitude as critical
-from lightsail_mbs.analysis import linear_stability as stability
 from lightsail_mbs.cli.options import add_case_options, params_from_args
-from lightsail_mbs.model import theory
+from lightsail_mbs.model.parameters import check, finite
 
 
 def register(sub) -> None:
@@ -50,7 +48,13 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from lightsail_mbs.analysis import finite_amplitude as critical
+    from lightsail_mbs.analysis import linear_stability as stability
+    from lightsail_mbs.model import theory
+
     p = params_from_args(args)
+    if args.run_time is not None:
+        check("run_time", args.run_time, finite("run_time", args.run_time) > 0, "> 0 s")
     if p.model == "tnt":
         p = p.replace(axial_springs=False)
     start = time.perf_counter()

@@ -5,7 +5,6 @@ from __future__ import annotations
 import json
 
 from lightsail_mbs.cli.options import add_case_options, params_from_args
-from lightsail_mbs.model import theory
 
 
 def register(sub) -> None:
@@ -16,6 +15,8 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from lightsail_mbs.model import theory
+
     numbers = theory.summary(params_from_args(args))
     if args.json:
         print(json.dumps(numbers))

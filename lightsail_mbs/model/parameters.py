@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import numbers
 from dataclasses import dataclass
 
 SPEED_OF_LIGHT = 299_792_458.0  # m/s
@@ -21,10 +22,15 @@ BOUNDARIES = ("free", "cantilever", "pinned")
 # Fields of the validations that to_dict omits at their defaults (a free, unloaded sail), so that the
 # record of a sail lists only what describes it.
 VALIDATION_DEFAULTS = {"boundary": "free", "tip_load": 0.0, "tip_load_time_constant": 0.0}
-# Fields that to_dict also omits at their defaults: a sail without roughness is described as before.
-OPTIONAL_DEFAULTS = {"roughness": 0.0, "roughness_seed": 0}
+# Fields added after the store's keys were first written, omitted by to_dict at their defaults so that the
+# record (and store key) of every case that does not use them stays what it was.
+LATER_DEFAULTS = {"billow_radius": math.inf, "roughness": 0.0, "roughness_seed": 0}
 # Names under which saved runs and store records written before the current field names hold them.
 LEGACY_NAMES = {"amplitude": "defect_amplitude", "mode": "defect_mode", "defect_modes": "defect_mode_count"}
+# Smallest non-zero defect amplitude, as a fraction of L: the solvers scale their tolerances with a₀, and the
+# reduced solver's first-step estimate underflows for a₀ ≲ 1e-200 m. (Physically, anything below ~1e-12 L is
+# round-off already: shapes.defect_warnings says so.)
+MIN_DEFECT_FRACTION = 1e-100
 # Run control that saved runs of that format kept with the case (now solvers.settings.RunSettings).
 RUN_FIELDS = ("t_final", "output_interval", "stop_at_failure", "failure_ratio")
 
@@ -39,12 +45,23 @@ def check(name: str, value, ok: bool, allowed: str) -> None:
 
 
 def finite(name: str, value) -> float:
+    """value as a float; ParameterError unless it is a real number (not a bool or a string), finite."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ParameterError(f"{name}={value!r} is invalid: allowed a finite real number")
     try:
         v = float(value)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise ParameterError(f"{name}={value!r} is invalid: allowed a finite real number") from None
     check(name, value, math.isfinite(v), "a finite real number (no NaN or inf)")
     return v
+
+
+def _as_float(value) -> float:
+    """float(value), NaN where that fails (an int beyond the float range)."""
+    try:
+        return float(value)
+    except (TypeError, ValueError, OverflowError):
+        return math.nan
 
 
 @dataclass(frozen=True)
@@ -84,6 +101,7 @@ class SailParameters:
     boundary: str = "free"  # end supports, one of BOUNDARIES
     tip_load: float = 0.0  # P₀, N: transverse (+y) dead load at the centre of slice n (Eq. 43)
     tip_load_time_constant: float = 0.0  # τ, s: P(t) = P₀(1 − e^(−t/τ)) (Eq. 43); 0: P₀ from t = 0
+    billow_radius: float = math.inf  # R_c, m: initial circular arc (shapes.py); > 0 concave to the laser; inf: flat
 
     def __post_init__(self):
         check("model", self.model, self.model in MODELS, f"one of {', '.join(MODELS)}")
@@ -123,7 +141,9 @@ class SailParameters:
         check(
             "defect_mode_count",
             self.defect_mode_count,
-            isinstance(self.defect_mode_count, int) and 1 <= self.defect_mode_count <= 200,
+            isinstance(self.defect_mode_count, int)
+            and not isinstance(self.defect_mode_count, bool)
+            and 1 <= self.defect_mode_count <= 200,
             "an integer 1 ≤ K ≤ 200",
         )
         finite("defect_spectrum", self.defect_spectrum)
@@ -143,10 +163,11 @@ class SailParameters:
             and self.roughness_seed >= 0,
             "an integer ≥ 0",
         )
+        waist = self.beam_waist
         check(
             "beam_waist",
-            self.beam_waist,
-            not math.isnan(float(self.beam_waist)) and self.beam_waist > 0,
+            waist,
+            not isinstance(waist, bool) and isinstance(waist, numbers.Real) and _as_float(waist) > 0,
             "> 0 (inf for a uniform beam)",
         )
         if self.beam_center is None:
@@ -179,9 +200,32 @@ class SailParameters:
         finite("tip_load", self.tip_load)
         v = finite("tip_load_time_constant", self.tip_load_time_constant)
         check("tip_load_time_constant", v, v >= 0, "≥ 0 (0: the full load from t = 0)")
+        ok_type = isinstance(self.billow_radius, (int, float)) and not isinstance(self.billow_radius, bool)
+        R = float(self.billow_radius) if ok_type else math.nan
+        r_min = self.slice_length / (2.0 * math.sin(math.pi / (2 * self.n)))
+        check(
+            "billow_radius",
+            self.billow_radius,
+            not math.isnan(R) and abs(R) >= r_min,
+            f"|R_c| ≥ {r_min:.4g} m (the arc of n chords of length l subtends at most 180°), > 0 concave to the "
+            "laser, < 0 convex, inf for a flat sail",
+        )
+        check(
+            "billow_radius",
+            self.billow_radius,
+            math.isinf(R) or self.boundary == "free",
+            "inf (flat) unless boundary='free' (the supports hold a flat chain)",
+        )
         if self.bending is None:
             object.__setattr__(self, "bending", self.model == "torsion")
         check("bending", self.bending, isinstance(self.bending, bool), "True, False or None")
+        check(
+            "defect_amplitude",
+            self.defect_amplitude,
+            self.defect_amplitude == 0 or self.defect_amplitude >= MIN_DEFECT_FRACTION * self.length,
+            f"0 or ≥ {MIN_DEFECT_FRACTION:g} L = {MIN_DEFECT_FRACTION * self.length:.3g} m (the solvers' "
+            "tolerances scale with a₀; below this they underflow)",
+        )
         check(
             "defect_amplitude",
             self.defect_amplitude,
@@ -289,9 +333,9 @@ class SailParameters:
         return self.tip_load * -math.expm1(-t / self.tip_load_time_constant)
 
     def to_dict(self) -> dict:
-        """The fields as a dict (the validation fields omitted at their defaults)."""
+        """The fields as a dict (the validation fields and the later ones omitted at their defaults)."""
         d = dataclasses.asdict(self)
-        for name, default in {**VALIDATION_DEFAULTS, **OPTIONAL_DEFAULTS}.items():
+        for name, default in {**VALIDATION_DEFAULTS, **LATER_DEFAULTS}.items():
             if d[name] == default:
                 del d[name]
         return d

@@ -5,16 +5,31 @@ roughness at every wavelength the chain carries (roughness_profile). Hinge 0 is 
 profile at chord distance c_k from hinge k, with c_k = l for rigid/torsion slices and
 c_k = l + z_k (slice plus pre-stretched spring, z_k = T/k_s) for k < n−1 in the extensible
 TnT model (Eqs 30–31 with l_s = 0). Slices lie along the chords, at rest.
+
+**Billowed start** (SailParameters.billow_radius = R_c, finite): the sail starts on a circular arc
+of radius |R_c|, signed curvature κ = 1/R_c. Sign convention: R_c > 0 is concave towards the laser
+(the beam travels along +y; the middle of the sail lies downstream of its edges, as a sail billows
+under the light), its centre of curvature C = (L/2, −R_c) on the laser side; R_c < 0 is convex
+towards the laser, C downstream. Arc length s along the circle, the apex at s = L/2:
+
+    b(s) = (L/2 + sin ψ/κ, (cos ψ − 1)/κ),   ψ = κ (s − L/2),   unit normal ν(s) = (sin ψ, cos ψ)
+
+(ν is +y at the apex: a flat sail's +y). Without a defect the hinges lie on the circle with exact
+chords: a chord c subtends Δs = 2|R_c| asin(c/(2|R_c|)) of arc, and the chain is centred on the apex.
+With the defect, the profile is the arc displaced along its normal, P(u) = b(s₀ + u) + w(u) ν(s₀ + u),
+u the arc length from hinge 0 (the paper's w(x) with x → u); hinge k+1 is the point of P at chord
+distance c_k from hinge k (a root in u), so every chord is again exact. As R_c → ∞ both reduce to
+the flat construction; the flat sail itself is built by the flat code path, unchanged.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
-from lightsail_mbs.model.parameters import SailParameters
+from lightsail_mbs.model.parameters import ParameterError, SailParameters
 
 
 @dataclass(frozen=True)
@@ -101,23 +116,141 @@ def initial_spring_extension(p: SailParameters) -> np.ndarray:
     return z
 
 
-def hinge_points(p: SailParameters, profile=None, perturbation: float = 0.0) -> np.ndarray:
-    """(n+1, 2) hinge points on `profile` (default: defect_profile(p, perturbation)) with exact chord lengths."""
-    w = profile or defect_profile(p, perturbation)
-    z = initial_spring_extension(p)
+def chord_lengths(p: SailParameters) -> np.ndarray:
+    """c_k: l for every slice, plus the pre-stretched spring z_k for k < n − 1 in the extensible TnT chain."""
     chords = np.full(p.n, p.slice_length)
-    chords[:-1] += z
+    chords[:-1] += initial_spring_extension(p)
+    return chords
+
+
+def arc_point(p: SailParameters, s):
+    """(b(s), ν(s)): the billowed arc's point and unit normal at arc length s (module docstring)."""
+    kappa = 1.0 / p.billow_radius
+    psi = kappa * (np.asarray(s, float) - 0.5 * p.length)
+    base = np.stack([0.5 * p.length + np.sin(psi) / kappa, (np.cos(psi) - 1.0) / kappa], axis=-1)
+    return base, np.stack([np.sin(psi), np.cos(psi)], axis=-1)
+
+
+def billowed_hinge_points(p: SailParameters, profile=None, perturbation: float = 0.0) -> np.ndarray:
+    """(n+1, 2) hinge points of the billowed sail (billow_radius finite) with exact chords: on the arc, or
+    on the arc displaced along its normal by `profile` (default: defect_profile(p, perturbation), none if
+    a₀ = 0 and there is no roughness)."""
+    from scipy.optimize import brentq
+
+    R = abs(p.billow_radius)
+    chords = chord_lengths(p)
+    if np.any(chords > 2 * R):
+        raise ParameterError(
+            f"billow_radius={p.billow_radius!r} is invalid: allowed |R_c| ≥ c/2 = {chords.max() / 2:g} m"
+        )
+    spans = 2.0 * R * np.arcsin(chords / (2.0 * R))
+    s0 = 0.5 * (p.length - spans.sum())  # the chain centred on the apex s = L/2
+    if profile is None and p.defect_amplitude == 0 and not p.roughness and not perturbation:
+        return arc_point(p, s0 + np.concatenate([[0.0], np.cumsum(spans)]))[0]
+    w = profile or defect_profile(p, perturbation)
+
+    def point(u):
+        base, normal = arc_point(p, s0 + u)
+        return base + float(w(u)) * normal
+
+    pts = np.zeros((p.n + 1, 2))
+    pts[0] = point(0.0)
+    u = 0.0
+    for k, c in enumerate(chords):
+        start = pts[k]
+
+        def gap(v, start=start, c=c):
+            return float(np.hypot(*(point(v) - start))) - c
+
+        u = brentq(gap, u, u + 2.0 * c, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
+        pts[k + 1] = point(u)
+    return pts
+
+
+def hinge_points(p: SailParameters, profile=None, perturbation: float = 0.0) -> np.ndarray:
+    """(n+1, 2) hinge points on `profile` (default: defect_profile(p, perturbation)) with exact chord
+    lengths; on the billowed arc when billow_radius is finite (billowed_hinge_points)."""
+    if not np.isinf(p.billow_radius):
+        return billowed_hinge_points(p, profile, perturbation)
+    w = profile or defect_profile(p, perturbation)
+    chords = chord_lengths(p)
     pts = np.zeros((p.n + 1, 2))
     pts[0] = (0.0, w(0.0))
+    step = chords[0]  # first guess of each hinge: the previous chord's Δx
     for k, c in enumerate(chords):
         x0, y0 = pts[k]
 
         def gap(x, x0=x0, y0=y0, c=c):
-            return np.hypot(x - x0, w(x) - y0) - c
+            return math.hypot(x - x0, w(x) - y0) - c
 
-        x1 = brentq(gap, x0, x0 + c * (1 + 1e-9), xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
+        x1 = chord_end(gap, x0, x0 + c * (1 + 1e-9), x0 + min(step, c))
+        step = x1 - x0
         pts[k + 1] = (x1, w(x1))
     return pts
+
+
+def chord_end(gap, lo: float, hi: float, guess: float, xtol: float = 1e-15, rtol: float = 8.9e-16) -> float:
+    """The root of gap(x) = |hinge(x) − hinge₀| − chord in (lo, hi] (gap(lo) < 0 ≤ gap(hi)), to
+    |Δx| ≤ xtol + rtol·|x|: secant steps from hi and the guess, which converge superlinearly from a guess
+    as close as the previous chord's; bracketed_root if a step leaves [lo, hi] or stalls."""
+    a, f_a = hi, gap(hi)
+    b, f_b = guess, gap(guess)
+    for _ in range(12):
+        if f_b == 0:
+            return b
+        if f_b == f_a:
+            break
+        x = b - f_b * (b - a) / (f_b - f_a)
+        if not lo <= x <= hi:
+            break
+        if abs(x - b) <= xtol + rtol * abs(x):
+            return x
+        a, f_a, b, f_b = b, f_b, x, gap(x)
+    return bracketed_root(gap, lo, hi)
+
+
+def bracketed_root(f, lo: float, hi: float, xtol: float = 1e-15, rtol: float = 8.9e-16) -> float:
+    """A root of f in [lo, hi] with f(lo) < 0 < f(hi), to |Δx| ≤ xtol + rtol·|x|: false position with the
+    Illinois modification (superlinear), bisecting whenever a step fails to halve the bracket."""
+    f_lo, f_hi = f(lo), f(hi)
+    if f_lo >= 0 or f_hi <= 0:
+        if f_lo == 0:
+            return lo
+        if f_hi == 0:
+            return hi
+        raise ValueError(f"f must change sign from [{lo}, {hi}]: f = {f_lo}, {f_hi}")
+    side = 0
+    for _ in range(200):
+        width = hi - lo
+        x = lo - f_lo * width / (f_hi - f_lo)
+        if not lo < x < hi:
+            x = 0.5 * (lo + hi)
+        value = f(x)
+        if value == 0:
+            return x
+        if value < 0:
+            lo, f_lo = x, value
+            if side == -1:
+                f_hi *= 0.5
+            side = -1
+        else:
+            hi, f_hi = x, value
+            if side == 1:
+                f_lo *= 0.5
+            side = 1
+        if hi - lo > 0.5 * width:  # a slow step: bisect once
+            mid = 0.5 * (lo + hi)
+            value = f(mid)
+            if value == 0:
+                return mid
+            if value < 0:
+                lo, f_lo = mid, value
+            else:
+                hi, f_hi = mid, value
+            side = 0
+        if hi - lo <= xtol + rtol * abs(lo):
+            return 0.5 * (lo + hi)
+    return 0.5 * (lo + hi)
 
 
 def initial_state(p: SailParameters, profile=None, perturbation: float = 0.0) -> ChainState:

@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING
 
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
 from lightsail_mbs.solvers.settings import RunSettings, paper_settings
+from lightsail_mbs.solvers.skeleton import interrupts_propagate
 
 if TYPE_CHECKING:
     from lightsail_mbs.result import Result
@@ -69,9 +70,10 @@ def solve(
     if not isinstance(settings, RunSettings):
         raise ParameterError(f"settings={settings!r} is invalid: allowed a RunSettings")
     module = importlib.import_module(f".{SOLVERS[solver]}", __name__)
-    result = module.run(params, settings, progress=progress, **options)
-    if uncertainty:
-        from lightsail_mbs.solvers import uncertainty as estimate
+    with interrupts_propagate():
+        result = module.run(params, settings, progress=progress, **options)
+        if uncertainty:
+            from lightsail_mbs.solvers import uncertainty as estimate
 
-        result.uncertainty = estimate.assess(module, params, settings, options, result)
+            result.uncertainty = estimate.assess(module, params, settings, options, result)
     return result

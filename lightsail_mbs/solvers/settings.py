@@ -17,6 +17,7 @@ import numpy as np
 from lightsail_mbs.model.parameters import ParameterError, check, finite
 
 FIELDS = ("t_final", "output_interval", "stop_at_failure", "failure_ratio")
+MAX_SAMPLES = 10_000_000  # output samples of one run (each holds 6n + 2(n − 1) + 2 numbers)
 
 
 @dataclass(frozen=True)
@@ -47,6 +48,21 @@ class RunSettings:
         if self.output_interval is not None:
             v = finite("output_interval", self.output_interval)
             check("output_interval", v, 0 < v <= self.t_final, f"0 < output_interval ≤ t_final={self.t_final}")
+        samples = self.t_final / self.sample_interval
+        if self.output_interval is None:
+            check(
+                "t_final",
+                self.t_final,
+                samples <= MAX_SAMPLES,
+                f"≤ {MAX_SAMPLES * 1e-3:g} s with the default 1 ms output interval ({MAX_SAMPLES:.0e} samples; "
+                "set a longer output_interval)",
+            )
+        check(
+            "output_interval",
+            self.output_interval,
+            samples <= MAX_SAMPLES,
+            f"≥ t_final/{MAX_SAMPLES:.0e} = {self.t_final / MAX_SAMPLES:.3g} s ({samples:.3g} output samples)",
+        )
         check("stop_at_failure", self.stop_at_failure, isinstance(self.stop_at_failure, bool), "True or False")
         v = finite("failure_ratio", self.failure_ratio)
         check("failure_ratio", v, v > 1, "> 1")
@@ -59,10 +75,13 @@ class RunSettings:
         return min(1e-3, self.t_final / 1000.0)
 
     def sample_times(self) -> np.ndarray:
-        """Output times 0, Δt, 2Δt, … up to t_final, with t_final appended when Δt does not divide it (s)."""
+        """Output times 0, Δt, 2Δt, … up to t_final, with t_final appended when Δt does not divide it and
+        the last one set to t_final when Δt divides it up to round-off (s)."""
         dt = self.sample_interval
         times = dt * np.arange(int(math.floor(self.t_final / dt + 1e-9)) + 1)
-        if times[-1] < self.t_final * (1 - 1e-12):
+        if times[-1] > self.t_final:  # k·Δt rounded past t_final: the run ends at t_final
+            times[-1] = self.t_final
+        elif times[-1] < self.t_final * (1 - 1e-12):
             times = np.append(times, self.t_final)
         return times
 

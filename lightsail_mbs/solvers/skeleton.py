@@ -20,6 +20,9 @@ its own loop and uses the monitor from its post-step function.
 
 from __future__ import annotations
 
+import contextlib
+import signal
+import threading
 from collections.abc import Callable
 
 import numpy as np
@@ -82,3 +85,32 @@ def collect_samples(
         if status == FINISHED:
             break
     return states, error
+
+
+@contextlib.contextmanager
+def interrupts_propagate():
+    """Ctrl-C (SIGINT) during a run ends it with KeyboardInterrupt, even when the engine caught it.
+
+    Exudyn turns an exception raised in a Python user function, KeyboardInterrupt included, into a
+    solver error and returns normally; without this the interrupted run would come back as a Result
+    with an error (and a sweep would record it and go on). Active only in the main thread while
+    Python's own SIGINT handler is installed; elsewhere it does nothing.
+    """
+    if threading.current_thread() is not threading.main_thread() or (
+        signal.getsignal(signal.SIGINT) is not signal.default_int_handler
+    ):
+        yield
+        return
+    received = []
+
+    def handler(signum, frame):
+        received.append(signum)
+        signal.default_int_handler(signum, frame)
+
+    signal.signal(signal.SIGINT, handler)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+    if received:
+        raise KeyboardInterrupt

@@ -12,12 +12,16 @@ import concurrent.futures as cf
 import contextlib
 import multiprocessing
 import os
+import signal
 import time
 import traceback
 from collections.abc import Callable
 from concurrent.futures.process import BrokenProcessPool
 
+from lightsail_mbs.model.parameters import ParameterError
 from lightsail_mbs.result import Result
+
+SCHEDULER_TIMEOUT = 10.0  # s to wait for a Dask scheduler to answer
 
 
 def execute(case_function: Callable, case) -> tuple[dict, Result | None]:
@@ -74,14 +78,28 @@ def available_cores() -> int:
 
 
 @contextlib.contextmanager
-def dask_client(scheduler):
-    """A ``distributed.Client`` for a scheduler address (closed on exit), a given Client as is, or None."""
+def dask_client(scheduler, timeout: float = SCHEDULER_TIMEOUT):
+    """A ``distributed.Client`` for a scheduler address (closed on exit), a given Client as is, or None.
+
+    ParameterError naming the address, before any case runs, when no scheduler answers there within
+    ``timeout`` seconds or the address is not one Dask understands."""
     if scheduler is None or not isinstance(scheduler, str):
         yield scheduler
         return
     from distributed import Client
 
-    with Client(scheduler) as client:
+    try:
+        client = Client(scheduler, timeout=timeout)
+    except ValueError as exc:
+        raise ParameterError(
+            f"scheduler={scheduler!r} is invalid: allowed a Dask scheduler address such as tcp://host:8786 ({exc})"
+        ) from None
+    except Exception as exc:  # refused, timed out, or something that does not speak Dask's protocol
+        raise ParameterError(
+            f"scheduler={scheduler!r} is invalid: no Dask scheduler answered there within {timeout:g} s "
+            f"({type(exc).__name__}: {exc})"
+        ) from None
+    with client:
         yield client
 
 
@@ -131,13 +149,16 @@ class PoolRunner:
         self.context = multiprocessing.get_context(method)
         self.queue, self.suspects = collections.deque(), collections.deque()
         self.running: dict[cf.Future, tuple[object, bool]] = {}  # future -> (case, running alone?)
-        self.pool = cf.ProcessPoolExecutor(workers, mp_context=self.context)
+        self.pool = self._new_pool()
+
+    def _new_pool(self) -> cf.ProcessPoolExecutor:
+        return cf.ProcessPoolExecutor(self.workers, mp_context=self.context, initializer=_ignore_interrupts)
 
     def submit(self, case) -> None:
         self.queue.append(case)
 
     def _start(self, queue: collections.deque, alone: bool) -> None:
-        future = self.pool.submit(execute, self.case_function, queue[0])
+        future = self.pool.submit(_execute_interruptibly, self.case_function, queue[0])
         self.running[future] = (queue.popleft(), alone)
 
     def wait(self) -> list:
@@ -166,11 +187,27 @@ class PoolRunner:
                 self.suspects.extend(case for case, _ in self.running.values())
                 self.running.clear()
                 self.pool.shutdown(wait=False, cancel_futures=True)
-                self.pool = cf.ProcessPoolExecutor(self.workers, mp_context=self.context)
+                self.pool = self._new_pool()
         return finished
 
     def close(self, cancel: bool = False) -> None:
         self.pool.shutdown(wait=not cancel, cancel_futures=True)
+
+
+def _ignore_interrupts() -> None:
+    """Pool workers ignore Ctrl-C while idle (no traceback from a worker waiting for work); the sweep's
+    own process handles it and shuts the pool down."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _execute_interruptibly(case_function: Callable, case):
+    """:func:`execute` in a pool worker with Ctrl-C raising KeyboardInterrupt while the case runs (sent
+    back to the sweep as the case's outcome, never recorded)."""
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        return execute(case_function, case)
+    finally:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 class DaskRunner:

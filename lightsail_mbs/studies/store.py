@@ -6,7 +6,8 @@ Optional full Results go to ``results/<key>.npz`` (and its ``.json`` summary) an
 *before* the record, so a record never points at a missing Result.
 
 A record is served only while it is current: it carries the ``code_version`` of the code that made it
-(:func:`lightsail_mbs.result.code_version`, a hash of the sources that decide a run's numbers), and a
+(:func:`lightsail_mbs.result.code_version`, a hash of the sources that decide a run's numbers and its
+record and of the numerical libraries' versions), and a
 record made by other code is *stale*; a record that does not parse, or lacks its key, status or code
 version, is *corrupt*; a record whose saved Result is missing or unreadable is *incomplete*. All three
 count as not finished: the sweep recomputes them. :meth:`CaseStore.audit` reports them without
@@ -16,14 +17,12 @@ recomputing (``lightsail-mbs store DIR``).
 from __future__ import annotations
 
 import json
-import os
-import tempfile
-import zipfile
 from pathlib import Path
 
 import numpy as np
 
-from lightsail_mbs.result import code_version
+from lightsail_mbs.model.parameters import ParameterError
+from lightsail_mbs.result import code_version, write_atomically
 
 REQUIRED = ("key", "status", "code_version")
 
@@ -56,7 +55,15 @@ class CaseStore:
 
     def __init__(self, directory):
         self.directory = Path(directory)
-        self.directory.mkdir(parents=True, exist_ok=True)
+        try:
+            if self.directory.exists() and not self.directory.is_dir():
+                raise NotADirectoryError(20, "a file, not a folder")
+            self.directory.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise ParameterError(
+                f"store_dir={str(directory)!r} is invalid: allowed a folder this process can create and write "
+                f"({exc.strerror or exc})"
+            ) from None
 
     def record_path(self, key: str) -> Path:
         return self.directory / f"{key}.json"
@@ -75,7 +82,7 @@ class CaseStore:
             return "corrupt"
         if record["code_version"] != code_version():
             return "stale"
-        if with_result and not self._result_readable(key):
+        if with_result and not self._result_matches(key, record):
             return "incomplete"
         return "current"
 
@@ -110,16 +117,7 @@ class CaseStore:
         path = self.record_path(key)
         record = {**record, "code_version": code_version()}
         text = json.dumps(record, indent=1, sort_keys=True, default=_jsonable_or_repr) + "\n"
-        fd, tmp = tempfile.mkstemp(dir=self.directory, prefix=f".{key}.", suffix=".tmp")
-        try:
-            with os.fdopen(fd, "w") as handle:
-                handle.write(text)
-                handle.flush()
-                os.fsync(handle.fileno())
-            os.replace(tmp, path)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
+        write_atomically(path, lambda handle: handle.write(text.encode()))
         return record
 
     def save_result(self, key: str, result) -> Path:
@@ -137,10 +135,15 @@ class CaseStore:
             return None
         return record
 
-    def _result_readable(self, key: str) -> bool:
-        """The saved Result opens as a zip archive with every member intact (CRC checked)."""
+    def _result_matches(self, key: str, record: dict) -> bool:
+        """The saved Result loads as a whole run (Result.load: archive intact, every entry and array there)
+        and is the run of this record's case (the same parameters and settings)."""
+        from lightsail_mbs.model.parameters import ParameterError
+        from lightsail_mbs.result import Result, RunFileError
+
         try:
-            with zipfile.ZipFile(self.result_path(key)) as archive:
-                return archive.testzip() is None
-        except (OSError, zipfile.BadZipFile):
+            saved = Result.load(self.result_path(key))
+        except (RunFileError, ParameterError):
             return False
+        same = json.loads(to_json([saved.params.to_dict(), saved.settings.to_dict()]))
+        return same == [record.get("parameters"), record.get("settings")]

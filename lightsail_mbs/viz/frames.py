@@ -239,11 +239,16 @@ def _prepare(out_dir) -> Path:
     return out
 
 
+def check_fps(fps) -> None:
+    """ParameterError unless 0 < fps ≤ 120 (a movie's frame rate)."""
+    if not (isinstance(fps, (int, float)) and math.isfinite(fps) and 0 < fps <= 120):
+        raise ParameterError(f"fps={fps!r} is invalid: allowed a number 0 < fps ≤ 120")
+
+
 def make_movie(frames, path, fps: float = 20.0) -> Path:
     """Encode frame images (paths or RGB arrays) into path: .mp4 (H.264 via imageio-ffmpeg) or .gif (Pillow)."""
     path = Path(path)
-    if not (isinstance(fps, (int, float)) and math.isfinite(fps) and 0 < fps <= 120):
-        raise ParameterError(f"fps={fps!r} is invalid: allowed a number 0 < fps ≤ 120")
+    check_fps(fps)
     suffix = path.suffix.lower()
     if suffix not in (".mp4", ".gif"):
         raise ParameterError(f"path={str(path)!r} is invalid: allowed a .mp4 or .gif file name")

@@ -33,10 +33,15 @@ def test_amplitude_scales_and_vectorises():
 
 
 def test_failure_time_interpolated():
+    """e^t sampled every 0.1 s doubles at ln 2 = 0.693 s, between the samples 0.6 and 0.7: the failure time
+    is the straight line between them crossing 2 (exactly), within the chord's error of ln 2 — and not
+    either sample."""
     t = np.linspace(0, 1, 11)
-    amp = np.exp(t)  # doubles at ln 2
+    amp = np.exp(t)
     ft = analysis.failure_time(t, amp, 2.0)
-    assert abs(ft - np.log(2)) < 0.01
+    chord = 0.6 + (2.0 - np.exp(0.6)) / (np.exp(0.7) - np.exp(0.6)) * 0.1
+    assert ft == pytest.approx(chord, abs=1e-12)
+    assert 0 < np.log(2) - ft < 0.1**2 / 8  # the chord of a convex curve lies above it: crosses early, < Δt²/8
     assert analysis.failure_time(t, np.ones_like(t), 2.0) is None
 
 
@@ -49,5 +54,13 @@ def test_trough_detection():
 
 
 def test_failure_time_at_another_ratio():
+    """Tripling: between the samples 1.0 and 1.1 s, on the chord."""
     t = np.linspace(0, 2, 21)
-    assert abs(analysis.failure_time(t, np.exp(t), 3.0) - np.log(3)) < 0.01
+    chord = 1.0 + (3.0 - np.exp(1.0)) / (np.exp(1.1) - np.exp(1.0)) * 0.1
+    assert analysis.failure_time(t, np.exp(t), 3.0) == pytest.approx(chord, abs=1e-12)
+
+
+def test_failure_time_at_a_sample_and_of_a_flat_start():
+    t = np.array([0.0, 0.5, 1.0])
+    assert analysis.failure_time(t, np.array([1.0, 2.0, 3.0]), 2.0) == 0.5
+    assert analysis.failure_time(t, np.array([0.0, 1e-9, 1.0]), 2.0) is None  # a flat start has no failure

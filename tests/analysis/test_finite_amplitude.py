@@ -6,6 +6,7 @@ import pytest
 
 from lightsail_mbs import SailParameters, paper_case
 from lightsail_mbs.analysis import finite_amplitude as cr
+from tests.references import REFERENCES
 
 SMALL_TORSION = SailParameters(model="torsion", n=10, defect_mode=1.5)
 SMALL_TNT = SailParameters(model="tnt", n=10, defect_mode=1.5, axial_springs=False, tension=1e-8)
@@ -38,7 +39,15 @@ def test_critical_ratio_independent_of_amplitude():
     """E_cr ∝ a₀ (exponent 1): the bisected ratio E/E_cr,max at a₀ = 1 µm and 100 µm brackets overlap."""
     lo, hi = (cr.critical_ratio(SMALL_TORSION.replace(defect_amplitude=a0), 6.0, factor=1.05) for a0 in (1e-6, 1e-4))
     assert lo.failed_ratio <= hi.stable_ratio and hi.failed_ratio <= lo.stable_ratio
-    assert 1.0 < lo.value < 30.0  # above the quasi-static E_cr,max, not by orders of magnitude
+
+
+def test_critical_ratio_brackets_the_dated_reference():
+    """The bisection of `lightsail-mbs stability` (paper case, runs of 8 t_c, ×1.05) ends in a bracket at most
+    1.05 wide that contains the reference boundary [7.584, 7.598] E_cr,max (tests/references.py)."""
+    found = cr.critical_ratio(paper_case("torsion-stable"), 8.0, factor=1.05)
+    ref = REFERENCES["torsion_critical_ratio"]
+    assert found.stable_ratio / found.failed_ratio <= 1.05
+    assert found.failed_ratio <= ref.failed and ref.stable <= found.stable_ratio, (found, ref)
 
 
 def test_divergence_grows_in_the_unstable_regime():

@@ -42,14 +42,18 @@ def test_exudyn_linear_spectrum_with_load_equals_unloaded_and_reduced(name):
     p = LINEAR_CASES[name]
     lit, dark = st.linear_spectrum(p, "exudyn"), st.linear_spectrum(st.unlit(p), "exudyn")
     assert elastic_shift(lit, dark) < 1e-6
+    scale = max(st.load_rate_scale(p), np.abs(dark.omega_squared).max())
+    assert np.max(np.abs(lit.omega_squared - dark.omega_squared)) < 1e-6 * scale
     reduced = st.linear_spectrum(st.unlit(p), "reduced")
     assert elastic_shift(dark, reduced) < 1e-6  # the two solvers' unloaded chains agree
 
 
-def test_load_acts_along_the_sail_at_first_order():
+@pytest.mark.parametrize("name", ["torsion-soft", "rigid"])
+def test_load_acts_along_the_sail_at_first_order(name):
     """It is there, but axial: ∂ẍ₁/∂θ_k = −g₀/n (the whole chain's x-force −f₀Σθ over its mass),
-    while the transverse rows do not see it."""
-    p = LINEAR_CASES["torsion-soft"]
+    while the transverse rows do not see it. For the rigid chain, whose spectrum is all zeros with and
+    without the load, this is the check that can fail."""
+    p = LINEAR_CASES[name]
     jac, dark = st.reduced_jacobian(p), st.reduced_jacobian(st.unlit(p))
     dof = p.n + 2
     np.testing.assert_allclose(jac[dof, 2:dof], -p.nominal_acceleration / p.n, rtol=1e-6)
@@ -66,3 +70,20 @@ def test_exudyn_own_forward_difference_jacobian_is_noisy_with_load():
     noisy = st.spectrum_of_system(*st.exudyn_linearization(p, exudyn_load="solver"))
     assert elastic_shift(noisy, dark) > 1e-4
     assert elastic_shift(st.linear_spectrum(p, "exudyn"), dark) < 1e-6
+
+
+@pytest.mark.parametrize("name", ["rigid", "torsion-soft", "tnt-inextensible"])
+def test_exudyn_load_stiffness_is_the_axial_first_order_load(name):
+    """Exudyn's linearisation: K(lit) − K(unlit) = −∂Q_load/∂q is f₀·(n − j) in the axial row X against the
+    j-th relative angle (the x-force −f₀Σθ_k, θ_k the sum of the relative angles up to k) and zero in every
+    other row, to 1e-9 f₀ (central differences)."""
+    from lightsail_mbs.solvers.exudyn.tree import ChainLayout
+
+    p = LINEAR_CASES[name]
+    _, lit = st.exudyn_linearization(p)
+    _, dark = st.exudyn_linearization(st.unlit(p))
+    load = (lit - dark) / p.flat_force
+    angles = ChainLayout.of(p).angle_index
+    expected = np.zeros_like(load)
+    expected[0, angles] = p.n - np.arange(p.n)
+    np.testing.assert_allclose(load, expected, rtol=0, atol=1e-9 * p.n)

@@ -5,16 +5,19 @@ import json
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
-from lightsail_mbs import RunSettings, SailParameters
+from lightsail_mbs import Result, RunSettings, SailParameters, analysis, paper_case, paper_settings, solve
 from lightsail_mbs.cli import build_parser, main
 from lightsail_mbs.cli.options import params_from_args, settings_from_args
-from tests.helpers import read_image
+from lightsail_mbs.result import code_version
+from lightsail_mbs.studies.store import CaseStore
+from tests.helpers import growing_sine, read_csv, read_image
 
 
 def cli(*args):
-    return subprocess.run([sys.executable, "-m", "lightsail_mbs.cli", *args], capture_output=True, text=True)
+    return subprocess.run([sys.executable, "-m", "lightsail_mbs.cli", *map(str, args)], capture_output=True, text=True)
 
 
 def clis(*commands):
@@ -28,7 +31,11 @@ def clis(*commands):
         )
         for args in commands
     ]
-    return [subprocess.CompletedProcess(proc.args, proc.returncode, *proc.communicate()) for proc in procs]
+    done = []
+    for proc in procs:
+        out, err = proc.communicate()  # sets the return code
+        done.append(subprocess.CompletedProcess(proc.args, proc.returncode, out, err))
+    return done
 
 
 def test_theory_json_paper_numbers():
@@ -65,7 +72,7 @@ def test_theory_json_paper_numbers():
 )
 def test_bad_input_one_line_error(args, name):
     for out in clis(["theory", *args], ["simulate", *args]):
-        assert out.returncode != 0
+        assert out.returncode == 2
         lines = out.stderr.strip().splitlines()
         assert len(lines) == 1 and name in lines[0] and "Traceback" not in out.stderr
 
@@ -208,3 +215,173 @@ def test_reproduce_rejects_an_unknown_figure(capsys):
 def test_crosscheck_cli_rejects_unknown_case(tmp_path):
     with pytest.raises(SystemExit):
         main(["crosscheck", "--cases", "nonsense", "--out", str(tmp_path)])
+
+
+HEAVY = ("matplotlib", "scipy", "exudyn", "numba", "dask", "PIL", "tqdm")
+
+
+def loaded_after(code: str) -> set[str]:
+    """The heavy libraries (HEAVY, and scipy's submodules) in sys.modules after running code in a fresh
+    interpreter."""
+    probe = f"import sys\n{code}\nprint(' '.join(sorted(sys.modules)))"
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True)
+    modules = out.stdout.split()
+    return {m for m in modules if m.split(".")[0] in HEAVY and (m.count(".") == 0 or m.startswith("scipy."))}
+
+
+def test_building_the_parser_imports_no_heavy_library():
+    """A command pays only for what it uses: registering every subcommand imports none of them."""
+    assert loaded_after("from lightsail_mbs.cli import build_parser\nbuild_parser()") == set()
+    assert loaded_after("from lightsail_mbs.cli import main\nmain(['theory'])") == set()
+
+
+def test_reduced_simulate_imports_numba_and_not_the_rest():
+    """The reduced solver's command loads numba (which imports scipy's top level) but not scipy.integrate,
+    scipy.optimize, scipy.linalg (numba's BLAS probe is answered), matplotlib or exudyn."""
+    args = ["simulate", "--solver", "reduced", "--n", "6", "--t-final", "0.01", "--quiet"]
+    code = f"from lightsail_mbs.cli import main\nmain({args!r})"
+    loaded = loaded_after(code)
+    assert "numba" in loaded
+    assert not {"matplotlib", "exudyn", "dask", "PIL", "scipy.integrate", "scipy.optimize", "scipy.linalg"} & loaded
+
+
+def test_simulate_json_out_and_info_end_to_end(tmp_path, capsys):
+    """simulate --json --out prints the summary it saves (.npz and .json); info prints that run's summary
+    and its provenance (package and code versions, git commit, libraries)."""
+    run = tmp_path / "run"
+    out = cli("simulate", "--n", "12", "--t-final", "0.05", "--solver", "reduced", "--quiet", "--json", "--out", run)
+    assert out.returncode == 0 and out.stderr == "", out.stderr
+    printed = json.loads(out.stdout)
+    saved = Result.load(tmp_path / "run.npz")
+    assert printed == json.loads(json.dumps(saved.summary())) == json.loads((tmp_path / "run.json").read_text())
+    assert printed["settings"]["t_final"] == 0.05 and printed["n"] == 12 and printed["solver"] == "reduced"
+    info = cli("info", tmp_path / "run.npz")
+    assert info.returncode == 0 and info.stderr == ""
+    made = saved.provenance
+    assert made["code_version"] == code_version() and made["numpy"] == np.__version__
+    for key in ("version", "code_version", "git_commit", "exudyn", "numpy", "scipy", "numba", "python", "platform"):
+        line = next(line for line in info.stdout.splitlines() if line.split()[:1] == [key])
+        assert line.split(None, 1)[1] == str(made[key])
+    assert main(["info", str(tmp_path / "run.npz"), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["provenance"] == made
+
+
+def test_info_says_when_a_run_has_no_provenance(tmp_path, capsys):
+    """Runs saved before provenance existed load and say so."""
+    path = growing_sine().save(tmp_path / "old")
+    with np.load(path) as data:
+        arrays = {k: data[k] for k in data.files}
+    summary = json.loads(str(arrays["summary_json"]))
+    del summary["provenance"], summary["format"], summary["format_version"]
+    np.savez(path, **{**arrays, "summary_json": np.array(json.dumps(summary))})
+    assert main(["info", str(path)]) == 0
+    assert "provenance: not recorded" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("solver", ["reduced", "exudyn"])
+def test_failure_ratio_option_reaches_the_solver(solver, tmp_path, capsys):
+    """--failure-ratio 3 moves the stop to the first sample at 3 a₀ and the failure time with it."""
+    args = ["simulate", "--modulus", "4.5e9", "--n", "12", "--t-final", "6", "--solver", solver, "--quiet", "--json"]
+    assert main([*args, "--out", str(tmp_path / "two")]) == 0
+    two = json.loads(capsys.readouterr().out)
+    assert main([*args, "--failure-ratio", "3", "--out", str(tmp_path / "three")]) == 0
+    three = json.loads(capsys.readouterr().out)
+    assert (two["settings"]["failure_ratio"], three["settings"]["failure_ratio"]) == (2.0, 3.0)
+    r = Result.load(tmp_path / "three.npz")
+    assert r.amplitude[-1] >= 3 * r.amplitude[0] > r.amplitude[-2]  # stopped at the first sample at 3 a₀
+    assert three["failure_time"] == analysis.failure_time(r.time, r.amplitude, 3.0)
+    assert r.time[-2] < three["failure_time"] <= r.time[-1] and three["failure_time"] > two["t_end"]
+
+
+def test_montecarlo_end_to_end_and_resumed(tmp_path, capsys):
+    """The table counts the store's records; a rerun reads them back without recomputing any."""
+    store = tmp_path / "store"
+    args = ["montecarlo", "--n", "12", "--solver", "reduced", "--seeds", "3", "--values", "4.5e8,4.5e13"]
+    args += ["--store", str(store), "--workers", "1", "--json", "--quiet"]
+    assert main(args) == 0
+    rows = json.loads(capsys.readouterr().out)
+    records = CaseStore(store).records()
+    assert len(records) == 6 and all(r["status"] == "ok" for r in records)
+    for row in rows:
+        mine = [r for r in records if r["parameters"]["youngs_modulus"] == row["value"]]
+        assert row["runs"] == len(mine) == 3 and row["failures"] == sum(r["failed"] for r in mine)
+        assert row["probability"] == row["failures"] / 3
+    assert [row["failures"] for row in rows] == [3, 0]  # 1/1000 and 100 × E_cr,max of the sine
+    stamps = {p: p.stat().st_mtime_ns for p in store.glob("*.json")}
+    assert main(args) == 0
+    assert json.loads(capsys.readouterr().out) == rows
+    assert {p: p.stat().st_mtime_ns for p in store.glob("*.json")} == stamps
+
+
+def test_crosscheck_end_to_end_on_a_short_case(tmp_path, capsys, monkeypatch):
+    """The command on a shortened torsion-soft case (n = 10, 0.3 s): report, plot, verdict, exit status."""
+    from lightsail_mbs.studies import crosscheck
+
+    short = crosscheck.Case("torsion-soft", paper_case("torsion-soft", n=10), RunSettings(t_final=0.3), "short")
+    monkeypatch.setitem(crosscheck.CASES, "torsion-soft", short)
+    assert main(["crosscheck", "--cases", "torsion-soft", "--out", str(tmp_path), "--quiet"]) == 0
+    assert "1/1 cases pass" in capsys.readouterr().out
+    report = (tmp_path / "crosscheck.md").read_text()
+    row = next(line for line in report.splitlines() if line.startswith("| torsion-soft"))
+    assert "✅" in row and (tmp_path / "crosscheck_torsion-soft.png").exists()
+
+
+def test_reproduce_quick_end_to_end(tmp_path, capsys):
+    """reproduce --figure 5 --quick writes the figure and its CSV, whose failure times are the solver's."""
+    code = main(
+        ["reproduce", "--figure", "5", "--quick", "--solver", "reduced", "--workers", "1", "--quiet"]
+        + [
+            "--out",
+            str(tmp_path),
+        ]
+    )
+    assert code == 0 and "| all |" in capsys.readouterr().out
+    assert (tmp_path / "fig5.png").stat().st_size > 10_000
+    rows = {float(r["mode"]): r for r in read_csv(tmp_path / "fig5_failure_times.csv")}
+    direct = solve(paper_case("rigid", defect_mode=1.5), "reduced", paper_settings("rigid"))
+    assert float(rows[1.5]["failure_time_ms"]) == direct.failure_time * 1e3
+    assert rows[0.5]["failed"] == "False" and rows[1.5]["at_trough"] == "True"
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["simulate", "--out", "/proc/x.npz"], ["--out", "/proc/x.npz"]),
+        (["simulate", "--out", "{tmp}/folder"], ["--out", "a folder"]),
+        (["info", "{tmp}/missing.npz"], ["missing.npz", "no such file"]),
+        (["info", "{tmp}/text.npz"], ["text.npz", "not a NumPy"]),
+        (["render", "{tmp}/truncated.npz", "--out", "{tmp}/frames"], ["truncated.npz"]),
+        (["render", "{tmp}/good.npz", "--out", "/proc/frames"], ["--out"]),
+        (["render", "{tmp}/good.npz", "--out", "{tmp}/frames", "--movie", "gif", "--fps", "0"], ["fps"]),
+        (["montecarlo", "--values", "1e9", "--store", "{tmp}/good.npz"], ["--store"]),
+        (["montecarlo", "--values", "1e9,x", "--store", "{tmp}/mc"], ["values"]),
+        (["montecarlo", "--values", ",", "--store", "{tmp}/mc"], ["values"]),
+        (["reproduce", "--figure", "5", "--out", "/proc/figs"], ["--out"]),
+        (["crosscheck", "--out", "/proc/cc"], ["--out"]),
+        (["stability", "--factor", "1"], ["factor"]),
+        (["stability", "--run-time", "-1"], ["run_time"]),
+        (["store", "{tmp}/no-such-store"], ["no-such-store"]),
+        (["simulate", "--t-final", "1e300"], ["t_final"]),
+    ],
+)
+def test_foreseeable_failures_end_in_one_line_and_status_2_before_any_work(args, words, tmp_path, capsys, monkeypatch):
+    """Bad paths, foreign or damaged files, bad numbers: one line naming the problem, exit 2, and nothing
+    solved, rendered or swept first (those functions fail the test if called)."""
+    from lightsail_mbs import solvers
+    from lightsail_mbs.studies import crosscheck, montecarlo
+    from lightsail_mbs.viz import frames
+
+    def never(*args, **kwargs):
+        raise AssertionError("work started before the inputs were checked")
+
+    # the commands import these where they call them
+    for module, name in ((solvers, "solve"), (frames, "render_frames"), (montecarlo, "run"), (crosscheck, "run")):
+        monkeypatch.setattr(module, name, never)
+    growing_sine().save(tmp_path / "good")
+    (tmp_path / "folder.npz").mkdir()
+    (tmp_path / "text.npz").write_text("not a run")
+    (tmp_path / "truncated.npz").write_bytes((tmp_path / "good.npz").read_bytes()[:500])
+    code = main([a.replace("{tmp}", str(tmp_path)) for a in args])
+    err = capsys.readouterr().err.strip()
+    assert code == 2 and len(err.splitlines()) == 1 and "Traceback" not in err, err
+    assert all(word in err for word in words), err

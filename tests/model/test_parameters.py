@@ -4,8 +4,10 @@
 import math
 
 import pytest
+from hypothesis import given
 
 from lightsail_mbs import ParameterError, SailParameters, paper_case
+from tests.strategies import EXAMPLES, any_case_kwargs, check_property
 
 
 @pytest.mark.parametrize(
@@ -24,6 +26,7 @@ from lightsail_mbs import ParameterError, SailParameters, paper_case
         ("youngs_modulus", -4.5e9, "youngs_modulus"),
         ("torsional_damping", -1.0, "torsional_damping"),
         ("defect_amplitude", 0.2, "45°"),
+        ("defect_amplitude", 1e-250, "underflow"),
         ("defect_mode_count", 0, "defect_mode_count"),
     ],
 )
@@ -160,3 +163,21 @@ def test_tip_force_is_equation_43():
 def test_bad_support_values_name_the_parameter(changes, name):
     with pytest.raises(ParameterError, match=name):
         SailParameters(**changes)
+
+
+@pytest.mark.parametrize("examples", EXAMPLES)
+def test_any_parameter_set_is_accepted_or_refused_naming_a_field(examples):
+    """Property: whatever the values (wrong sign, NaN, inf, wrong type), SailParameters either accepts them
+    or raises ParameterError naming one of its fields — never another exception."""
+
+    @given(any_case_kwargs())
+    def accepted_or_refused(kwargs):
+        try:
+            p = SailParameters(**kwargs)
+        except ParameterError as exc:
+            assert len(str(exc).splitlines()) == 1
+            assert any(str(exc).startswith(f"{name}=") or f"{name} " in str(exc) for name in kwargs), str(exc)
+        else:
+            assert SailParameters.from_dict(p.to_dict()) == p
+
+    check_property(accepted_or_refused, examples)

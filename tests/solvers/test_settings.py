@@ -2,8 +2,11 @@
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from lightsail_mbs import ParameterError, RunSettings, SailParameters, paper_settings, solve
+from tests.strategies import BAD_VALUES, EXAMPLES, check_property, log_uniform
 
 
 @pytest.mark.parametrize(
@@ -83,3 +86,52 @@ def test_solve_rejects_what_is_not_a_run_settings():
         solve(SailParameters(n=4), "reduced", {"t_final": 0.01}, uncertainty=False)
     with pytest.raises(ParameterError, match="solver"):
         solve(SailParameters(n=4), "euler", RunSettings(t_final=0.01), uncertainty=False)
+
+
+@st.composite
+def any_settings_kwargs(draw) -> dict:
+    t_final = draw(log_uniform(-6, 5))
+    kwargs = dict(
+        t_final=t_final,
+        output_interval=draw(st.one_of(st.none(), st.floats(1e-9, 1.0).map(lambda f: f * t_final))),
+        stop_at_failure=draw(st.booleans()),
+        failure_ratio=draw(st.floats(1.0, 100.0)),
+    )
+    for name in draw(st.lists(st.sampled_from(sorted(kwargs)), max_size=2, unique=True)):
+        kwargs[name] = draw(BAD_VALUES)
+    return kwargs
+
+
+@pytest.mark.parametrize("examples", EXAMPLES)
+def test_any_run_settings_are_accepted_or_refused_naming_a_field(examples):
+    """Property: RunSettings accepts a value set (and then its sample grid is finite, increasing, from 0
+    to t_final, at most MAX_SAMPLES + 1 long) or raises ParameterError naming a field."""
+    from lightsail_mbs.solvers.settings import MAX_SAMPLES
+
+    @given(any_settings_kwargs())
+    def accepted_or_refused(kwargs):
+        try:
+            s = RunSettings(**kwargs)
+        except ParameterError as exc:
+            assert any(str(exc).startswith(f"{name}=") for name in kwargs), str(exc)
+        else:
+            if s.t_final / s.sample_interval < 1e5:
+                times = s.sample_times()
+                assert times[0] == 0 and times[-1] == pytest.approx(s.t_final) and np.all(np.diff(times) > 0)
+                assert times[-1] <= s.t_final  # a solver integrating to t_final reaches every sample
+                assert times.size <= MAX_SAMPLES + 1
+            assert RunSettings.from_dict(s.to_dict()) == s
+
+    check_property(accepted_or_refused, examples)
+
+
+def test_last_sample_never_lies_past_t_final():
+    """Δt = t_final/3 in floating point: 3Δt rounds past t_final; the grid ends at t_final (found by the
+    property test of solve: the reduced solver lost its last sample)."""
+    t_final = 0.0008501973527864822
+    settings = RunSettings(t_final=t_final, output_interval=0.0002833991175954941)
+    assert 3 * settings.output_interval > t_final
+    times = settings.sample_times()
+    assert times.size == 4 and times[-1] == t_final
+    r = solve(SailParameters(model="rigid", n=2, intensity=1e7), "reduced", settings, uncertainty=False)
+    assert r.error is None and r.time.size == 4

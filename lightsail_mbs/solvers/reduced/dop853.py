@@ -3,10 +3,11 @@
 The same method, step-size control, initial step and 7th-order dense output as
 scipy.integrate.DOP853 (Hairer, Nørsett & Wanner, *Solving ODEs I*, Sec. II.10; the Butcher
 tableau, error and interpolation coefficients are in tableaus.py), but the whole step loop
-runs in numba-compiled code calling the compiled right-hand side (reduced_dynamics.rhs_into):
-no Python work per step. Error norm: RMS of the 5th-order estimate scaled by
-atol + rtol·max(abs(y), abs(y_new)), combined with the 3rd-order one as err5²/√(err5² + 0.01 err3²);
-step factor 0.9·err^(−1/8) bounded to [0.2, 10] (no growth right after a rejection).
+runs in numba-compiled code calling the compiled right-hand side (dynamics.rhs_into) with one
+workspace: no Python work and no allocation per step (every stage combination is an element loop).
+Error norm: RMS of the 5th-order estimate scaled by atol + rtol·max(abs(y), abs(y_new)), combined with
+the 3rd-order one as err5²/√(err5² + 0.01 err3²); step factor 0.9·err^(−1/8) bounded to [0.2, 10] (no
+growth right after a rejection).
 
 Output is produced in chunks of sample times (`Dop853.advance`), so the caller can stop at
 failure, show progress and keep memory bounded, at one Python call per chunk.
@@ -14,11 +15,13 @@ failure, show progress and keep memory bounded, at one Python call per chunk.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
 
 from lightsail_mbs.solvers.reduced import tableaus
-from lightsail_mbs.solvers.reduced.dynamics import rhs_into
+from lightsail_mbs.solvers.reduced.dynamics import N, rhs_into, workspace
 
 STAGES = tableaus.DOP853_STAGES  # 12 stages per step
 A = np.ascontiguousarray(tableaus.DOP853_A)  # (16, 16): 12 step stages + 3 dense-output stages
@@ -35,21 +38,43 @@ STATUS = {STEP_TOO_SMALL: "required step size is less than spacing between numbe
 
 
 @njit(cache=True)
-def _rms(v):
-    return np.sqrt(np.mean(v * v))
+def scaled_rms(v, scale):
+    """√(mean((v_i/scale_i)²)): the error norm of both integrators."""
+    acc = 0.0
+    for i in range(v.size):
+        r = v[i] / scale[i]
+        acc += r * r
+    return math.sqrt(acc / v.size)
+
+
+@njit(cache=True)
+def finite(v):
+    """True when every entry of the vector v is finite."""
+    for i in range(v.size):
+        if not math.isfinite(v[i]):
+            return False
+    return True
 
 
 @njit(cache=True)
 def initial_step(y0, f0, k, t_span, rtol, atol, max_step, order):
     """Hairer's starting step (Solving ODEs I, Sec. II.4) for an error estimator of this order,
     as scipy's select_initial_step."""
-    scale = atol + np.abs(y0) * rtol
-    d0, d1 = _rms(y0 / scale), _rms(f0 / scale)
+    size = y0.size
+    scale = np.empty(size)
+    for i in range(size):
+        scale[i] = atol[i] + abs(y0[i]) * rtol
+    d0, d1 = scaled_rms(y0, scale), scaled_rms(f0, scale)
     h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
     h0 = min(h0, t_span)
-    f1 = np.empty_like(y0)
-    rhs_into(y0 + h0 * f0, k, f1)
-    d2 = _rms((f1 - f0) / scale) / h0
+    probe = np.empty(size)
+    for i in range(size):
+        probe[i] = y0[i] + h0 * f0[i]
+    f1 = np.empty(size)
+    rhs_into(probe, k, workspace(int(k[N])), f1)
+    for i in range(size):
+        probe[i] = f1[i] - f0[i]
+    d2 = scaled_rms(probe, scale) / h0
     if d1 <= 1e-15 and d2 <= 1e-15:
         h1 = max(1e-6, h0 * 1e-3)
     else:
@@ -59,29 +84,36 @@ def initial_step(y0, f0, k, t_span, rtol, atol, max_step, order):
 
 @njit(cache=True)
 def _interpolate(interp, y_old, x, out):
-    """The 7th-order dense output y_old + Σ interp-terms at x = (t − t_old)/h (Horner-like form)."""
-    out[:] = 0.0
-    for i in range(6, -1, -1):
-        out += interp[i]
-        out *= x if (6 - i) % 2 == 0 else 1.0 - x
-    out += y_old
+    """The 7th-order dense output at x = (t − t_old)/h (Horner-like form)."""
+    size = out.size
+    for i in range(size):
+        acc = 0.0
+        for r in range(6, -1, -1):
+            acc += interp[r, i]
+            acc *= x if (6 - r) % 2 == 0 else 1.0 - x
+        out[i] = acc + y_old[i]
 
 
 @njit(cache=True)
-def advance(k, state, y, f, interp, y_old, t_bound, rtol, atol, max_step, samples, out, A, B, C, E3, E5, D):
-    """Step from state = [t, abs(h), steps, nfev, t_old, h_old] (updated in place, with y, its
-    derivative f and the interpolant of the last step, interp and y_old) until every time in
-    `samples` (increasing) is passed, writing the interpolated states into the rows of out.
-    Samples inside the last step of the previous call come from its stored interpolant.
-    Returns (status, number of samples written)."""
+def advance(k, state, y, f, interp, y_old, t_bound, rtol, atol, max_step, samples, out):
+    """Step from state = [t, |h|, steps, nfev, t_old, h_old] until every time in `samples` is passed,
+    writing the interpolated states into the rows of out. Returns (status, samples written).
+    The first call (nfev = 0) evaluates f(y₀) and, when |h| = 0, chooses the initial step."""
     size = y.size
+    work = workspace(int(k[N]))
+    if state[3] == 0:
+        rhs_into(y, k, work, f)
+        state[3] = 1
+        if state[1] <= 0:
+            state[1] = initial_step(y, f, k, t_bound, rtol, atol, max_step, 7)
+            state[3] += 1
     K = np.empty((16, size))
     y_new = np.empty(size)
     f_new = np.empty(size)
     stage = np.empty(size)
     written = 0
     t, h_abs = state[0], state[1]
-    if not (np.all(np.isfinite(y)) and np.all(np.isfinite(f))):
+    if not (finite(y) and finite(f)):
         return NOT_FINITE, written
     while written < samples.size and samples[written] <= t:
         _interpolate(interp, y_old, (samples[written] - state[4]) / state[5], out[written])
@@ -101,30 +133,41 @@ def advance(k, state, y, f, interp, y_old, t_bound, rtol, atol, max_step, sample
             t_new = min(t + h_abs, t_bound)
             h = t_new - t
             h_abs = h
-            K[0] = f
+            for i in range(size):
+                K[0, i] = f[i]
             for s in range(1, STAGES):
-                stage[:] = y
-                for j in range(s):
-                    stage += (h * A[s, j]) * K[j]
-                rhs_into(stage, k, K[s])
-            y_new[:] = y
-            for j in range(STAGES):
-                y_new += (h * B[j]) * K[j]
-            rhs_into(y_new, k, f_new)
-            K[STAGES] = f_new
+                for i in range(size):
+                    acc = 0.0
+                    for j in range(s):
+                        acc += A[s, j] * K[j, i]
+                    stage[i] = y[i] + h * acc
+                rhs_into(stage, k, work, K[s])
+            for i in range(size):
+                acc = 0.0
+                for j in range(STAGES):
+                    acc += B[j] * K[j, i]
+                y_new[i] = y[i] + h * acc
+            rhs_into(y_new, k, work, f_new)
+            for i in range(size):
+                K[STAGES, i] = f_new[i]
             state[3] += STAGES
-            scale = atol + np.maximum(np.abs(y), np.abs(y_new)) * rtol
-            err5 = np.zeros(size)
-            err3 = np.zeros(size)
-            for j in range(STAGES + 1):
-                err5 += E5[j] * K[j]
-                err3 += E3[j] * K[j]
-            e5 = np.sum((err5 / scale) ** 2)
-            e3 = np.sum((err3 / scale) ** 2)
+            e5 = 0.0
+            e3 = 0.0
+            for i in range(size):
+                sc = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
+                a5 = 0.0
+                a3 = 0.0
+                for j in range(STAGES + 1):
+                    a5 += E5[j] * K[j, i]
+                    a3 += E3[j] * K[j, i]
+                a5 /= sc
+                a3 /= sc
+                e5 += a5 * a5
+                e3 += a3 * a3
             if e5 == 0.0 and e3 == 0.0:
                 error = 0.0
             else:
-                error = abs(h) * e5 / np.sqrt((e5 + 0.01 * e3) * size)
+                error = abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * size)
             if error < 1.0:
                 factor = MAX_FACTOR if error == 0.0 else min(MAX_FACTOR, SAFETY * error**ERROR_EXPONENT)
                 if rejected:
@@ -133,77 +176,69 @@ def advance(k, state, y, f, interp, y_old, t_bound, rtol, atol, max_step, sample
                 break
             if np.isfinite(error):
                 h_abs *= max(MIN_FACTOR, SAFETY * error**ERROR_EXPONENT)
-            else:  # overflow in a too-long trial step
+            else:
                 h_abs *= MIN_FACTOR
             rejected = True
         state[2] += 1
-        if not np.all(np.isfinite(y_new)):
+        if not finite(y_new):
             state[0], state[1] = t, h_abs
             return NOT_FINITE, written
         if samples[written] <= t_new:
-            # three extra stages and the 7th-order interpolant on [t, t_new]
             for s in range(STAGES + 1, 16):
-                stage[:] = y
-                for j in range(s):
-                    stage += (h * A[s, j]) * K[j]
-                rhs_into(stage, k, K[s])
+                for i in range(size):
+                    acc = 0.0
+                    for j in range(s):
+                        acc += A[s, j] * K[j, i]
+                    stage[i] = y[i] + h * acc
+                rhs_into(stage, k, work, K[s])
             state[3] += 3
-            interp[0] = y_new - y
-            interp[1] = h * f - interp[0]
-            interp[2] = 2 * interp[0] - h * (f_new + f)
-            for r in range(4):
-                interp[3 + r] = 0.0
-                for j in range(16):
-                    interp[3 + r] += (h * D[r, j]) * K[j]
-            y_old[:] = y
+            for i in range(size):
+                d0 = y_new[i] - y[i]
+                interp[0, i] = d0
+                interp[1, i] = h * f[i] - d0
+                interp[2, i] = 2 * d0 - h * (f_new[i] + f[i])
+                for r in range(4):
+                    acc = 0.0
+                    for j in range(16):
+                        acc += D[r, j] * K[j, i]
+                    interp[3 + r, i] = h * acc
+                y_old[i] = y[i]
             state[4], state[5] = t, h
             while written < samples.size and samples[written] <= t_new:
                 _interpolate(interp, y_old, (samples[written] - t) / h, out[written])
                 written += 1
         t = t_new
-        y[:] = y_new
-        f[:] = f_new
+        for i in range(size):
+            y[i] = y_new[i]
+            f[i] = f_new[i]
     state[0], state[1] = t, h_abs
     return OK, written
 
 
 class Dop853:
-    """The compiled integrator for one chain (constants k) from y0 at t = 0 up to t_bound."""
+    """The compiled DOP853 for one chain (constants k) from y0 at t = 0 up to t_bound."""
 
     def __init__(self, k, y0, t_bound, rtol, atol, max_step=np.inf, first_step=None):
         self.k = k
         self.y = np.array(y0, float)
-        self.f = np.empty_like(self.y)
-        rhs_into(self.y, k, self.f)
+        self.f = np.empty_like(self.y)  # f(y₀) and the initial step: at the first advance (compiled)
         self.t_bound = float(t_bound)
         self.rtol = float(rtol)
         self.atol = np.broadcast_to(np.asarray(atol, float), self.y.shape).copy()
         self.max_step = float(max_step)
-        h0 = (
-            first_step
-            if first_step is not None
-            else initial_step(self.y, self.f, k, self.t_bound, self.rtol, self.atol, self.max_step, 7)
-        )
-        self.state = np.array([0.0, float(h0), 0.0, 2.0, 0.0, 1.0])  # t, |h|, steps, nfev, t_old, h_old
+        h0 = 0.0 if first_step is None else float(first_step)
+        self.state = np.array([0.0, h0, 0.0, 0.0, 0.0, 1.0])
         self.interp = np.zeros((7, self.y.size))
         self.y_old = self.y.copy()
         self.status = OK
 
-    @property
-    def t(self) -> float:
-        return float(self.state[0])
-
-    @property
-    def steps(self) -> int:
-        return int(self.state[2])
-
-    @property
-    def nfev(self) -> int:
-        return int(self.state[3])
+    t = property(lambda self: float(self.state[0]))
+    steps = property(lambda self: int(self.state[2]))
+    nfev = property(lambda self: int(self.state[3]))
+    njev = property(lambda self: 0)
+    nlu = property(lambda self: 0)
 
     def advance(self, samples: np.ndarray) -> np.ndarray:
-        """Integrate past the sample times (increasing, > t); returns the states there as columns
-        (fewer columns if the run ended early: self.status is then FINISHED or an error code)."""
         out = np.empty((samples.size, self.y.size))
         self.status, written = advance(
             self.k,
@@ -218,11 +253,5 @@ class Dop853:
             self.max_step,
             np.ascontiguousarray(samples, float),
             out,
-            A,
-            B,
-            C,
-            E3,
-            E5,
-            D,
         )
         return out[:written].T

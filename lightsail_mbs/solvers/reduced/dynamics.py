@@ -1,10 +1,12 @@
-"""O(n) accelerations of the chain in minimal coordinates, compiled (numba) loops over slices.
+"""O(n) accelerations of the chain in minimal coordinates: compiled (numba) sweeps over the slices.
 
-The Euler–Lagrange equations M(q) q̈ + c(q, q̇) = Q(q, q̇) (Eq. 16; terms in reduced_kinematics.py)
-are solved without forming M. Each slice obeys Newton–Euler with the joint force Λ_i that slice i
-exerts on slice i+1 at joint i (the point r_i + a_i e_i = r_{i+1} − b e_{i+1}):
+The Euler–Lagrange equations M(q) q̈ + c(q, q̇) = Q(q, q̇) (Eq. 16; the terms in kinematics.py) are
+solved without forming M. Coordinates q = (x₁, y₁, θ₁…θₙ[, z₁…zₙ₋₁]); e_i = (cos θ_i, sin θ_i),
+p_i = (−sin θ_i, cos θ_i), b = l/2 and the joint arms a_i = b + z_i (z ≡ 0 when inextensible). Each slice
+obeys Newton–Euler with the joint force Λ_i that slice i exerts on slice i+1 at joint i (the point
+r_i + a_i e_i = r_{i+1} − b e_{i+1}):
 
-    m r̈_i = F_i + Λ_{i−1} − Λ_i,      J_G θ̈_i = τ_i − b p_i·Λ_{i−1} − a_i p_i·Λ_i      (Λ₀ = Λₙ = 0)
+    m r̈_i = F_i + Λ_{i−1} − Λ_i,      J θ̈_i = τ_i − b p_i·Λ_{i−1} − a_i p_i·Λ_i      (Λ₀ = Λₙ = 0),
 
 and the joints' acceleration constraints, from differentiating r_{i+1} = r_i + a_i e_i + b e_{i+1} twice,
 
@@ -12,29 +14,45 @@ and the joints' acceleration constraints, from differentiating r_{i+1} = r_i + a
     w_i = 2 ż_i θ̇_i p_i − a_i θ̇_i² e_i − b θ̇_{i+1}² e_{i+1}.
 
 Substituting the first into the second gives g(Λ) = g(0) + K Λ with K symmetric positive definite
-and block-tridiagonal (2×2 symmetric blocks, n−1 joints):
+and block tridiagonal (2×2 symmetric blocks, n−1 joints):
 
-    K_ii = (2/m) I + (a_i²/J_G) p_i p_iᵀ + (b²/J_G) p_{i+1} p_{i+1}ᵀ,
-    K_i,i+1 = −(1/m) I + (b a_{i+1}/J_G) p_{i+1} p_{i+1}ᵀ.
+    K_ii = (2/m) I + (a_i²/J) p_i p_iᵀ + (b²/J) p_{i+1} p_{i+1}ᵀ,
+    K_i,i+1 = −(1/m) I + (b a_{i+1}/J) p_{i+1} p_{i+1}ᵀ.
 
-Inextensible chains (z ≡ 0): g = 0, so K Λ = −g(0), solved by block LDLᵀ (block Thomas) elimination
-in O(n). Extensible TnT chain (Eqs 29–31, l_s = 0): the massless spring fixes the axial part,
-Λ_i = s_i e_i + μ_i p_i with s_i = −k_s z_i − c_s ż_i; projecting g on p_i removes z̈_i and leaves the
-scalar tridiagonal SPD system pᵀK p μ = −pᵀ g(s e); the projection on e_i then gives z̈_i = e_i·g_i.
-The result is exactly M⁻¹(Q − c) (tested against the dense form in reduced_kinematics.py).
+* Inextensible chains (z ≡ 0): g = 0, so K Λ = −g(0), solved by block LDLᵀ (block Thomas)
+  elimination in O(n).
+* Extensible TnT chain (Eqs 29–31, l_s = 0): the massless spring fixes the axial part,
+  Λ_i = s_i e_i + μ_i p_i with s_i = −k_s z_i − c_s ż_i; projecting g on p_i removes z̈_i and leaves the
+  scalar tridiagonal SPD system pᵀK p μ = −pᵀ g(s e); the projection on e_i then gives z̈_i = e_i·g_i.
 
-Loads: the net slice force of the shared load model, radiation f_i = (I(x_i) l W / c) cos θ_i
-[2R cos θ_i n_i + α ŷ] (Eq. 11 for R = 1, α = 0) plus the frame force −m g₀ ŷ with their cancellation
-done analytically (loads.applied_forces; its compiled twin loads.net_slice_force is called here), and
-the follower end tensions −T e₁, T eₙ (Eq. 32). Torsion springs/dampers act on θ_{i+1} − θ_i (Eq. 23).
+The result is exactly M⁻¹(Q − c) (tested against the dense form of kinematics.py).
+
+How one right-hand side is evaluated (`rhs_into`: three sweeps over the slices, no allocation; the
+caller owns a `workspace(n)`):
+
+1. Slices: cos θ_i, sin θ_i, the arms a_i and the abscissae x_i of the centres; the net applied force
+   F_i on every slice from ONE function, `slice_forces_into` (angles and abscissae → forces: the
+   radiation load of model/loads.py, Eq. 11 generalised to Gaussian beams and partial reflectors, plus
+   the frame force −m g₀ ŷ, with their near-cancellation done analytically: loads.applied_forces, whose
+   compiled twin loads.net_slice_force is called here); then the follower end tensions −T e₁, T eₙ (Eq. 32), the torsion
+   spring/damper torques on θ_{i+1} − θ_i (Eq. 23), the prescribed axial joint forces s_i e_i
+   (extensible chain) and from them the unconstrained accelerations A⁰_i = (F_i, τ_i)/(m, J).
+2. Joints, forward: the right-hand side −g_i(Λ⁰) from A⁰ and w_i, assembled and eliminated in the
+   same pass as the blocks of K (pivots inverted, couplings stored).
+3. Joints, backward: back substitution for Λ_i interleaved with the final slice accelerations
+   (slice i+1 needs Λ_i and Λ_{i+1}, both known once the sweep has passed joint i).
+
+The constants of a chain travel to the kernels as one float vector (`constants`, indices below).
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
 
-from lightsail_mbs.model.loads import gaussian_intensity, net_slice_force
+from lightsail_mbs.model.loads import net_slice_force
 from lightsail_mbs.model.parameters import SPEED_OF_LIGHT
 from lightsail_mbs.solvers.reduced.kinematics import ChainModel
 
@@ -61,6 +79,10 @@ from lightsail_mbs.solvers.reduced.kinematics import ChainModel
 ) = range(18)
 N_CONSTANTS = 18
 
+# rows of the workspace of one right-hand-side evaluation
+(COS, SIN, ARM, ABSCISSA, AX, AY, AL, I_XX, I_XY, I_YY, U_XX, U_XY, U_YY, R_X, R_Y) = range(15)
+WORK_ROWS = 15
+
 
 def constants(model: ChainModel) -> np.ndarray:
     """The chain's constants as the float vector the compiled kernels read (indices above)."""
@@ -78,221 +100,283 @@ def constants(model: ChainModel) -> np.ndarray:
 
 
 @njit(cache=True)
-def _slice_accelerations(lx, ly, fx, fy, tau, a, c, s, k, ax, ay, al):
-    """(r̈_x, r̈_y, θ̈) of every slice for joint forces Λ (Newton–Euler above), written into ax, ay, al."""
-    n = fx.size
-    m, J, b = k[MASS], k[INERTIA], k[HALF]
-    for i in range(n):
-        px, py = -s[i], c[i]
-        fxi, fyi, mom = fx[i], fy[i], tau[i]
-        if i > 0:
-            fxi += lx[i - 1]
-            fyi += ly[i - 1]
-            mom -= b * (px * lx[i - 1] + py * ly[i - 1])
-        if i < n - 1:
-            fxi -= lx[i]
-            fyi -= ly[i]
-            mom -= a[i] * (px * lx[i] + py * ly[i])
-        ax[i] = fxi / m
-        ay[i] = fyi / m
-        al[i] = mom / J
+def workspace(n):
+    """Scratch memory for one right-hand-side evaluation of an n-slice chain."""
+    return np.empty((WORK_ROWS, n))
 
 
 @njit(cache=True)
-def _constraint_residual(ax, ay, al, wx, wy, a, c, s, b, gx, gy):
-    """g_i = r̈_{i+1} − r̈_i − a_i θ̈_i p_i − b θ̈_{i+1} p_{i+1} − w_i, written into gx, gy."""
-    for i in range(a.size):
-        gx[i] = ax[i + 1] - ax[i] + a[i] * al[i] * s[i] + b * al[i + 1] * s[i + 1] - wx[i]
-        gy[i] = ay[i + 1] - ay[i] - a[i] * al[i] * c[i] - b * al[i + 1] * c[i + 1] - wy[i]
+def slice_forces_into(theta, cth, sth, x, k, fx, fy):
+    """Net applied force on every slice centre (N), in inertial directions: the load model of
+    model/loads.py (loads.applied_forces), compiled.
+
+    theta, cth, sth: slice angles θ_i and their cosines and sines; x: abscissae of the centres (read
+    only by the Gaussian beam). Radiation f_i = (I(x_i) l W / c) cos θ_i [2R cos θ_i n_i + α ŷ]
+    (Eq. 11 for R = 1, α = 0; I = I₀ or I₀ exp(−2(x − x_c)²/w²)) plus the frame force
+    −(2R + α) Ī l W/c ŷ = −m g₀ ŷ, summed analytically by loads.net_slice_force: the two nearly cancel
+    (their sum is O(θ²) of each), and summing them in floating point would leave a round-off of
+    ε·m g₀ that the short waves of the chain amplify.
+    """
+    inten0, area_c, refl, absorb, mean = k[INTENSITY], k[AREA_C], k[REFL], k[ABSORB], k[MEAN_INTENSITY]
+    uniform = k[UNIFORM] != 0.0
+    for i in range(theta.size):
+        inten = inten0
+        if not uniform:
+            dx = (x[i] - k[CENTER]) / k[WAIST]
+            inten *= math.exp(-2.0 * dx * dx)
+        fx[i], fy[i] = net_slice_force(theta[i], cth[i], sth[i], inten, mean, area_c, refl, absorb)
 
 
 @njit(cache=True)
-def _solve_joint_forces(rx, ry, a, c, s, k, lx, ly):
-    """Solve K Λ = r (2×2 block-tridiagonal SPD, symmetric blocks) by block LDLᵀ elimination."""
-    joints = rx.size
-    m, J, b = k[MASS], k[INERTIA], k[HALF]
-    inv_xx = np.empty(joints)  # (pivot block)⁻¹, symmetric
-    inv_xy = np.empty(joints)
-    inv_yy = np.empty(joints)
-    u_xx = np.empty(joints)  # coupling block K_i,i+1 (symmetric)
-    u_xy = np.empty(joints)
-    u_yy = np.empty(joints)
-    for i in range(joints):
-        pxi, pyi, pxj, pyj = -s[i], c[i], -s[i + 1], c[i + 1]
-        wa, wb = a[i] * a[i] / J, b * b / J
-        d_xx = 2 / m + wa * pxi * pxi + wb * pxj * pxj
-        d_xy = wa * pxi * pyi + wb * pxj * pyj
-        d_yy = 2 / m + wa * pyi * pyi + wb * pyj * pyj
-        r_x, r_y = rx[i], ry[i]
-        if i > 0:  # eliminate joint i−1: D −= U W, r −= W r', W = U D'⁻¹ (U symmetric)
-            ux, uxy, uy = u_xx[i - 1], u_xy[i - 1], u_yy[i - 1]
-            w11 = ux * inv_xx[i - 1] + uxy * inv_xy[i - 1]
-            w12 = ux * inv_xy[i - 1] + uxy * inv_yy[i - 1]
-            w21 = uxy * inv_xx[i - 1] + uy * inv_xy[i - 1]
-            w22 = uxy * inv_xy[i - 1] + uy * inv_yy[i - 1]
-            d_xx -= w11 * ux + w12 * uxy
-            d_xy -= w11 * uxy + w12 * uy
-            d_yy -= w21 * uxy + w22 * uy
-            r_x -= w11 * lx[i - 1] + w12 * ly[i - 1]
-            r_y -= w21 * lx[i - 1] + w22 * ly[i - 1]
-        det = d_xx * d_yy - d_xy * d_xy
-        inv_xx[i], inv_xy[i], inv_yy[i] = d_yy / det, -d_xy / det, d_xx / det
-        lx[i], ly[i] = r_x, r_y  # r' (the eliminated right-hand side), overwritten below
-        if i < joints - 1:
-            coupling = b * a[i + 1] / J
-            u_xx[i] = -1 / m + coupling * pxj * pxj
-            u_xy[i] = coupling * pxj * pyj
-            u_yy[i] = -1 / m + coupling * pyj * pyj
-    for i in range(joints - 1, -1, -1):
-        r_x, r_y = lx[i], ly[i]
-        if i < joints - 1:
-            r_x -= u_xx[i] * lx[i + 1] + u_xy[i] * ly[i + 1]
-            r_y -= u_xy[i] * lx[i + 1] + u_yy[i] * ly[i + 1]
-        lx[i] = inv_xx[i] * r_x + inv_xy[i] * r_y
-        ly[i] = inv_xy[i] * r_x + inv_yy[i] * r_y
-
-
-@njit(cache=True)
-def _solve_normal_forces(r, a, c, s, k, mu):
-    """Solve pᵀK p μ = r (scalar tridiagonal SPD) by Thomas (LDLᵀ) elimination."""
-    joints = r.size
-    m, J, b = k[MASS], k[INERTIA], k[HALF]
-    pivot = np.empty(joints)
-    off = np.empty(joints)
-    for i in range(joints):
-        cos_rel = c[i] * c[i + 1] + s[i] * s[i + 1]  # p_i · p_{i+1}
-        d = 2 / m + (a[i] * a[i] + b * b * cos_rel * cos_rel) / J
-        ri = r[i]
-        if i > 0:
-            w = off[i - 1] / pivot[i - 1]
-            d -= w * off[i - 1]
-            ri -= w * mu[i - 1]
-        pivot[i] = d
-        mu[i] = ri
-        if i < joints - 1:
-            off[i] = cos_rel * (b * a[i + 1] / J - 1 / m)  # p_iᵀ K_i,i+1 p_{i+1}
-    for i in range(joints - 1, -1, -1):
-        ri = mu[i]
-        if i < joints - 1:
-            ri -= off[i] * mu[i + 1]
-        mu[i] = ri / pivot[i]
-
-
-@njit(cache=True)
-def accelerations_into(q, qd, k, qdd):
-    """q̈(q, q̇) of one state into qdd (the equations of the module docstring)."""
+def _free_accelerations(q, qd, k, work, extensible):
+    """Sweep 1: cos/sin, arms, abscissae, and A⁰ = the accelerations under the applied forces, end
+    tensions, springs and dampers (plus the prescribed axial joint forces of the extensible chain)."""
     n = int(k[N])
-    b = k[HALF]
-    extensible = k[EXTENSIBLE] != 0.0
-    joints = n - 1
-    th = q[2 : n + 2]
-    om = qd[2 : n + 2]
-    c = np.cos(th)
-    s = np.sin(th)
-    a = np.full(joints, b)
-    zd = np.zeros(joints)
-    if extensible:
-        a += q[n + 2 :]
-        zd[:] = qd[n + 2 :]
-    # net loads (radiation + frame force) at the centres (x only matters for a non-uniform beam)
-    fx = np.empty(n)
-    fy = np.empty(n)
-    x = q[0]
+    m, J, b = k[MASS], k[INERTIA], k[HALF]
+    cth, sth, arm, x = work[COS], work[SIN], work[ARM], work[ABSCISSA]
+    ax, ay, al = work[AX], work[AY], work[AL]
+    inv_m, inv_j = 1.0 / m, 1.0 / J
     for i in range(n):
-        if i > 0:
-            x += a[i - 1] * c[i - 1] + b * c[i]
-        inten = k[INTENSITY]
-        if k[UNIFORM] == 0.0:
-            inten = gaussian_intensity(x, k[INTENSITY], k[CENTER], k[WAIST])
-        fx[i], fy[i] = net_slice_force(th[i], c[i], s[i], inten, k[MEAN_INTENSITY], k[AREA_C], k[REFL], k[ABSORB])
+        cth[i] = math.cos(q[2 + i])
+        sth[i] = math.sin(q[2 + i])
+    for i in range(n - 1):
+        arm[i] = b + q[n + 2 + i] if extensible else b
+    if k[UNIFORM] == 0.0:  # abscissae: only the Gaussian beam's intensity depends on them
+        x[0] = q[0]
+        for i in range(1, n):
+            x[i] = x[i - 1] + arm[i - 1] * cth[i - 1] + b * cth[i]
+    slice_forces_into(q[2 : n + 2], cth, sth, x, k, ax, ay)
     tension = k[TENSION]
     if tension != 0.0:
-        fx[0] -= tension * c[0]
-        fy[0] -= tension * s[0]
-        fx[n - 1] += tension * c[n - 1]
-        fy[n - 1] += tension * s[n - 1]
-    tau = np.zeros(n)
-    if k[K_T] != 0.0 or k[C_T] != 0.0:
-        for i in range(joints):
-            moment = k[K_T] * (th[i + 1] - th[i]) + k[C_T] * (om[i + 1] - om[i])
-            tau[i] += moment
-            tau[i + 1] -= moment
-    wx = np.empty(joints)
-    wy = np.empty(joints)
-    for i in range(joints):
-        o2i, o2j = om[i] * om[i], om[i + 1] * om[i + 1]
-        wx[i] = -2 * zd[i] * om[i] * s[i] - a[i] * o2i * c[i] - b * o2j * c[i + 1]
-        wy[i] = 2 * zd[i] * om[i] * c[i] - a[i] * o2i * s[i] - b * o2j * s[i + 1]
-    lx = np.zeros(joints)
-    ly = np.zeros(joints)
-    if extensible:
-        for i in range(joints):
-            spring = -k[K_S] * q[n + 2 + i] - k[C_S] * zd[i]
-            lx[i] = spring * c[i]
-            ly[i] = spring * s[i]
-    ax = np.empty(n)
-    ay = np.empty(n)
-    al = np.empty(n)
-    gx = np.empty(joints)
-    gy = np.empty(joints)
-    _slice_accelerations(lx, ly, fx, fy, tau, a, c, s, k, ax, ay, al)
-    _constraint_residual(ax, ay, al, wx, wy, a, c, s, b, gx, gy)
-    if extensible:
-        rhs = np.empty(joints)
-        for i in range(joints):
-            rhs[i] = s[i] * gx[i] - c[i] * gy[i]  # −p_i · g_i
-        mu = np.empty(joints)
-        _solve_normal_forces(rhs, a, c, s, k, mu)
-        for i in range(joints):
-            lx[i] -= mu[i] * s[i]
-            ly[i] += mu[i] * c[i]
-    else:
-        for i in range(joints):
-            gx[i] = -gx[i]
-            gy[i] = -gy[i]
-        _solve_joint_forces(gx, gy, a, c, s, k, lx, ly)
-    _slice_accelerations(lx, ly, fx, fy, tau, a, c, s, k, ax, ay, al)
+        ax[0] -= tension * cth[0]
+        ay[0] -= tension * sth[0]
+        ax[n - 1] += tension * cth[n - 1]
+        ay[n - 1] += tension * sth[n - 1]
+    k_t, c_t, k_s, c_s = k[K_T], k[C_T], k[K_S], k[C_S]
+    springs = k_t != 0.0 or c_t != 0.0
+    for i in range(n):
+        c, s = cth[i], sth[i]
+        fx, fy, tau = ax[i], ay[i], 0.0
+        if springs:
+            if i > 0:
+                tau -= k_t * (q[2 + i] - q[1 + i]) + c_t * (qd[2 + i] - qd[1 + i])
+            if i < n - 1:
+                tau += k_t * (q[3 + i] - q[2 + i]) + c_t * (qd[3 + i] - qd[2 + i])
+        if extensible:  # axial spring forces s_j e_j: +s on slice j+1, −s on slice j
+            if i > 0:
+                sp = -k_s * q[n + 1 + i] - c_s * qd[n + 1 + i]
+                fx += sp * cth[i - 1]
+                fy += sp * sth[i - 1]
+                tau -= b * (-s * sp * cth[i - 1] + c * sp * sth[i - 1])
+            if i < n - 1:  # its moment arm a_i e_i is parallel to the force: no torque
+                sp = -k_s * q[n + 2 + i] - c_s * qd[n + 2 + i]
+                fx -= sp * c
+                fy -= sp * s
+        ax[i] = fx * inv_m
+        ay[i] = fy * inv_m
+        al[i] = tau * inv_j
+
+
+@njit(cache=True)
+def _inextensible(qd, k, work, qdd):
+    """Sweeps 2–3 of a chain with rigid joints: K Λ = −g(0) by block LDLᵀ, then q̈."""
+    n = int(k[N])
+    m, J, b = k[MASS], k[INERTIA], k[HALF]
+    cth, sth, ax, ay, al = work[COS], work[SIN], work[AX], work[AY], work[AL]
+    ixx, ixy, iyy = work[I_XX], work[I_XY], work[I_YY]
+    uxx, uxy, uyy, rx, ry = work[U_XX], work[U_XY], work[U_YY], work[R_X], work[R_Y]
+    joints = n - 1
+    inv_m, inv_j = 1.0 / m, 1.0 / J
+    two_m = 2.0 * inv_m
+    wb = b * b * inv_j
+    for i in range(joints):  # sweep 2: assemble and eliminate
+        pxi, pyi, pxj, pyj = -sth[i], cth[i], -sth[i + 1], cth[i + 1]
+        oi, oj = qd[2 + i], qd[3 + i]
+        # −g_i(0) = w_i − (A⁰_{i+1} − A⁰_i − b α⁰_i p_i − b α⁰_{i+1} p_{i+1})
+        wx = -b * oi * oi * cth[i] - b * oj * oj * cth[i + 1]
+        wy = -b * oi * oi * sth[i] - b * oj * oj * sth[i + 1]
+        r_x = wx - (ax[i + 1] - ax[i] - b * al[i] * pxi - b * al[i + 1] * pxj)
+        r_y = wy - (ay[i + 1] - ay[i] - b * al[i] * pyi - b * al[i + 1] * pyj)
+        d_xx = two_m + wb * (pxi * pxi + pxj * pxj)
+        d_xy = wb * (pxi * pyi + pxj * pyj)
+        d_yy = two_m + wb * (pyi * pyi + pyj * pyj)
+        if i > 0:  # eliminate joint i−1: D −= U W, r −= W r', W = U D'⁻¹ (U symmetric)
+            ux, uxy_, uy = uxx[i - 1], uxy[i - 1], uyy[i - 1]
+            w11 = ux * ixx[i - 1] + uxy_ * ixy[i - 1]
+            w12 = ux * ixy[i - 1] + uxy_ * iyy[i - 1]
+            w21 = uxy_ * ixx[i - 1] + uy * ixy[i - 1]
+            w22 = uxy_ * ixy[i - 1] + uy * iyy[i - 1]
+            d_xx -= w11 * ux + w12 * uxy_
+            d_xy -= w11 * uxy_ + w12 * uy
+            d_yy -= w21 * uxy_ + w22 * uy
+            r_x -= w11 * rx[i - 1] + w12 * ry[i - 1]
+            r_y -= w21 * rx[i - 1] + w22 * ry[i - 1]
+        inv_det = 1.0 / (d_xx * d_yy - d_xy * d_xy)
+        ixx[i], ixy[i], iyy[i] = d_yy * inv_det, -d_xy * inv_det, d_xx * inv_det
+        rx[i], ry[i] = r_x, r_y
+        if i < joints - 1:
+            uxx[i] = -inv_m + wb * pxj * pxj
+            uxy[i] = wb * pxj * pyj
+            uyy[i] = -inv_m + wb * pyj * pyj
+    # sweep 3: back substitution (Λ_i kept in rx, ry) and the accelerations of slice i+1
+    lx_next, ly_next = 0.0, 0.0
+    for i in range(joints - 1, -1, -1):
+        r_x, r_y = rx[i], ry[i]
+        if i < joints - 1:
+            r_x -= uxx[i] * lx_next + uxy[i] * ly_next
+            r_y -= uxy[i] * lx_next + uyy[i] * ly_next
+        lx = ixx[i] * r_x + ixy[i] * r_y
+        ly = ixy[i] * r_x + iyy[i] * r_y
+        rx[i], ry[i] = lx, ly
+        j = i + 1
+        pxj, pyj = -sth[j], cth[j]
+        qdd[2 + j] = al[j] - b * (pxj * (lx + lx_next) + pyj * (ly + ly_next)) * inv_j
+        lx_next, ly_next = lx, ly
+    px0, py0 = -sth[0], cth[0]  # slice 1: only Λ₁ acts
+    qdd[0] = ax[0] - lx_next * inv_m
+    qdd[1] = ay[0] - ly_next * inv_m
+    qdd[2] = al[0] - b * (px0 * lx_next + py0 * ly_next) * inv_j
+
+
+@njit(cache=True)
+def _joint_residual(qd, k, work, i):
+    """g_i with the accelerations currently in the workspace (extensible chain)."""
+    n = int(k[N])
+    b = k[HALF]
+    cth, sth, arm, ax, ay, al = work[COS], work[SIN], work[ARM], work[AX], work[AY], work[AL]
+    pxi, pyi, pxj, pyj = -sth[i], cth[i], -sth[i + 1], cth[i + 1]
+    oi, oj, zd = qd[2 + i], qd[3 + i], qd[n + 2 + i]
+    a = arm[i]
+    wx = 2.0 * zd * oi * pxi - a * oi * oi * cth[i] - b * oj * oj * cth[i + 1]
+    wy = 2.0 * zd * oi * pyi - a * oi * oi * sth[i] - b * oj * oj * sth[i + 1]
+    g_x = ax[i + 1] - ax[i] - a * al[i] * pxi - b * al[i + 1] * pxj - wx
+    g_y = ay[i + 1] - ay[i] - a * al[i] * pyi - b * al[i + 1] * pyj - wy
+    return g_x, g_y
+
+
+@njit(cache=True)
+def _extensible(qd, k, work, qdd):
+    """Sweeps 2–3 of the extensible chain: (pᵀK p) μ = −pᵀ g(s e) by Thomas elimination, then q̈, z̈."""
+    n = int(k[N])
+    m, J, b = k[MASS], k[INERTIA], k[HALF]
+    cth, sth, arm, ax, ay, al = work[COS], work[SIN], work[ARM], work[AX], work[AY], work[AL]
+    piv, off, rhs = work[I_XX], work[I_XY], work[R_X]
+    joints = n - 1
+    for i in range(joints):  # sweep 2: g_i(s e) projected on p_i, Thomas elimination
+        pxi, pyi, pxj, pyj = -sth[i], cth[i], -sth[i + 1], cth[i + 1]
+        a = arm[i]
+        g_x, g_y = _joint_residual(qd, k, work, i)
+        cos_rel = pxi * pxj + pyi * pyj
+        d = 2.0 / m + (a * a + b * b * cos_rel * cos_rel) / J
+        r = -(pxi * g_x + pyi * g_y)
+        if i > 0:
+            w = off[i - 1] / piv[i - 1]
+            d -= w * off[i - 1]
+            r -= w * rhs[i - 1]
+        piv[i] = d
+        rhs[i] = r
+        if i < joints - 1:
+            off[i] = cos_rel * (b * arm[i + 1] / J - 1.0 / m)  # p_iᵀ K_i,i+1 p_{i+1}
+    mu_next = 0.0
+    for i in range(joints - 1, -1, -1):  # μ_i, then the accelerations of slice i+1
+        r = rhs[i]
+        if i < joints - 1:
+            r -= off[i] * mu_next
+        mu = r / piv[i]
+        j = i + 1
+        pxi, pyi, pxj, pyj = -sth[i], cth[i], -sth[j], cth[j]
+        # slice j: +μ_i p_i at its left joint, −μ_j p_j at its right joint
+        ax[j] += (mu * pxi - mu_next * pxj) / m
+        ay[j] += (mu * pyi - mu_next * pyj) / m
+        moment = -b * mu * (pxj * pxi + pyj * pyi)
+        if j < joints:
+            moment -= arm[j] * mu_next
+        al[j] += moment / J
+        rhs[i] = mu
+        mu_next = mu
+    pxi, pyi = -sth[0], cth[0]
+    ax[0] -= mu_next * pxi / m
+    ay[0] -= mu_next * pyi / m
+    al[0] -= arm[0] * mu_next / J
     qdd[0] = ax[0]
     qdd[1] = ay[0]
-    qdd[2 : n + 2] = al
-    if extensible:
-        _constraint_residual(ax, ay, al, wx, wy, a, c, s, b, gx, gy)
-        for i in range(joints):
-            qdd[n + 2 + i] = c[i] * gx[i] + s[i] * gy[i]  # z̈_i = e_i · g_i
+    for i in range(n):
+        qdd[2 + i] = al[i]
+    for i in range(joints):  # z̈_i = e_i·g_i with the final accelerations
+        g_x, g_y = _joint_residual(qd, k, work, i)
+        qdd[n + 2 + i] = cth[i] * g_x + sth[i] * g_y
 
 
 @njit(cache=True)
-def rhs_into(y, k, ydot):
-    """First-order form ẏ = (q̇, q̈) of y = (q, q̇) (Eq. 40 with M moved to the right), into ydot."""
+def rhs_into(y, k, work, ydot):
+    """ẏ = (q̇, q̈) of y = (q, q̇) (Eq. 40 with M moved to the right) into ydot, with the workspace work."""
     dof = y.size // 2
-    ydot[:dof] = y[dof:]
-    accelerations_into(y[:dof], y[dof:], k, ydot[dof:])
+    q = y[:dof]
+    qd = y[dof:]
+    for i in range(dof):
+        ydot[i] = qd[i]
+    extensible = k[EXTENSIBLE] != 0.0
+    _free_accelerations(q, qd, k, work, extensible)
+    if extensible:
+        _extensible(qd, k, work, ydot[dof:])
+    else:
+        _inextensible(qd, k, work, ydot[dof:])
 
 
 @njit(cache=True)
-def _batch_accelerations(q, qd, k):
-    out = np.empty_like(q)
-    for j in range(q.shape[1]):
-        accelerations_into(np.ascontiguousarray(q[:, j]), np.ascontiguousarray(qd[:, j]), k, out[:, j])
-    return out
+def joint_forces(y, k, work, lam_x, lam_y):
+    """Λ_i (force of slice i on slice i+1, N) at the state y into lam_x, lam_y: one right-hand-side
+    evaluation, read back from the workspace (extensible chain: s_i e_i + μ_i p_i)."""
+    n = int(k[N])
+    dof = y.size // 2
+    ydot = np.empty_like(y)
+    rhs_into(y, k, work, ydot)
+    if k[EXTENSIBLE] != 0.0:
+        for i in range(n - 1):
+            s = -k[K_S] * y[n + 2 + i] - k[C_S] * y[dof + n + 2 + i]
+            mu = work[R_X, i]
+            lam_x[i] = s * work[COS, i] - mu * work[SIN, i]
+            lam_y[i] = s * work[SIN, i] + mu * work[COS, i]
+    else:
+        for i in range(n - 1):
+            lam_x[i] = work[R_X, i]
+            lam_y[i] = work[R_Y, i]
+
+
+@njit(cache=True)
+def _batch_rhs(y, k):
+    """ẏ of every column of y (size, count)."""
+    work = workspace(int(k[N]))
+    column = np.empty(y.shape[0])
+    out = np.empty(y.shape[0])
+    result = np.empty_like(y)
+    for j in range(y.shape[1]):
+        for i in range(y.shape[0]):
+            column[i] = y[i, j]
+        rhs_into(column, k, work, out)
+        for i in range(y.shape[0]):
+            result[i, j] = out[i]
+    return result
 
 
 @njit(cache=True)
 def jacobian_into(y, k, scales, jac):
-    """∂ẏ/∂y into jac by forward differences (step √ε·max(abs(y_j), scale_j)); the q̇ rows are exact (0 | I)."""
+    """∂ẏ/∂y into jac by forward differences (step √ε·max(abs(y_j), scale_j)); the q̇ rows are exact (0 | I).
+    Dense, 2·dof + 1 right-hand sides: for scipy's implicit methods (the compiled Radau uses newton.py)."""
     size = y.size
     dof = size // 2
+    work = workspace(int(k[N]))
     jac[:dof] = 0.0
     for i in range(dof):
         jac[i, dof + i] = 1.0
     base = np.empty(size)
-    rhs_into(y, k, base)
+    rhs_into(y, k, work, base)
     moved = y.copy()
     out = np.empty(size)
     for j in range(size):
         moved[j] = y[j] + 1.4901161193847656e-08 * max(abs(y[j]), scales[j])
         step = moved[j] - y[j]
-        rhs_into(moved, k, out)
+        rhs_into(moved, k, work, out)
         for i in range(dof, size):
             jac[i, j] = (out[i] - base[i]) / step
         moved[j] = y[j]
@@ -304,27 +388,28 @@ class ChainDynamics:
     def __init__(self, model: ChainModel):
         self.model = model
         self.constants = constants(model)
+        self._work = np.empty((WORK_ROWS, model.n))  # workspace(n), without loading a kernel
 
     def accelerations(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
         """q̈ for states q, q̇ of shape (dof,) or (dof, k)."""
         q = np.asarray(q, float)
-        qd = np.asarray(qd, float)
-        if q.ndim == 1:
-            out = np.empty_like(q)
-            accelerations_into(np.ascontiguousarray(q), np.ascontiguousarray(qd), self.constants, out)
-            return out
-        return _batch_accelerations(q, qd, self.constants)
+        return self.rhs(0.0, np.concatenate([q, np.asarray(qd, float)]))[q.shape[0] :]
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
         """ẏ = (q̇, q̈) of y = (q, q̇), one state (size,) or a batch (size, k) (scipy's fun(t, y),
         vectorized or not)."""
         y = np.asarray(y, dtype=float)
         if y.ndim == 2:
-            dof = y.shape[0] // 2
-            return np.concatenate([y[dof:], _batch_accelerations(y[:dof], y[dof:], self.constants)])
+            return _batch_rhs(np.ascontiguousarray(y), self.constants)
         out = np.empty(y.size)
-        rhs_into(np.ascontiguousarray(y), self.constants, out)
+        rhs_into(np.ascontiguousarray(y), self.constants, self._work, out)
         return out
+
+    def joint_forces(self, y: np.ndarray) -> np.ndarray:
+        """Λ_i, the force of slice i on slice i+1 at the state y = (q, q̇), as an (n−1, 2) array (N)."""
+        lam = np.empty((2, self.model.n - 1))
+        joint_forces(np.ascontiguousarray(y, dtype=float), self.constants, self._work, lam[0], lam[1])
+        return lam.T
 
     def jacobian(self, t: float, y: np.ndarray, scales: np.ndarray) -> np.ndarray:
         """∂ẏ/∂y (dense, 2 dof + 1 right-hand-side calls, compiled); scales: typical abs(y_j) (difference steps)."""

@@ -1,6 +1,13 @@
 """What the reduced solver's free and supported chains share around their integrators: the tolerance
 scales of the state, the adapters that hand the run skeleton (solvers.skeleton.collect_samples) the
 states at the output times, and the Result assembled from those states.
+
+The per-sample work is compiled (numba) and done once per sample, as the samples arrive, so a run at n in
+the thousands spends its time integrating: `Trajectory.fill` writes the centres (the joint recursion
+r_{i+1} = r_i + a_i e_i + b e_{i+1} of Eqs 13–14, 30–31), their velocities, the angles (and extensions)
+of each output sample into the (samples, n) arrays of the Result, and returns its amplitude
+(analysis.amplitude: the spread of the centres' offsets from their total-least-squares line) for the
+failure monitor. Tested against the numpy forms of kinematics.py and analysis.failure.
 """
 
 from __future__ import annotations
@@ -9,13 +16,13 @@ import math
 import time as clock
 
 import numpy as np
+from numba import njit
 
-from lightsail_mbs import analysis
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.solvers.reduced.dop853 import FINISHED as DONE
 from lightsail_mbs.solvers.reduced.dop853 import STATUS
-from lightsail_mbs.solvers.reduced.kinematics import ChainModel, centre_velocities, centres
+from lightsail_mbs.solvers.reduced.kinematics import ChainModel
 from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.solvers.skeleton import FINISHED, FailureMonitor, collect_samples
 
@@ -92,6 +99,107 @@ def stepper_advance(method: str, integrator, size: int):
     return advance
 
 
+class Trajectory:
+    """The Result's arrays of a run, preallocated for every output sample and filled as samples arrive.
+
+    x, y, theta, vx, vy, omega: (capacity, n); z, z_rate: (capacity, n−1), or (capacity, 0) when
+    inextensible; amplitude: (capacity,); count: the samples filled so far.
+    """
+
+    def __init__(self, model: ChainModel, capacity: int):
+        self.model = model
+        n, nz = model.n, (model.n - 1 if model.extensible else 0)
+        self.x, self.y, self.theta, self.vx, self.vy, self.omega = (np.empty((capacity, n)) for _ in range(6))
+        self.z, self.z_rate = np.empty((capacity, nz)), np.empty((capacity, nz))
+        self.amplitude = np.empty(capacity)
+        self.count = 0
+
+    def fill(self, rows: np.ndarray) -> np.ndarray:
+        """Append the states y = (q, q̇) in the rows of rows; returns their amplitudes."""
+        first, m = self.count, self.model
+        _fill(
+            np.ascontiguousarray(rows),
+            first,
+            m.n,
+            m.half_length,
+            m.extensible,
+            self.x,
+            self.y,
+            self.theta,
+            self.vx,
+            self.vy,
+            self.omega,
+            self.z,
+            self.z_rate,
+            self.amplitude,
+        )
+        self.count += rows.shape[0]
+        return self.amplitude[first : self.count]
+
+    def truncate(self, count: int) -> None:
+        """Keep the first count samples (the run stopped inside the last batch)."""
+        self.count = count
+
+    def arrays(self) -> dict:
+        """The filled samples as arrays (views: the pages of samples never filled are never touched, so a
+        run stopped early holds no memory for them)."""
+        names = ("x", "y", "theta", "vx", "vy", "omega", "z", "z_rate", "amplitude")
+        return {k: getattr(self, k)[: self.count] for k in names}
+
+    def coordinates(self) -> np.ndarray:
+        """q of the filled samples as columns (dof, count)."""
+        c = self.count
+        parts = [self.x[:c, :1], self.y[:c, :1], self.theta[:c]] + ([self.z[:c]] if self.model.extensible else [])
+        return np.concatenate(parts, axis=1).T
+
+
+@njit(cache=True)
+def _fill(rows, first, n, b, extensible, x, y, th, vx, vy, om, z, zd, amp):
+    """Centres, velocities, angles, extensions and amplitude of the states in rows into row first… of the
+    output arrays (ṙ_{i+1} − ṙ_i = ż_i e_i + a_i θ̇_i p_i + b θ̇_{i+1} p_{i+1})."""
+    dof = rows.shape[1] // 2
+    for row in range(rows.shape[0]):
+        t = first + row
+        for i in range(n):
+            th[t, i] = rows[row, 2 + i]
+            om[t, i] = rows[row, dof + 2 + i]
+        if extensible:
+            for i in range(n - 1):
+                z[t, i] = rows[row, n + 2 + i]
+                zd[t, i] = rows[row, dof + n + 2 + i]
+        x[t, 0], y[t, 0] = rows[row, 0], rows[row, 1]
+        vx[t, 0], vy[t, 0] = rows[row, dof], rows[row, dof + 1]
+        c_prev, s_prev = math.cos(th[t, 0]), math.sin(th[t, 0])
+        mx, my = x[t, 0], y[t, 0]
+        for i in range(1, n):
+            c, s = math.cos(th[t, i]), math.sin(th[t, i])
+            a = b + z[t, i - 1] if extensible else b
+            rate = zd[t, i - 1] if extensible else 0.0
+            x[t, i] = x[t, i - 1] + a * c_prev + b * c
+            y[t, i] = y[t, i - 1] + a * s_prev + b * s
+            vx[t, i] = vx[t, i - 1] + rate * c_prev - a * om[t, i - 1] * s_prev - b * om[t, i] * s
+            vy[t, i] = vy[t, i - 1] + rate * s_prev + a * om[t, i - 1] * c_prev + b * om[t, i] * c
+            mx += x[t, i]
+            my += y[t, i]
+            c_prev, s_prev = c, s
+        mx /= n
+        my /= n
+        sxy = sxx = syy = 0.0
+        for i in range(n):
+            dx, dy = x[t, i] - mx, y[t, i] - my
+            sxy += dx * dy
+            sxx += dx * dx
+            syy += dy * dy
+        phi = 0.5 * math.atan2(2.0 * sxy, sxx - syy)
+        sp, cp = math.sin(phi), math.cos(phi)
+        lo, hi = math.inf, -math.inf
+        for i in range(n):
+            off = -sp * (x[t, i] - mx) + cp * (y[t, i] - my)
+            lo = min(lo, off)
+            hi = max(hi, off)
+        amp[t] = 0.5 * (hi - lo)
+
+
 def sampled_run(
     model: ChainModel,
     y0: np.ndarray,
@@ -101,46 +209,43 @@ def sampled_run(
     chunk: int,
     progress: bool,
 ):
-    """Run the skeleton's sampling loop from y0 with the chain's failure monitor; returns
-    (states (size, k), error, wall time)."""
+    """Run the skeleton's sampling loop from y0 with the chain's failure monitor; returns (the
+    Trajectory of the samples, error, wall time)."""
     start = clock.perf_counter()
     monitor = FailureMonitor(initial_amplitude, settings)
+    times = settings.sample_times()
+    trajectory = Trajectory(model, times.size)
+    trajectory.fill(y0[None, :])
 
     def amplitude_of(batch):
-        x, y = centres(model, batch[: model.dof])
-        return analysis.amplitude(x.T, y.T)
+        return trajectory.fill(batch.T)
 
     bar = Progress(settings.t_final, progress, label="reduced")
     try:
-        states, error = collect_samples(advance, y0, settings.sample_times(), monitor, amplitude_of, bar, chunk)
+        states, error = collect_samples(advance, y0, times, monitor, amplitude_of, bar, chunk)
     finally:
         bar.close()
-    return np.concatenate(states, axis=1), error, clock.perf_counter() - start
+    trajectory.truncate(sum(batch.shape[1] for batch in states))
+    return trajectory, error, clock.perf_counter() - start
 
 
 def trajectory_result(
-    model: ChainModel, settings: RunSettings, states: np.ndarray, *, wall_time: float, error: str | None, info: dict
+    model: ChainModel, settings: RunSettings, trajectory: Trajectory, *, wall_time: float, error: str | None, info: dict
 ) -> Result:
-    """The Result of sampled states y = (q, q̇) (columns on settings.sample_times())."""
-    q, qd = states[: model.dof], states[model.dof :]
-    x, y = centres(model, q)
-    vx, vy = centre_velocities(model, q, qd)
-    _, _, theta, z = model.split(q)
-    _, _, omega, z_rate = model.split(qd)
+    """The Result of a run's Trajectory (samples on settings.sample_times())."""
+    arrays = trajectory.arrays()
+    amplitude = arrays.pop("amplitude")
+    z, z_rate = arrays.pop("z"), arrays.pop("z_rate")
     return Result.from_trajectory(
         model.params,
         "reduced",
-        settings.sample_times()[: states.shape[1]],
-        x.T,
-        y.T,
-        theta.T,
-        vx.T,
-        vy.T,
-        omega.T,
-        z=z.T if model.extensible else None,
-        z_rate=z_rate.T if model.extensible else None,
+        settings.sample_times()[: trajectory.count],
+        **arrays,
+        z=z if model.extensible else None,
+        z_rate=z_rate if model.extensible else None,
         wall_time=wall_time,
         error=error,
         info=info,
         settings=settings,
+        amplitude=amplitude,
     )

@@ -223,7 +223,7 @@ def run(
     integrator = METHODS[method](
         dynamics.rhs, 0.0, y0, settings.t_final, rtol=rtol, atol=atol, vectorized=method != "LSODA", **options
     )
-    states, error, wall = sampled_run(
+    trajectory, error, wall = sampled_run(
         model,
         y0,
         analysis.amplitude(start.x, start.y),
@@ -232,7 +232,7 @@ def run(
         settings.sample_times().size,
         progress,
     )
-    q = states[: model.dof]
+    q = trajectory.coordinates()
     info = dict(
         method=method,
         rtol=rtol,
@@ -246,4 +246,4 @@ def run(
         constraint_drift=float(np.max(dynamics.constraint_violation(q))),
         formulation="minimal coordinates, dense M(q) with supports (reduced_boundary)",
     )
-    return trajectory_result(model, settings, states, wall_time=wall, error=error, info=info)
+    return trajectory_result(model, settings, trajectory, wall_time=wall, error=error, info=info)

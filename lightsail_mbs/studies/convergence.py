@@ -1,0 +1,329 @@
+"""Convergence of a run's answer in the number of slices n: is the chain fine enough to answer the question?
+
+A chain of n slices is a discretisation of the sail; its answer — the failure time t_f, or for a sail
+that survives the run the largest amplitude ratio max a(t)/a₀ — moves with n. :func:`converge` runs one
+case at increasing n (reduced solver) and reports, per n:
+
+* the answer and its change from the previous n;
+* the tolerance noise: the change of the answer when the run is repeated at a ten times tighter rtol
+  (the solver's own error, amplified by the instability; a change in n below it is not resolved);
+* the method, steps and CPU time of the run.
+
+Fit (:func:`power_law_fit`): through the last three sizes n₁ < n₂ < n₃, a power law
+t(n) = t_∞ + C n^(−p). With d₁ = t(n₂) − t(n₁), d₂ = t(n₃) − t(n₂) the order p solves
+
+    d₁/d₂ = (n₁^(−p) − n₂^(−p)) / (n₂^(−p) − n₃^(−p))
+
+(p = log₂(d₁/d₂) for doubling sizes; found by bisection otherwise), then C = d₂/(n₃^(−p) − n₂^(−p)),
+t_∞ = t(n₃) − C n₃^(−p), and the n needed for 1 %, |C| n^(−p) ≤ 0.01 |t_∞|: n₁% = (|C|/(0.01 |t_∞|))^(1/p).
+The fit is refused when d₁ and d₂ differ in sign or |d₂| ≥ |d₁| ("not converging": the changes do not
+shrink), and the answer is called converged to the noise when |d₂| is below the tolerance noise. Beside
+the fit, the direct reading: the smallest n from which every finer answer stays within 1 % of the
+finest one.
+
+A chain without bending stiffness (the rigid chain; the TnT membrane without bending springs) is
+flagged ill-posed in n: every wavelength down to the slice length is unstable under the load, so a
+finer chain adds faster-growing modes and its failure time keeps falling — a falling sequence can
+mimic a slow power law, so no fit is offered. Whether such a sail survives can still be robust in n.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import asdict, dataclass, field
+
+from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.solvers.settings import RunSettings
+
+ONE_PERCENT = 0.01
+DEFAULT_FACTOR = 2.0
+
+
+@dataclass
+class ConvergenceRow:
+    """One n of a convergence study.
+
+    Parameters
+    ----------
+    n : int
+        Number of slices.
+    value : float or None
+        The answer: the failure time (s) when the run failed, else the largest amplitude ratio
+        (None if the run ended in a solver error before either).
+    kind : str
+        "failure_time" or "max_amplitude_ratio".
+    change : float or None
+        value − the previous n's value (same kind), None for the first.
+    tolerance_noise : float or None
+        abs(value at rtol/10 − value) (None when not measured).
+    method : str
+        The reduced solver's integrator at this n (Result.info["method"]).
+    steps : int
+        Accepted steps of the run.
+    cpu_time : float
+        CPU time of the run at the default tolerance (s, this process).
+    error : str or None
+        A solver failure, recorded.
+    """
+
+    n: int
+    value: float | None
+    kind: str
+    change: float | None
+    tolerance_noise: float | None
+    method: str
+    steps: int
+    cpu_time: float
+    error: str | None = None
+
+
+@dataclass
+class PowerLawFit:
+    """t(n) = limit + C n^(−order) through the last three sizes (module docstring); None fields when refused.
+
+    Parameters
+    ----------
+    limit : float or None
+        t_∞, the extrapolated answer.
+    order : float or None
+        p, the order of convergence in n.
+    n_for_one_percent : float or None
+        n at which abs(t(n) − t_∞) = 1 % of abs(t_∞).
+    verdict : str
+        "power law", "converged to the tolerance noise", "not converging (…)", "ill-posed in n (…)" or
+        "fewer than three sizes".
+    """
+
+    limit: float | None
+    order: float | None
+    n_for_one_percent: float | None
+    verdict: str
+
+
+@dataclass
+class ConvergenceStudy:
+    """The rows of a study, the fit, the direct reading of n for 1 % and the case."""
+
+    params: SailParameters
+    settings: RunSettings
+    rows: list[ConvergenceRow]
+    fit: PowerLawFit
+    empirical_n_for_one_percent: int | None
+    ill_posed: bool
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def tolerance_noise(self) -> float | None:
+        """The largest tolerance noise of the rows (None when not measured)."""
+        noises = [r.tolerance_noise for r in self.rows if r.tolerance_noise is not None]
+        return max(noises) if noises else None
+
+    def to_dict(self) -> dict:
+        return {
+            "parameters": self.params.to_dict(),
+            "settings": self.settings.to_dict(),
+            "rows": [asdict(r) for r in self.rows],
+            "fit": asdict(self.fit),
+            "empirical_n_for_one_percent": self.empirical_n_for_one_percent,
+            "ill_posed": self.ill_posed,
+            "tolerance_noise": self.tolerance_noise,
+            "notes": self.notes,
+        }
+
+
+def geometric_sizes(n_start: int, n_max: int, factor: float = DEFAULT_FACTOR) -> list[int]:
+    """n_start, n_start·factor, … (rounded) up to n_max, with n_max itself last when the sequence misses it."""
+    if n_start < 2:
+        raise ParameterError(f"n_start={n_start!r} is invalid: allowed ≥ 2")
+    if n_max < n_start:
+        raise ParameterError(f"n_max={n_max!r} is invalid: allowed ≥ n_start={n_start}")
+    if not factor > 1:
+        raise ParameterError(f"factor={factor!r} is invalid: allowed > 1")
+    sizes, n = [], float(n_start)
+    while round(n) <= n_max:
+        if not sizes or round(n) > sizes[-1]:
+            sizes.append(round(n))
+        n *= factor
+    if sizes[-1] != n_max and n_max / sizes[-1] > math.sqrt(factor):
+        sizes.append(n_max)
+    return sizes
+
+
+def answer(result) -> tuple[float | None, str]:
+    """(value, kind) of a run: its failure time if it failed, else its largest amplitude ratio."""
+    if result.failure_time is not None:
+        return result.failure_time, "failure_time"
+    if result.error:
+        return None, "max_amplitude_ratio"
+    return result.max_amplitude_ratio, "max_amplitude_ratio"
+
+
+def _order_equation(p: float, n1: float, n2: float, n3: float) -> float:
+    return (n1**-p - n2**-p) / (n2**-p - n3**-p)
+
+
+def power_law_fit(sizes, values, noise: float = 0.0) -> PowerLawFit:
+    """The three-point power-law fit of the module docstring through the last three (n, value)."""
+    if len(values) < 3 or any(v is None for v in values[-3:]):
+        return PowerLawFit(None, None, None, "fewer than three sizes")
+    (n1, n2, n3), (t1, t2, t3) = sizes[-3:], values[-3:]
+    d1, d2 = t2 - t1, t3 - t2
+    if abs(d2) <= noise:
+        return PowerLawFit(t3, None, None, "converged to the tolerance noise")
+    if d1 * d2 <= 0 or abs(d2) >= abs(d1):
+        return PowerLawFit(None, None, None, "not converging (the changes do not shrink)")
+    ratio = d1 / d2
+    lo, hi = 1e-6, 1.0
+    if _order_equation(lo, n1, n2, n3) >= ratio:
+        return PowerLawFit(None, None, None, "not converging (slower than any power law)")
+    while _order_equation(hi, n1, n2, n3) < ratio and hi < 64:
+        lo, hi = hi, 2 * hi
+    if _order_equation(hi, n1, n2, n3) < ratio:
+        return PowerLawFit(None, None, None, "not converging (order above 64)")
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if _order_equation(mid, n1, n2, n3) < ratio:
+            lo = mid
+        else:
+            hi = mid
+    p = 0.5 * (lo + hi)
+    c = d2 / (n3**-p - n2**-p)
+    limit = t3 - c * n3**-p
+    n_one = (abs(c) / (ONE_PERCENT * abs(limit))) ** (1 / p) if limit != 0 else None
+    return PowerLawFit(limit, p, n_one, "power law")
+
+
+def empirical_n_for_one_percent(sizes, values) -> int | None:
+    """The smallest n from which every finer value stays within 1 % of the finest one."""
+    if len(values) < 2 or values[-1] is None:
+        return None
+    finest = values[-1]
+    found = None
+    for n, v in zip(reversed(sizes), reversed(values)):
+        if v is None or abs(v - finest) > ONE_PERCENT * abs(finest):
+            break
+        found = n
+    return found
+
+
+def converge(
+    params: SailParameters,
+    settings: RunSettings,
+    sizes,
+    *,
+    noise: bool = True,
+    budget: float | None = None,
+    progress=None,
+    **options,
+) -> ConvergenceStudy:
+    """Run the case at each n of `sizes` (increasing) with the reduced solver; rows, fit and verdict.
+
+    Parameters
+    ----------
+    params : SailParameters
+        The case; its n is replaced by each size.
+    settings : RunSettings
+        The run (the answer is its failure time, or the largest amplitude ratio over it).
+    sizes : sequence of int
+        The numbers of slices, increasing (e.g. :func:`geometric_sizes`).
+    noise : bool
+        Repeat every run at a ten times tighter rtol to measure the tolerance noise.
+    budget : float, optional
+        Stop before the next size once one run has taken more than budget/4 CPU seconds (the next one
+        would take about 2–4× longer).
+    progress : callable, optional
+        Called with each ConvergenceRow as it is finished.
+    **options
+        Options of the reduced solver (rtol, method, …).
+    """
+    from lightsail_mbs.solvers import solve
+    from lightsail_mbs.solvers.reduced.solver import DEFAULT_RTOL
+
+    sizes = [int(n) for n in sizes]
+    if len(sizes) < 1 or any(b <= a for a, b in zip(sizes, sizes[1:])) or sizes[0] < 2:
+        raise ParameterError(f"sizes={sizes!r} is invalid: allowed increasing numbers of slices ≥ 2")
+    if budget is not None and not budget > 0:
+        raise ParameterError(f"budget={budget!r} is invalid: allowed > 0 (CPU seconds)")
+    rows: list[ConvergenceRow] = []
+    notes: list[str] = []
+    for n in sizes:
+        case = params.replace(n=n)
+        start = time.process_time()
+        result = solve(case, "reduced", settings, **options)
+        cpu = time.process_time() - start
+        value, kind = answer(result)
+        method = result.info.get("method", "")
+        tolerance_noise = None
+        if noise and value is not None:
+            rtol = options.get("rtol") or DEFAULT_RTOL.get(method, 1e-6)
+            tight = solve(case, "reduced", settings, **{**options, "method": method, "rtol": rtol / 10})
+            tight_value, tight_kind = answer(tight)
+            if tight_value is not None and tight_kind == kind:
+                tolerance_noise = abs(tight_value - value)
+            else:
+                tolerance_noise = math.inf
+                notes.append(f"n = {n}: the run at rtol/10 gives a different kind of answer ({tight_kind})")
+        previous = rows[-1] if rows else None
+        change = None
+        if previous is not None and previous.value is not None and value is not None and previous.kind == kind:
+            change = value - previous.value
+        row = ConvergenceRow(n, value, kind, change, tolerance_noise, method, result.info.get("steps", 0), cpu)
+        row.error = result.error
+        rows.append(row)
+        if progress is not None:
+            progress(row)
+        if result.error:
+            notes.append(f"n = {n}: {result.error}; the study stops here")
+            break
+        if budget is not None and cpu > budget / 4 and n != sizes[-1]:
+            notes.append(f"stopped after n = {n}: its run took {cpu:.3g} s CPU, over a quarter of the budget")
+            break
+    kinds = {r.kind for r in rows[-3:]}
+    values = [r.value for r in rows]
+    ill_posed = params.torsional_stiffness == 0.0
+    if ill_posed:
+        what = "failure time keeps falling" if "failure_time" in kinds else "answer is not a limit"
+        fit = PowerLawFit(
+            None, None, None, f"ill-posed in n (no bending stiffness: every wavelength down to l is unstable; {what})"
+        )
+    elif len(kinds) > 1:
+        fit = PowerLawFit(None, None, None, "not converging (fails at some n, survives at others)")
+    else:
+        noises = [r.tolerance_noise for r in rows[-2:] if r.tolerance_noise is not None]
+        fit = power_law_fit([r.n for r in rows], values, max(noises) if noises else 0.0)
+    consistent = len(kinds) == 1 and not ill_posed
+    empirical = empirical_n_for_one_percent([r.n for r in rows], values) if consistent else None
+    return ConvergenceStudy(params, settings, rows, fit, empirical, ill_posed, notes)
+
+
+def _fmt(value, spec: str = ".6g") -> str:
+    if value is None:
+        return "—"
+    if isinstance(value, float) and math.isinf(value):
+        return "∞"
+    return format(value, spec)
+
+
+def markdown_table(study: ConvergenceStudy) -> str:
+    """The rows of a study as a Markdown table, then the fit and the verdict."""
+    unit = {"failure_time": "t_f (s)", "max_amplitude_ratio": "max a/a₀"}
+    lines = [
+        "| n | answer | value | change vs previous n | tolerance noise | method | steps | CPU (s) |",
+        "|---:|---|---:|---:|---:|---|---:|---:|",
+    ]
+    for r in study.rows:
+        lines.append(
+            f"| {r.n} | {unit[r.kind]} | {_fmt(r.value)} | {_fmt(r.change, '+.2e')} | {_fmt(r.tolerance_noise, '.1e')} "
+            f"| {r.method} | {r.steps} | {r.cpu_time:.3g} |"
+        )
+    fit = study.fit
+    lines.append("")
+    lines.append(
+        f"Fit: {fit.verdict}; limit {_fmt(fit.limit)}, order p = {_fmt(fit.order, '.2f')}, "
+        f"n for 1 % (fit) = {_fmt(fit.n_for_one_percent, '.0f')}, "
+        f"n for 1 % (within 1 % of the finest from there on) = {_fmt(study.empirical_n_for_one_percent)}; "
+        f"largest tolerance noise {_fmt(study.tolerance_noise, '.1e')}."
+    )
+    lines.extend(f"Note: {note}" for note in study.notes)
+    return "\n".join(lines)

@@ -1,0 +1,21 @@
+"""`lightsail-mbs converge`: the study as a command (JSON and Markdown out, n is not an option)."""
+
+import json
+
+from lightsail_mbs.cli import main
+
+
+def test_converge_json_and_markdown(tmp_path, capsys):
+    out = tmp_path / "rigid.md"
+    code = main(["converge", "--case", "rigid", "--sizes", "10,20,40", "--no-noise", "--quiet", "--json",
+                 "--markdown", str(out)])  # fmt: skip
+    assert code == 0
+    study = json.loads(capsys.readouterr().out)
+    assert [row["n"] for row in study["rows"]] == [10, 20, 40] and study["ill_posed"] is True
+    assert study["parameters"]["model"] == "rigid" and study["settings"]["t_final"] == 0.01
+    assert "| 40 |" in out.read_text()
+
+
+def test_converge_rejects_n(capsys):
+    assert main(["converge", "--n", "30"]) == 2
+    assert "n is varied" in capsys.readouterr().err
