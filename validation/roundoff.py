@@ -286,11 +286,45 @@ def main() -> None:
             dict(rtol=1e-13, perturbation=1e-15 * p.defect_amplitude),
         )
     ]
+    observed = {}
     for name, solver, options in runs:
         result = solve(p, solver, RUN, uncertainty=False, **options)
-        lines.append(row([name, " / ".join(f"{d:.1e}" for d in deviation(result, clean)), str(result.info["steps"])]))
+        observed[name] = deviation(result, clean)
+        lines.append(row([name, " / ".join(f"{d:.1e}" for d in observed[name]), str(result.info["steps"])]))
         print(lines[-1], flush=True)
-    lines += ["", f"({(time.perf_counter() - start) / 60:.0f} min on the shared 2-core machine.)", ""]
+    injected = {name: np.abs(np.asarray(acc - reference, float)).max() / peak for name, acc in formulations.items()}
+    former, exact = "Exudyn, gravity −m g₀ + radiation load (former)", "Exudyn (net slice force, gravity off)"
+    finest = observed[runs[5][0]][-1]
+    dopri = [observed[name][-1] for name, _, options in runs if options.get("method") == "DOPRI5"]
+    floor = observed[runs[-1][0]][-1]
+    predicted_exact = predicted_deviation(p, state, np.asarray(formulations[exact] - reference, float), theta_scale)[-1]
+    lines += [
+        "",
+        "## Reading",
+        "",
+        f"* **Where the former ~1e-7 floor came from.** Exudyn's former formulation added the tree's gravity "
+        f"−m g₀ and the radiation load as generalized forces of order f₀ n L/2 that cancel to about 1e-8 of "
+        f"each: its θ̈ was wrong by {injected[former]:.1g} of max |θ̈|, concentrated at short waves. Held as a "
+        "constant forcing of the linearised chain this predicts the deviation of 0.3 s to within an order of "
+        "magnitude (an upper bound later on: the real error pattern changes with the state and partly averages "
+        "out); no Newton tolerance touches it, because it is in the right-hand side, not in the solve.",
+        f"* **Now.** With the net slice force (the cancellation done analytically, gravity off) Exudyn injects "
+        f"{injected[exact]:.1g} of max |θ̈| (the remaining round-off of its mass-matrix solve in relative "
+        f"coordinates), the reduced solver {injected['reduced (net slice force)']:.1g}. Exudyn's deviation from "
+        f"the reduced solution at 0.3 s falls as h² with generalized-α's step down to {finest:.1g} at "
+        f"h = 15.6 µs, and DOPRI5 sits at {min(dopri):.2g}–{max(dopri):.2g} at rtol 1e-7 and 1e-10 alike: that is "
+        f"Exudyn's own round-off floor, about 1e5 times below the former one.",
+        f"* **The level double precision allows** (twin runs of the reduced solver whose start differs by a "
+        f"few ulps): {floor:.1g} at 0.3 s. Exudyn's floor ({min(dopri):.1g}) is about {min(dopri) / floor:.0f}× "
+        f"above it; the budget predicts {predicted_exact:.1g} from Exudyn's injected error, "
+        f"{min(dopri) / predicted_exact:.0f}× below what is observed — the same order of magnitude, so the "
+        "remaining gap is Exudyn's own arithmetic (its relative-coordinate mass matrix), not an error in the "
+        "model or the load. Neither floor matters for an answer: the uncertainty estimate's probe perturbs the "
+        "start by 1e-12 a₀, far above both.",
+        "",
+        f"({time.perf_counter() - start:.0f} s on the shared 2-core machine.)",
+        "",
+    ]
     path = Path(__file__).with_name("roundoff.md")
     path.write_text("\n".join(lines))
     print(f"wrote {path}")

@@ -94,6 +94,8 @@ def test_tight_twin_options():
     assert uncertainty.tightened({}, info) == {"rtol": 1e-8}
     tight = uncertainty.tightened({"step_size": 1e-3, "atol": 1e-9}, info)
     assert tight["step_size"] == pytest.approx(1e-3 / math.sqrt(10)) and tight["atol"] == pytest.approx(1e-10)
+    quarter = uncertainty.tightened({"step_size": 1e-3}, {"rtol": 1e-7, "method": "generalized-alpha"})
+    assert quarter["step_size"] == pytest.approx(2.5e-4) and quarter["rtol"] == pytest.approx(1e-7 / 16)
 
 
 @pytest.mark.parametrize(
