@@ -18,7 +18,7 @@ def register(sub) -> None:
         type=float,
         default=None,
         help="the solver's relative tolerance [exudyn 1e-7 (sets DOPRI5's tolerance or the generalized-α step), "
-        "reduced 1e-9 (DOP853) or 1e-6 (Radau)]",
+        "reduced 1e-8 (DOP853) or 1e-6 (Radau)]",
     )
     p.add_argument(
         "--no-uncertainty",
