@@ -47,8 +47,9 @@ q̈ after every step and interpolates the output samples t_k = k·Δt that the s
 Hermite polynomial of the two ends of each one's step (exact at a step end; the generalized-α steps
 divide the output interval when shorter than it). Every SAMPLES_PER_CHECK samples — sooner when the
 amplitude's growth since the last check predicts failure before the next one, so that no time is spent
-integrating the crumpling sail past failure — and at the end, it asks the skeleton's FailureMonitor
-for the first sample at or above the limit; the run stops there and keeps that sample.
+integrating the crumpling sail past failure — or after STEPS_PER_CHECK steps (an explosively crumpling
+chain shrinks the explicit steps faster than any prediction from the samples), and at the end, it asks
+the skeleton's FailureMonitor for the first sample at or above the limit; the run stops there and keeps that sample.
 stop_at_failure=False runs on. A Newton failure, a too small step, an Exudyn error or a non-finite
 state is recorded in Result.error with the samples up to there.
 """
@@ -85,6 +86,7 @@ GA_STEPS_PER_TC = 500
 NEWTON_REL_TOL = 1e-8  # residual reduction per step (Exudyn default)
 SPECTRAL_RADIUS = 0.9  # generalized-α numerical damping of the highest frequencies
 SAMPLES_PER_CHECK = 50  # failure check (and progress) after this many output samples
+STEPS_PER_CHECK = 100  # ... or after this many steps: a crumpling sail (steps shrinking) stops soon after failure
 OPTIONS = ("method", "rtol", "step_size", "newton_rel_tol", "newton_abs_tol", "spectral_radius")
 OPTIONS += ("samples_per_check", "perturbation")
 
@@ -272,7 +274,7 @@ class Sampler:
         self.steps_q.append(np.array(data.GetODE2Coordinates()))
         self.steps_v.append(np.array(data.GetODE2Coordinates_t()))
         self.steps_a.append(np.array(data.GetODE2Coordinates_tt()))
-        if self.steps_t[-1] >= self.times[self._next_check] * (1 - 1e-13):
+        if self.steps_t[-1] >= self.times[self._next_check] * (1 - 1e-13) or len(self.steps_t) > STEPS_PER_CHECK:
             self.bar.update(self.steps_t[-1])
             return not self.check()
         return True
