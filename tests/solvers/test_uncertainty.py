@@ -96,6 +96,7 @@ def test_tight_twin_options():
     assert tight["step_size"] == pytest.approx(1e-3 / math.sqrt(10)) and tight["atol"] == pytest.approx(1e-10)
     quarter = uncertainty.tightened({"step_size": 1e-3}, {"rtol": 1e-7, "method": "generalized-alpha"})
     assert quarter["step_size"] == pytest.approx(2.5e-4) and quarter["rtol"] == pytest.approx(1e-7 / 16)
+    assert uncertainty.tightened({}, {"rtol": 1e-8, "method": "DOP853"})["rtol"] == pytest.approx(1e-10)
 
 
 @pytest.mark.parametrize(
