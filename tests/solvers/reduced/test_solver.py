@@ -52,7 +52,8 @@ def test_divergence_is_recorded_not_raised(monkeypatch, method):
     monkeypatch.setattr(ChainDynamics, "rhs", poisoned_rhs)
     r = solve(p, "reduced", RunSettings(t_final=0.1, output_interval=0.001), method=method, uncertainty=False)
     assert r.error and "failed" in r.error
-    assert 0.02 < r.time[-1] < 0.1 and np.all(np.isfinite(r.theta))
+    # the samples up to the call that met the poisoned state (the integrator's steps run ahead of them)
+    assert 0 < r.time[-1] < 0.1 and np.all(np.isfinite(r.theta))
 
 
 @pytest.mark.parametrize(
