@@ -33,7 +33,7 @@ def measure(name: str, solver: str, repeats: int) -> dict:
     best, cpu = None, float("inf")
     for _ in range(repeats):
         start, start_cpu = time.perf_counter(), time.process_time()
-        result = solve(params, solver, settings)
+        result = solve(params, solver, settings, uncertainty=False)
         wall = time.perf_counter() - start
         cpu = min(cpu, time.process_time() - start_cpu)
         if best is None or wall < best[0]:
@@ -78,7 +78,9 @@ def convergence(cases=("torsion-soft", "tnt-soft", "rigid"), factors=(1.0, 0.5, 
         runs = [(h * f, rel * f, abs_ * f) for f in factors] + [(h, 1e-10, 1e-10 * p.flat_force)]
         reference = None
         for step, r_tol, a_tol in runs:
-            result = solve(p, "exudyn", settings, step_size=step, newton_rel_tol=r_tol, newton_abs_tol=a_tol)
+            result = solve(
+                p, "exudyn", settings, step_size=step, newton_rel_tol=r_tol, newton_abs_tol=a_tol, uncertainty=False
+            )
             ft = result.failure_time
             reference = reference if reference is not None else ft
             change = None if ft is None or reference is None else (ft - reference) / reference

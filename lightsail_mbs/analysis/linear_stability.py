@@ -32,10 +32,11 @@ Two independent linearisations of the lit free sail, both at the flat state:
   columns in one vectorised call;
 * Exudyn: M and the elastic/tension stiffness K from ``ComputeLinearizedSystem`` of the unlit
   KinematicTree, plus the load stiffness by central differences of the tree's own load
-  function (exudyn_model.generalized_force) and the analytic frame force. Exudyn's own
-  forward-difference Jacobian of the lit system is also available (``exudyn_load="solver"``);
-  its load part cancels f₀-sized terms and is noisy to ≈ 1 % of the softest bending
-  frequencies, whatever the difference step (scenario stability_linear.py shows it).
+  function (solvers.exudyn.tree.generalized_force: the net slice force, frame force included).
+  Exudyn's own forward-difference Jacobian of the lit system is also available
+  (``exudyn_load="solver"``); forward differences of a load that is itself second order in the
+  angles are noisy to ≈ 1 % of the softest bending frequencies, whatever the difference step
+  (scenario stability_linear.py shows it).
 """
 
 from __future__ import annotations
@@ -90,29 +91,13 @@ def reduced_jacobian(p: SailParameters, step: float = FD_STEP, state: shapes.Cha
 
 
 # ---- Exudyn --------------------------------------------------------------------------------
-def _frame_force(p: SailParameters, layout, q: np.ndarray) -> np.ndarray:
-    """Generalized force of −m g₀ ŷ on every slice in the tree coordinates: −m g₀ Σ_j ∂y_j/∂q,
-    y_j = Y + Σ_{i<j} (l + z_i) sin θ_i + (l/2) sin θ_j, θ_i = Σ_{k≤i} φ_k (exudyn_model)."""
-    n = p.n
-    theta = np.cumsum(q[layout.angle_index])
-    seg = layout.segments(q)
-    below = n - 1 - np.arange(n)  # slices j > i
-    d_theta = seg * np.cos(theta) * below + 0.5 * p.slice_length * np.cos(theta)
-    grad = np.zeros(layout.size)
-    grad[1] = n
-    grad[layout.angle_index] = np.cumsum(d_theta[::-1])[::-1]
-    if layout.stretch_index.size:
-        grad[layout.stretch_index] = (np.sin(theta) * below)[:-1]
-    return -p.slice_mass * p.nominal_acceleration * grad
-
-
 def exudyn_linearization(
     p: SailParameters, *, exudyn_load: str = "central", step: float = FD_STEP, relative_epsilon: float | None = None
 ):
     """(M, K) of the Exudyn KinematicTree at the flat state: M q̈ + K q = 0 (K not symmetric with load).
 
-    exudyn_load="central": K = K_exudyn(unlit) − ∂(Q_beam + Q_frame)/∂q by central differences of
-    the tree's load function; "solver": Exudyn's own Jacobian of the lit system (forward
+    exudyn_load="central": K = K_exudyn(unlit) − ∂Q_net/∂q by central differences of the tree's load
+    function (radiation and frame force); "solver": Exudyn's own Jacobian of the lit system (forward
     differences with ``relative_epsilon``, Exudyn's default 1e-7, on coordinates ≥ 1).
     """
     import exudyn as exu
@@ -138,7 +123,7 @@ def exudyn_linearization(
     q0 = layout.coordinates(shapes.initial_state(p))
 
     def load(q):
-        return beam(q).copy() - tension_only(q) + _frame_force(p, layout, q)
+        return beam(q).copy() - tension_only(q)
 
     jac = np.column_stack([(load(q0 + step * e) - load(q0 - step * e)) / (2 * step) for e in np.eye(q0.size)])
     return np.asarray(mass), np.asarray(stiffness) - jac

@@ -46,7 +46,8 @@ physical O(f₀) force that no cancellation threatens. For the mirror in a unifo
 f_b = −f₀ (1 − cos θ)(1 + cos θ + cos²θ), f₀ = 2 I₀ A/c.
 
 :func:`net_facet_force` is the same formula for one facet, compiled (numba); the tests hold it to
-:func:`facet_forces`.
+:func:`facet_forces`. For the chain, :func:`applied_forces` and its compiled twin :func:`net_slice_force`
+write it with n_⊥ = −sin θ and 1 − cos θ = 2 sin²(θ/2); every chain solver applies them.
 """
 
 from __future__ import annotations
@@ -124,7 +125,8 @@ def facet_forces(
 def radiation_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(f_x, f_y) of the radiation alone on each slice centre at abscissa x and angle θ, inertial
     directions (N): f = (I A / c) cos θ [2R cos θ n + α ŷ] with n = (−sin θ, cos θ); Eq. (11) for R = 1,
-    α = 0. The chain solvers use :func:`applied_forces` (this load plus the frame force)."""
+    α = 0. The chain solvers use :func:`applied_forces` (this load plus the frame force, their
+    cancellation done analytically)."""
     c = np.cos(theta)
     s = np.sin(theta)
     if p.uniform_beam and p.reflectivity == 1.0 and p.absorptivity == 0.0:
@@ -136,15 +138,27 @@ def radiation_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tup
 
 
 def frame_force(p: SailParameters) -> float:
-    """y-component of the d'Alembert force −m g₀ on each slice in the accelerating frame (N)."""
-    return -p.slice_mass * p.nominal_acceleration
+    """y-component of the d'Alembert force −m g₀ = −(2R + α) Ī A/c on each slice in the accelerating
+    frame (N)."""
+    return -(2.0 * p.reflectivity + p.absorptivity) * p.mean_intensity * p.slice_length * p.width / SPEED_OF_LIGHT
 
 
 def applied_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Radiation load plus frame force on each slice centre, as used by the chain solvers (N): summed in
-    floating point (:func:`facet_forces` is the same net force with the cancellation done analytically)."""
-    fx, fy = radiation_forces(p, x, theta)
-    return fx, fy + frame_force(p)
+    """The net force on each slice centre in the accelerating frame, radiation load plus frame force (N),
+    with their cancellation done analytically (module docstring); the load every solver applies."""
+    theta = np.asarray(theta, float)
+    c = np.cos(theta)
+    s = np.sin(theta)
+    half = np.sin(0.5 * theta)
+    one_minus_cos = 2.0 * half * half
+    area_c = p.slice_length * p.width / SPEED_OF_LIGHT
+    local = intensity(p, np.broadcast_to(x, theta.shape))
+    push = local * area_c
+    two_r = 2.0 * p.reflectivity
+    fx = -push * two_r * c * c * s
+    fy = -push * (two_r * one_minus_cos * (1.0 + c + c * c) + p.absorptivity * one_minus_cos)
+    fy = fy + (two_r + p.absorptivity) * area_c * (local - p.mean_intensity)
+    return fx, fy
 
 
 @njit(cache=True)
@@ -161,6 +175,19 @@ def net_facet_force(n1, n2, nb, local_intensity, mean_intensity, area_c, reflect
     fb = -push * (two_r * one_minus_cos * (1.0 + nb + nb * nb) + absorptivity * one_minus_cos)
     fb += (two_r + absorptivity) * area_c * (local_intensity - mean_intensity)
     return across * n1, across * n2, fb
+
+
+@njit(cache=True)
+def net_slice_force(theta, cos_theta, sin_theta, local_intensity, mean_intensity, area_c, reflectivity, absorptivity):
+    """(f_x, f_y) of :func:`applied_forces` for one slice (compiled); area_c = l W / c."""
+    half = math.sin(0.5 * theta)
+    one_minus_cos = 2.0 * half * half
+    push = local_intensity * area_c
+    two_r = 2.0 * reflectivity
+    fx = -push * two_r * cos_theta * cos_theta * sin_theta
+    fy = -push * (two_r * one_minus_cos * (1.0 + cos_theta + cos_theta * cos_theta) + absorptivity * one_minus_cos)
+    fy += (two_r + absorptivity) * area_c * (local_intensity - mean_intensity)
+    return fx, fy
 
 
 @njit(cache=True)

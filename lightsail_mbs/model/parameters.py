@@ -59,6 +59,8 @@ LATER_DEFAULTS = {
     "payload_stem": 0.0,
     "billow_rest": False,
     "initial_tilt": 0.0,
+    "roughness": 0.0,
+    "roughness_seed": 0,
 }
 # How the slices carry an optical table: all alike, or the right half turned over (t → −t; model/optics.py).
 OPTICS_LAYOUTS = ("uniform", "mirrored-halves")
@@ -124,6 +126,8 @@ class SailParameters:
     defect_seed: int | None = None  # None: the paper's sine; an int: random multi-mode defect (shapes.py)
     defect_mode_count: int = 10  # multi-mode defect: modes ν_k = k/2, k = 1…K
     defect_spectrum: float = 1.0  # multi-mode defect: mean amplitude ∝ ν_k^(−β)
+    roughness: float = 0.0  # m: seeded roughness at every wavelength the chain carries (shapes.roughness_profile)
+    roughness_seed: int = 0  # seed of the roughness
     beam_waist: float = math.inf  # w, m: Gaussian beam I₀ exp(−2(x − x_c)²/w²); inf = uniform (paper)
     beam_center: float | None = None  # x_c, m; None: the sail's middle L/2
     reflectivity: float = 1.0  # R, specular (paper: 1)
@@ -200,6 +204,22 @@ class SailParameters:
             "an integer 1 ≤ K ≤ 200",
         )
         finite("defect_spectrum", self.defect_spectrum)
+        v = finite("roughness", self.roughness)
+        check(
+            "roughness",
+            v,
+            0 <= v < self.length / (2 * math.pi * self.n),
+            f"0 ≤ roughness < L/(2πn) = "
+            f"{self.length / (2 * math.pi * self.n):.3g} m (slopes of its shortest waves below 45°)",
+        )
+        check(
+            "roughness_seed",
+            self.roughness_seed,
+            isinstance(self.roughness_seed, int)
+            and not isinstance(self.roughness_seed, bool)
+            and self.roughness_seed >= 0,
+            "an integer ≥ 0",
+        )
         waist = self.beam_waist
         check(
             "beam_waist",

@@ -1,6 +1,7 @@
 """Initial sail shapes: hinge points on the defect profile, every chord exactly one slice long.
 
-Paper Eq. (1): w(x) = a₀ sin(2πνx/L). Hinge 0 is at (0, 0); hinge k+1 is the point of the
+Paper Eq. (1): w(x) = a₀ sin(2πνx/L), or a seeded multi-mode defect, plus an optional seeded
+roughness at every wavelength the chain carries (roughness_profile). Hinge 0 is at (0, 0); hinge k+1 is the point of the
 profile at chord distance c_k from hinge k, with c_k = l for rigid/torsion slices and
 c_k = l + z_k (slice plus pre-stretched spring, z_k = T/k_s) for k < n−1 in the extensible
 TnT model (Eqs 30–31 with l_s = 0). Slices lie along the chords, at rest.
@@ -75,9 +76,36 @@ def multimode_profile(p: SailParameters):
     )
 
 
-def defect_profile(p: SailParameters):
-    """The initial defect of a case: the paper's sine, or the multi-mode defect if defect_seed is set."""
-    return sine_profile(p) if p.defect_seed is None else multimode_profile(p)
+def roughness_profile(p: SailParameters, amplitude: float, seed: int):
+    """w_r(x) = amplitude · Σ_{k=1…n} ξ_k sin(kπx/L), ξ_k ~ N(0, 1/n) from numpy's default generator seeded
+    with `seed`: a seeded roughness with the same expected amplitude at every wavelength 2L/k the chain of
+    n slices carries, down to 2l, and the RMS over 0 ≤ x ≤ L of a sine of amplitude `amplitude` (in
+    expectation). Zero for amplitude 0."""
+    xi = np.random.default_rng(seed).standard_normal(p.n) / np.sqrt(p.n)
+    k = np.pi * np.arange(1, p.n + 1) / p.length
+    a = amplitude * xi
+    if amplitude == 0:
+        return lambda x: 0.0 * np.asarray(x, float)
+    return lambda x: (
+        float(np.dot(a, np.sin(k * x)))
+        if np.ndim(x) == 0
+        else (a[:, None] * np.sin(k[:, None] * np.asarray(x)[None, :])).sum(axis=0)
+    )
+
+
+def defect_profile(p: SailParameters, perturbation: float = 0.0):
+    """The initial shape of a case: the paper's sine, or the multi-mode defect if defect_seed is set, plus
+    the case's roughness (p.roughness, seed p.roughness_seed) and a perturbation roughness of amplitude
+    `perturbation` (m, seed PERTURBATION_SEED: the conditioning probe of solvers.uncertainty)."""
+    defect = sine_profile(p) if p.defect_seed is None else multimode_profile(p)
+    if not p.roughness and not perturbation:
+        return defect
+    rough = roughness_profile(p, p.roughness, p.roughness_seed)
+    probe = roughness_profile(p, perturbation, PERTURBATION_SEED)
+    return lambda x: defect(x) + rough(x) + probe(x)
+
+
+PERTURBATION_SEED = 271828  # the seed of the conditioning probe's roughness (the same for every solver)
 
 
 def initial_spring_extension(p: SailParameters) -> np.ndarray:
@@ -103,9 +131,10 @@ def arc_point(p: SailParameters, s):
     return base, np.stack([np.sin(psi), np.cos(psi)], axis=-1)
 
 
-def billowed_hinge_points(p: SailParameters, profile=None) -> np.ndarray:
+def billowed_hinge_points(p: SailParameters, profile=None, perturbation: float = 0.0) -> np.ndarray:
     """(n+1, 2) hinge points of the billowed sail (billow_radius finite) with exact chords: on the arc, or
-    on the arc displaced along its normal by `profile` (default: defect_profile(p), none if a₀ = 0)."""
+    on the arc displaced along its normal by `profile` (default: defect_profile(p, perturbation), none if
+    a₀ = 0 and there is no roughness)."""
     from scipy.optimize import brentq
 
     R = abs(p.billow_radius)
@@ -116,9 +145,9 @@ def billowed_hinge_points(p: SailParameters, profile=None) -> np.ndarray:
         )
     spans = 2.0 * R * np.arcsin(chords / (2.0 * R))
     s0 = 0.5 * (p.length - spans.sum())  # the chain centred on the apex s = L/2
-    if profile is None and p.defect_amplitude == 0:
+    if profile is None and p.defect_amplitude == 0 and not p.roughness and not perturbation:
         return arc_point(p, s0 + np.concatenate([[0.0], np.cumsum(spans)]))[0]
-    w = profile or defect_profile(p)
+    w = profile or defect_profile(p, perturbation)
 
     def point(u):
         base, normal = arc_point(p, s0 + u)
@@ -138,12 +167,12 @@ def billowed_hinge_points(p: SailParameters, profile=None) -> np.ndarray:
     return pts
 
 
-def hinge_points(p: SailParameters, profile=None) -> np.ndarray:
-    """(n+1, 2) hinge points on `profile` (default: defect_profile(p)) with exact chord lengths; on the
-    billowed arc when billow_radius is finite (billowed_hinge_points)."""
+def hinge_points(p: SailParameters, profile=None, perturbation: float = 0.0) -> np.ndarray:
+    """(n+1, 2) hinge points on `profile` (default: defect_profile(p, perturbation)) with exact chord
+    lengths; on the billowed arc when billow_radius is finite (billowed_hinge_points)."""
     if not np.isinf(p.billow_radius):
-        return billowed_hinge_points(p, profile)
-    w = profile or defect_profile(p)
+        return billowed_hinge_points(p, profile, perturbation)
+    w = profile or defect_profile(p, perturbation)
     chords = chord_lengths(p)
     pts = np.zeros((p.n + 1, 2))
     pts[0] = (0.0, w(0.0))
@@ -224,9 +253,10 @@ def bracketed_root(f, lo: float, hi: float, xtol: float = 1e-15, rtol: float = 8
     return 0.5 * (lo + hi)
 
 
-def initial_state(p: SailParameters, profile=None) -> ChainState:
-    """Slice centres and angles of the initial shape (slice k spans its hinge k to hinge k + l·e_k)."""
-    pts = hinge_points(p, profile)
+def initial_state(p: SailParameters, profile=None, perturbation: float = 0.0) -> ChainState:
+    """Slice centres and angles of the initial shape (slice k spans its hinge k to hinge k + l·e_k);
+    perturbation: see defect_profile."""
+    pts = hinge_points(p, profile, perturbation)
     d = np.diff(pts, axis=0)
     theta = np.arctan2(d[:, 1], d[:, 0])
     half = 0.5 * p.slice_length

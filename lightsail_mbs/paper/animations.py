@@ -47,7 +47,7 @@ def simulated(name: str, runs: Path, solver: str, progress: bool = True, quick: 
         return Result.load(path)
     case, changes = CASES[name]
     params = paper_case(case, **(dict(n=10) if quick else {}))
-    result = solve(params, solver, paper_settings(case, **changes), progress=progress)
+    result = solve(params, solver, paper_settings(case, **changes), progress=progress, uncertainty=False)
     result.save(path)
     return result
 

@@ -8,8 +8,9 @@ How to run a case:
    stop rule; ``paper_settings(name)`` for the paper's cases).
 3. ``result = solve(params, "reduced", settings)`` (or ``"exudyn"``), with the solver's own options
    as keywords (Exudyn: ``step_size``, ``newton_rel_tol``, …; reduced: ``rtol``, ``method``, …).
-4. Read the :class:`~lightsail_mbs.result.Result`: ``result.failure_time``, ``result.summary()``,
-   ``result.save("run.npz")``.
+4. Read the :class:`~lightsail_mbs.result.Result`: ``result.failure_time``, its
+   ``result.failure_time_uncertainty`` and ``result.well_conditioned`` (two twin runs, on by default:
+   :mod:`lightsail_mbs.solvers.uncertainty`), ``result.summary()``, ``result.save("run.npz")``.
 
 The chain and the sheet are dispatched by ``params.model`` (``SOLVERS``, ``SHEET_SOLVERS``). Each
 solver is a module exposing
@@ -48,6 +49,7 @@ def solve(
     settings: RunSettings | None = None,
     *,
     progress: bool = False,
+    uncertainty: bool = True,
     **options,
 ) -> Result:
     """Run one case with the named solver and return its Result.
@@ -64,6 +66,10 @@ def solve(
         Duration, output interval and stop rule (default ``RunSettings()``: 6 s, stop at failure).
     progress : bool
         Show a progress bar on stderr.
+    uncertainty : bool
+        Estimate the answer's uncertainty and conditioning from two twin runs (tolerances tightened;
+        start perturbed at round-off level), stored in ``Result.uncertainty``
+        (:mod:`lightsail_mbs.solvers.uncertainty`); costs about 2–4 more runs. Sweeps turn it off.
     **options
         The solver's own numerical options (see its module); an unknown one raises ParameterError.
     """
@@ -75,4 +81,9 @@ def solve(
         raise ParameterError(f"settings={settings!r} is invalid: allowed a RunSettings")
     module = importlib.import_module(f".{solver_module(params, solver)}", __name__)
     with interrupts_propagate():
-        return module.run(params, settings, progress=progress, **options)
+        result = module.run(params, settings, progress=progress, **options)
+        if uncertainty:
+            from lightsail_mbs.solvers import uncertainty as estimate
+
+            result.uncertainty = estimate.assess(module, params, settings, options, result)
+    return result

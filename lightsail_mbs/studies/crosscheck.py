@@ -4,8 +4,14 @@ For each case both solvers run the same SailParameters; the report gives the lar
 difference max abs(Δθ) over the samples where both amplitudes are below 1.5× their initial value
 (the instability amplifies any difference by e every ~0.1 s after that), each solver's failure
 verdict and time, their relative difference, the wall times and, for free vibration (I₀ = 0), the
-reduced solver's energy drift. Plots (viz.plots.crosscheck_figure): θ of three slices from both
-solvers and abs(Δθ) on a log scale.
+reduced solver's energy drift. Each solver's answer (failure time, or the largest amplitude ratio of a
+sail that survives) carries the uncertainty U and conditioning verdict of solvers.uncertainty when the
+runs were made with it (the default). A row passes when the verdicts agree, there is no solver error,
+free vibration conserves energy to 1e-8, and either the angles agree to ANGLE_LIMIT and the failure
+times to FAILURE_TIME_LIMIT, or — for a case that either solver flags as ill-conditioned, whose answer
+a perturbation at round-off level moves by more than 1e-4 — the answers differ by less than the combined
+uncertainty. Plots (viz.plots.crosscheck_figure): θ of three slices from both solvers and abs(Δθ) on a
+log scale.
 """
 
 from __future__ import annotations
@@ -18,6 +24,7 @@ import numpy as np
 
 from lightsail_mbs import analysis
 from lightsail_mbs.model.parameters import ParameterError, SailParameters, paper_case
+from lightsail_mbs.result import with_uncertainty
 from lightsail_mbs.solvers import solve
 from lightsail_mbs.solvers.settings import RunSettings, paper_settings
 from lightsail_mbs.studies.tables import fmt
@@ -69,14 +76,16 @@ CASES = {
         exudyn_step_scale=0.0625,
     ),
     "torsion-stable": Case(
-        "torsion-stable", paper_case("torsion-stable"), SIX_SECONDS, "Fig. 6: E = 4.5e13 Pa", exudyn_step_scale=0.25
+        "torsion-stable", paper_case("torsion-stable"), SIX_SECONDS, "Fig. 6: E = 4.5e13 Pa", exudyn_step_scale=0.125
     ),
     "torsion-soft": Case(
         "torsion-soft", paper_case("torsion-soft"), SIX_SECONDS, "Fig. 7: E = 4.5e9 Pa", exudyn_step_scale=0.125
     ),
-    "tnt-stable": Case("tnt-stable", paper_case("tnt-stable"), SIX_SECONDS, "Fig. 10: T = 3.34e-3 N"),
+    "tnt-stable": Case(
+        "tnt-stable", paper_case("tnt-stable"), SIX_SECONDS, "Fig. 10: T = 3.34e-3 N", exudyn_step_scale=0.125
+    ),
     "tnt-soft": Case(
-        "tnt-soft", paper_case("tnt-soft"), SIX_SECONDS, "Fig. 11: T = 3.34e-8 N", exudyn_step_scale=0.125
+        "tnt-soft", paper_case("tnt-soft"), SIX_SECONDS, "Fig. 11: T = 3.34e-8 N", exudyn_step_scale=1 / 32
     ),
     "free-torsion": Case(
         "free-torsion",
@@ -122,6 +131,12 @@ def compare(case: Case, exudyn, reduced) -> dict:
     dtheta = np.abs(exudyn.theta[ie[:end]] - reduced.theta[ir[:end]]).max() if end else math.nan
     t_ex, t_red = exudyn.failure_time, reduced.failure_time
     rel = abs(t_ex - t_red) / t_red if t_ex is not None and t_red is not None else None
+    estimates = {name: r.uncertainty for name, r in (("exudyn", exudyn), ("reduced", reduced))}
+    estimated = all(e is not None and e.get("estimated") for e in estimates.values())
+    answers = {
+        name: r.failure_time if r.failed else r.max_amplitude_ratio
+        for name, r in (("exudyn", exudyn), ("reduced", reduced))
+    }
     row = dict(
         case=case.name,
         note=case.note,
@@ -137,14 +152,25 @@ def compare(case: Case, exudyn, reduced) -> dict:
         error_exudyn=exudyn.error,
         error_reduced=reduced.error,
         energy_drift=None,
+        answer_exudyn=answers["exudyn"],
+        answer_reduced=answers["reduced"],
+        uncertainty_exudyn=estimates["exudyn"]["uncertainty"] if estimated else None,
+        uncertainty_reduced=estimates["reduced"]["uncertainty"] if estimated else None,
+        well_conditioned=all(e["well_conditioned"] for e in estimates.values()) if estimated else None,
+        within_uncertainty=None,
     )
+    if estimated and exudyn.failed == reduced.failed:
+        row["within_uncertainty"] = bool(
+            abs(answers["exudyn"] - answers["reduced"]) <= row["uncertainty_exudyn"] + row["uncertainty_reduced"]
+        )
     if case.params.intensity == 0:
         energy = analysis.mechanical_energy(reduced)
         row["energy_drift"] = float(np.abs(energy / energy[0] - 1).max())
+    close = dtheta <= ANGLE_LIMIT and (rel is None or rel <= FAILURE_TIME_LIMIT)
+    ill_but_covered = row["well_conditioned"] is False and row["within_uncertainty"] is True
     row["passed"] = bool(
-        dtheta <= ANGLE_LIMIT
+        (close or ill_but_covered)
         and row["failed_exudyn"] == row["failed_reduced"]
-        and (rel is None or rel <= FAILURE_TIME_LIMIT)
         and not exudyn.error
         and not reduced.error
         and (row["energy_drift"] is None or row["energy_drift"] <= 1e-8)
@@ -159,22 +185,43 @@ def markdown(rows: list[dict]) -> str:
         "Generated by `python validation/crosscheck.py` (or `lightsail-mbs crosscheck`). "
         f"max |Δθ| is taken while both amplitudes are below {WINDOW_RATIO}× their initial value; "
         f"pass: max |Δθ| ≤ {ANGLE_LIMIT:g} rad, same verdict, failure times within "
-        f"{FAILURE_TIME_LIMIT:.0%}, no solver error, free-vibration energy drift ≤ 1e-8.",
+        f"{FAILURE_TIME_LIMIT:.0%}, no solver error, free-vibration energy drift ≤ 1e-8 — or, for a case "
+        "flagged ill-conditioned, the answers within the combined uncertainty (see below).",
+        "",
+        "Answer: the failure time t_f (s), or the largest amplitude ratio of a sail that survives the run, "
+        "with its uncertainty U (`lightsail_mbs.solvers.uncertainty`: twin runs with the tolerances or "
+        "step tightened and with the start perturbed by a seeded roughness of 1e-12 a₀; U = 2 (E_int + S)). "
+        "Conditioning: well when that roughness moves neither solver's answer by more than 1e-4 of it; an "
+        "ill-conditioned case's answer is set by perturbations at round-off level, so the solvers can "
+        "agree only to within their uncertainties there.",
         "",
         "| case | note | Exudyn step (s) | max abs Δθ (rad) | window end (s) | failed exudyn / reduced "
-        "| t_fail exudyn (s) | t_fail reduced (s) | rel. diff | wall exudyn (s) | wall reduced (s) | energy drift "
-        "| pass |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
+        "| answer exudyn | answer reduced | rel. diff | conditioning | within U | wall exudyn (s) "
+        "| wall reduced (s) | energy drift | pass |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
+        answers = []
+        for solver in ("exudyn", "reduced"):
+            kind = "t_f " if r[f"failed_{solver}"] else "ratio "
+            unit = " s" if r[f"failed_{solver}"] else ""
+            answers.append(kind + with_uncertainty(r[f"answer_{solver}"], r[f"uncertainty_{solver}"], 7) + unit)
+        conditioning = {None: "–", True: "well", False: "**ill**"}[r["well_conditioned"]]
+        rel = r["failure_time_rel_diff"]
+        if rel is None and r["failed_exudyn"] == r["failed_reduced"] and r["answer_reduced"]:
+            rel = abs(r["answer_exudyn"] - r["answer_reduced"]) / r["answer_reduced"]
         lines.append(
             f"| {r['case']} | {r['note']} | {fmt(r.get('exudyn_step'), '.3g')} | {fmt(r['max_dtheta'], '.2e')} | "
             f"{fmt(r['window_end'])} | "
-            f"{fmt(r['failed_exudyn'])} / {fmt(r['failed_reduced'])} | {fmt(r['failure_time_exudyn'], '.6g')} | "
-            f"{fmt(r['failure_time_reduced'], '.6g')} | {fmt(r['failure_time_rel_diff'], '.2e')} | "
+            f"{fmt(r['failed_exudyn'])} / {fmt(r['failed_reduced'])} | {answers[0]} | {answers[1]} | "
+            f"{fmt(rel, '.2e')} | {conditioning} | {fmt(r['within_uncertainty'])} | "
             f"{fmt(r['wall_exudyn'], '.3g')} | {fmt(r['wall_reduced'], '.3g')} | "
             f"{fmt(r['energy_drift'], '.1e')} | {'✅' if r['passed'] else '❌'} |"
         )
+    lines += [
+        "",
+        "Wall times are of the base runs; the uncertainty's two twin runs of each solver come on top.",
+    ]
     errors = [r for r in rows if r["error_exudyn"] or r["error_reduced"]]
     for r in errors:
         lines.append(f"\n{r['case']}: exudyn error {r['error_exudyn']!r}, reduced error {r['error_reduced']!r}")

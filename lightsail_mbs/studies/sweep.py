@@ -38,9 +38,11 @@ STORED_NAMES = {new: old for old, new in LEGACY_NAMES.items()}  # field names in
 
 @dataclass(frozen=True)
 class Case:
-    """One run of a sweep: ``solve(params, solver, settings, **options)``.
+    """One run of a sweep: ``solve(params, solver, settings, uncertainty=uncertainty, **options)``.
 
     ``save_result`` asks for the full Result (.npz) to be stored too; it is not part of the key.
+    ``uncertainty``: sweeps run without the twin runs of the uncertainty estimate by default (their
+    records say ``"uncertainty": null``); True asks for it (and is part of the key).
     """
 
     params: SailParameters
@@ -48,6 +50,7 @@ class Case:
     options: dict = field(default_factory=dict)
     save_result: bool = False
     settings: RunSettings = field(default_factory=RunSettings)
+    uncertainty: bool = False
     key: str = field(init=False, compare=False)
 
     def __post_init__(self):
@@ -64,14 +67,18 @@ class Case:
         field names of the store's key format, STORED_NAMES), the solver and its options."""
         parameters = {STORED_NAMES.get(k, k): v for k, v in self.params.to_dict().items()}
         parameters.update(self.settings.to_dict())
-        return {"parameters": parameters, "solver": self.solver, "options": self.options}
+        description = {"parameters": parameters, "solver": self.solver, "options": self.options}
+        if self.uncertainty:
+            description["uncertainty"] = True
+        return description
 
 
 def solve_case(case: Case) -> Result:
-    """The default case function: ``lightsail_mbs.solve(params, solver, settings, **options)``, no progress bar."""
+    """The default case function: ``lightsail_mbs.solve(params, solver, settings, **options)``, no progress bar,
+    with the uncertainty estimate only if the case asks for it."""
     from lightsail_mbs.solvers import solve
 
-    return solve(case.params, case.solver, case.settings, progress=False, **case.options)
+    return solve(case.params, case.solver, case.settings, progress=False, uncertainty=case.uncertainty, **case.options)
 
 
 class Sweep:

@@ -18,7 +18,7 @@ def test_damped_first_mode_decays_at_rayleigh_rate(solver, tolerance):
     ω₁ √(1 − ζ₁²) (Exudyn: generalized-α's own period and damping errors, O(h²), set the tolerance)."""
     p = SailParameters(**FREE)
     omega, modes, mass = ct.chain_modes(p)
-    result = solve(p, solver, RunSettings(t_final=2.0))
+    result = solve(p, solver, RunSettings(t_final=2.0), uncertainty=False)
     fit = fit_damped_sinusoid(result.time, analysis.hinge_heights(result) @ mass @ modes[:, 2])
     sigma = ct.rayleigh_decay_rate(p, omega[2])
     damped = omega[2] * np.sqrt(1 - (p.stiffness_damping * omega[2] / 2) ** 2)
@@ -30,7 +30,9 @@ def test_damped_first_mode_decays_at_rayleigh_rate(solver, tolerance):
 def test_dissipated_energy_equals_loss_of_mechanical_energy(solver, options):
     """E_mech(t) + D(t) = E_mech(0) to 1e-6 E_mech(0) while 98 % of the energy turns into heat
     (Simpson quadrature on 0.1 ms samples; Exudyn's generalized-α needs 20 µs steps for it)."""
-    result = solve(SailParameters(**FREE), solver, RunSettings(t_final=0.5, output_interval=1e-4), **options)
+    result = solve(
+        SailParameters(**FREE), solver, RunSettings(t_final=0.5, output_interval=1e-4), **options, uncertainty=False
+    )
     energy = analysis.mechanical_energy(result)
     heat = result.dissipated_energy
     assert heat[-1] > 0.95 * energy[0]
@@ -39,7 +41,9 @@ def test_dissipated_energy_equals_loss_of_mechanical_energy(solver, options):
 
 
 def test_undamped_run_dissipates_nothing():
-    result = solve(SailParameters(**{**FREE, "stiffness_damping": 0.0}), "reduced", RunSettings(t_final=0.1))
+    result = solve(
+        SailParameters(**{**FREE, "stiffness_damping": 0.0}), "reduced", RunSettings(t_final=0.1), uncertainty=False
+    )
     assert np.all(result.dissipated_energy == 0.0)
 
 

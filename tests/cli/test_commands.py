@@ -443,14 +443,14 @@ def test_reproduce_quick_end_to_end(tmp_path, capsys):
 def test_foreseeable_failures_end_in_one_line_and_status_2_before_any_work(args, words, tmp_path, capsys, monkeypatch):
     """Bad paths, foreign or damaged files, bad numbers: one line naming the problem, exit 2, and nothing
     solved, rendered or swept first (those functions fail the test if called)."""
-    import lightsail_mbs.solvers as solvers
+    from lightsail_mbs import solvers
     from lightsail_mbs.studies import crosscheck, montecarlo
     from lightsail_mbs.viz import frames
 
     def never(*args, **kwargs):
         raise AssertionError("work started before the inputs were checked")
 
-    # the commands import their workers where they use them, so the workers are replaced at their source
+    # the commands import these where they call them
     for module, name in ((solvers, "solve"), (frames, "render_frames"), (montecarlo, "run"), (crosscheck, "run")):
         monkeypatch.setattr(module, name, never)
     growing_sine().save(tmp_path / "good")

@@ -71,21 +71,21 @@ def test_paper_settings_of_the_named_cases():
 @pytest.mark.parametrize("solver", ["reduced", "exudyn"])
 def test_solve_runs_with_the_settings_and_keeps_them(solver):
     settings = RunSettings(t_final=0.02, output_interval=5e-3, failure_ratio=3.0)
-    r = solve(SailParameters(n=4), solver, settings)
+    r = solve(SailParameters(n=4), solver, settings, uncertainty=False)
     assert r.settings == settings
     np.testing.assert_allclose(r.time, settings.sample_times(), rtol=0, atol=1e-12)
 
 
 def test_solve_defaults_to_the_default_settings():
-    r = solve(SailParameters(n=4), "reduced")
+    r = solve(SailParameters(n=4), "reduced", uncertainty=False)
     assert r.settings == RunSettings() and r.time[-1] == pytest.approx(6.0)
 
 
 def test_solve_rejects_what_is_not_a_run_settings():
     with pytest.raises(ParameterError, match="settings"):
-        solve(SailParameters(n=4), "reduced", {"t_final": 0.01})
+        solve(SailParameters(n=4), "reduced", {"t_final": 0.01}, uncertainty=False)
     with pytest.raises(ParameterError, match="solver"):
-        solve(SailParameters(n=4), "euler", RunSettings(t_final=0.01))
+        solve(SailParameters(n=4), "euler", RunSettings(t_final=0.01), uncertainty=False)
 
 
 @st.composite
@@ -133,5 +133,5 @@ def test_last_sample_never_lies_past_t_final():
     assert 3 * settings.output_interval > t_final
     times = settings.sample_times()
     assert times.size == 4 and times[-1] == t_final
-    r = solve(SailParameters(model="rigid", n=2, intensity=1e7), "reduced", settings)
+    r = solve(SailParameters(model="rigid", n=2, intensity=1e7), "reduced", settings, uncertainty=False)
     assert r.error is None and r.time.size == 4

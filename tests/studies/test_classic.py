@@ -53,7 +53,7 @@ def test_cantilever_short_dynamic_run_oscillates_at_the_chain_frequency():
     clamped chain's f₁ (to the generalized-α period elongation ≈ (ω₁h)²/12 ≈ 1e-3 at h = 1e-4 s)."""
     p = classic.cantilever_case(30)
     settings = classic.CANTILEVER_RUN.replace(t_final=0.5, output_interval=1e-4)
-    run = solve(p, "exudyn", settings, step_size=1e-4)
+    run = solve(p, "exudyn", settings, step_size=1e-4, uncertainty=False)
     assert run.error is None
     assert np.max(np.abs(run.x[:, 0] - 0.5 * p.slice_length)) < 1e-14 and np.max(np.abs(run.theta[:, 0])) < 1e-14
     fit = classic.plateau(p, run.time, run.y[:, -1], start=0.2)
@@ -70,7 +70,7 @@ def test_cantilever_plateau_error_matches_the_paper_and_its_budget():
     settings = classic.CANTILEVER_RUN.replace(output_interval=1e-4)
     budget = classic.error_budget(p, settings)
     for solver, options in (("exudyn", dict(step_size=5e-5)), ("reduced", dict(method="Radau", rtol=1e-8))):
-        run = solve(p, solver, settings, **options)
+        run = solve(p, solver, settings, **options, uncertainty=False)
         assert run.error is None
         error = classic.paper_error(p, run.x[-1], run.y[-1])
         assert abs(error - budget["discretisation"] - budget["load_deficit"]) <= budget["vibration_bound"]
@@ -133,7 +133,7 @@ def test_string_fundamental_from_the_time_series(solver):
     to far inside the required 0.1 %, and the supports hold."""
     p = classic.g3_string_case(10)
     options = dict(step_size=1e-5) if solver == "exudyn" else dict(method="Radau", rtol=1e-8)
-    run = solve(p, solver, classic.STRING_RUN.replace(t_final=0.03), **options)
+    run = solve(p, solver, classic.STRING_RUN.replace(t_final=0.03), **options, uncertainty=False)
     assert run.error is None
     fit = classic.string_fit(run)
     assert fit.frequency == pytest.approx(classic.string_references(p)["discrete"], rel=1e-4)

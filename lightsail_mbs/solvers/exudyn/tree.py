@@ -14,14 +14,20 @@ slice k's axis (paper Eqs 30–31 with l_s = 0). Slices carry m = ρhWl at their
 
 Everything that is linear in the joint coordinates runs in C++ inside the tree:
 torsional spring-dampers k_T φ_k + c_T φ̇_k (Eq. 23) as the joint P/D control of the
-revolute joints (offset 0: the flat sail is stress-free), axial spring-dampers k_s z_k +
-c_s ż_k (Eq. 29) as the P/D control of the sliding joints, and the frame force −m g₀ ŷ as
-the tree's gravity. The state-dependent loads — the radiation load (Eq. 11, or its
-generalisation in loads.radiation_forces) at every slice centre and the follower tension
-T(−cos θ₁, −sin θ₁) at hinge 0 and T(cos θₙ, sin θₙ) at the right end (Eq. 32) — enter
-through ONE vectorised Python force user function returning the generalized forces
-Q = Σ_i (∂r_i/∂q)ᵀ F_i (virtual work). It is evaluated by Exudyn at the current Newton
-iterate, so the load is exact at the converged state (never lagged).
+revolute joints (offset 0: the flat sail is stress-free) and axial spring-dampers k_s z_k +
+c_s ż_k (Eq. 29) as the P/D control of the sliding joints. The state-dependent loads — the net
+slice force in the accelerating frame (the radiation load of Eq. 11, or its generalisation, plus
+the frame force −m g₀ ŷ, with their cancellation done analytically: loads.applied_forces) at every
+slice centre and the follower tension T(−cos θ₁, −sin θ₁) at hinge 0 and T(cos θₙ, sin θₙ) at the
+right end (Eq. 32) — enter through ONE compiled force user function returning the generalized
+forces Q = Σ_i (∂r_i/∂q)ᵀ F_i (virtual work). It is evaluated by Exudyn at the current Newton
+iterate or explicit stage, so the load is exact at the converged state (never lagged).
+
+The tree's gravity is off. Applied as gravity, the frame force −m g₀ enters Q as torques of order
+f₀ n l/2 that cancel the load's torques to ~1e-8 of themselves; the round-off of that sum, divided by
+the small inertia of the short-wave coordinates in M⁻¹, made relative errors of 2e-4 to 4e-3 in the
+angular accelerations, concentrated at short waves, which the instability amplifies (docs:
+validation, round-off budget). With the net slice force the error is ~1e-10.
 
 With P_j = Σ_{k>j} f_k + T eₙ, the force carried across joint j, and the slice axis
 e_j = (cos θ_j, sin θ_j), normal e_j^⊥ = (−sin θ_j, cos θ_j):
@@ -33,11 +39,15 @@ e_j = (cos θ_j, sin θ_j), normal e_j^⊥ = (−sin θ_j, cos θ_j):
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
-from lightsail_mbs.model import loads, optics, payload, shapes
+from lightsail_mbs.model import optics, payload, shapes
+from lightsail_mbs.model.loads import gaussian_intensity, net_slice_force
+from lightsail_mbs.model.optics import packed_net_force
 from lightsail_mbs.model.parameters import SPEED_OF_LIGHT, SailParameters
 
 
@@ -117,61 +127,109 @@ def _exclusive_cumsum(a: np.ndarray) -> np.ndarray:
 
 
 def generalized_force(p: SailParameters, layout: ChainLayout):
-    """The force user function q ↦ Q: radiation load + follower tension (module docstring).
+    """The force user function q ↦ Q: the net slice forces (radiation + frame force, loads.applied_forces)
+    and the follower tension, as generalized forces by virtual work (module docstring).
 
-    The frame force −m g₀ is not included: the tree applies it as gravity. Written for speed
-    (≈ 20 numpy calls on length-n arrays): it runs at every Newton iterate. For the paper's
-    beam (uniform, R = 1, α = 0) the load is Eq. (11) inline, f = f₀ cos²θ n, the same
-    expression as loads.radiation_forces; otherwise loads.radiation_forces is called; with an optical
-    table (case.optics) its law, optics.normal_tangential_into.
+    The frame force −m g₀ is part of the net slice force, with its cancellation against the load done
+    analytically (loads.net_slice_force, or optics.packed_net_force for an optical table); the tree's
+    gravity is off. With a payload the craft accelerates at g₀ < c_n(0) Ī/(c ρ h): every slice also carries
+    c_n(0) Ī l W/c − m g₀ (the net form's frame force minus the craft's), and the payload its frame force
+    −m_p g₀ ŷ at its position on the composite link. One compiled pass over the slices
+    (about 5 µs a call at n = 30): it runs at every Newton iterate or explicit stage. Returns the same
+    array, overwritten, at every call.
     """
-    size, idx, zidx = layout.size, layout.angle_index, layout.stretch_index
-    l = layout.slice_length
-    half = 0.5 * l
-    tension = p.tension
-    i_f0 = 1j * p.flat_force
-    ideal = p.uniform_beam and p.reflectivity == 1.0 and p.absorptivity == 0.0
-    extensible = bool(zidx.size)
-    if p.optics is not None:  # an optical table: components along n and t from model/optics.py, compiled
-        packed, flags = p.optical_table().packed(), optics.slice_flags(p)
-        push = np.full(p.n, 0.5 * p.flat_force)  # I l W / c of the uniform beam
-        normal, tangential = np.empty(p.n), np.empty(p.n)
-    acc = np.add.accumulate
-    Q = np.zeros(size)
+    momentum = 2.0 * p.reflectivity + p.absorptivity if p.optics is None else p.optical_table().normal_at_zero
+    attached = payload.attachment(p)
+    # the net form's frame force −c_n(0) Ī l W/c per slice against the craft's −m g₀ (equal without a payload)
+    excess = 0.0 if attached is None else momentum * p.mean_intensity * p.slice_length * p.width / SPEED_OF_LIGHT
+    excess -= 0.0 if attached is None else p.slice_mass * p.nominal_acceleration
+    angle_index = np.ascontiguousarray(layout.angle_index, dtype=np.int64)
+    stretch_index = np.ascontiguousarray(layout.stretch_index, dtype=np.int64)
+    constants = np.array(
+        [
+            layout.slice_length,
+            p.tension,
+            p.intensity,
+            p.mean_intensity,
+            p.slice_length * p.width / SPEED_OF_LIGHT,
+            p.reflectivity,
+            p.absorptivity,
+            p.beam_center,
+            p.beam_waist,
+            momentum,
+            excess,
+            -1.0 if attached is None else attached.slice_index,
+            0.0 if attached is None else attached.along,
+            0.0 if attached is None else attached.across,
+            -p.payload_mass * p.nominal_acceleration,
+        ]
+    )
+    table = p.optical_table().packed() if p.optics is not None else np.zeros(0)
+    flags = optics.slice_flags(p) if p.optics is not None else np.zeros(p.n)
+    Q = np.zeros(layout.size)
 
     def force(q) -> np.ndarray:
-        # complex notation: e_j = exp(iθ_j), normal e_j^⊥ = i e_j, a^⊥·b = Im(conj(a) b)
-        q = np.fromiter(q, float, size)
-        theta = acc(q[idx])
-        e = np.exp(1j * theta)
-        c = e.real
-        seg = layout.segments(q) if extensible else l
-        if p.optics is not None:
-            if not p.uniform_beam:
-                x = q[0] + _exclusive_cumsum(seg * c) + half * c
-                push[:] = loads.intensity(p, x) * (p.slice_length * p.width / SPEED_OF_LIGHT)
-            optics.normal_tangential_into(packed, flags, push, c, e.imag, theta, normal, tangential)
-            f = (tangential + 1j * normal) * e
-        elif ideal:
-            f = i_f0 * (c * c) * e  # Eq. (11): f₀ cos²θ n
-        else:
-            x = q[0] + _exclusive_cumsum(seg * c) + half * c
-            fx, fy = loads.radiation_forces(p, x, theta)
-            f = fx + 1j * fy
-        carried = acc(f[::-1])[::-1]  # Σ_{k≥j} f_k
-        total = carried[0] + tension * (e[-1] - e[0])
-        Q[0], Q[1] = total.real, total.imag
-        carried -= f  # P_j = Σ_{k>j} f_k + T eₙ
-        if tension:
-            carried += tension * e[-1]
-        local = np.conj(e) * carried  # P_j in slice j's axes
-        torque = seg * local.imag + half * (np.conj(e) * f).imag
-        Q[idx] = acc(torque[::-1])[::-1]
-        if extensible:
-            Q[zidx] = local.real[:-1]
+        _generalized_force_into(np.asarray(q, dtype=np.float64), angle_index, stretch_index, constants, table, flags, Q)
         return Q
 
     return force
+
+
+@njit(cache=True)
+def _generalized_force_into(q, angle_index, stretch_index, k, table, flags, Q):
+    """Q of the net slice forces, the end tensions and a payload's frame force at coordinates q, written
+    into Q. Constants k: l, T, I₀, Ī, lW/c, R, α, x_c, w, c_n(0), the per-slice frame-force excess, the
+    payload's slice j (−1: none), its offsets along e_j and p_j from the slice centre, and −m_p g₀; table:
+    a packed optical table (empty: the R/α facet), flags: the slices carrying it turned over.
+
+        P_j = Σ_{k>j} f_k + T eₙ,  G_j = e_j^⊥ · [(l + z_j) P_j + (l/2) f_j],
+        Q_X, Q_Y = Σ_k f_k + T (eₙ − e₁),  Q_φk = Σ_{j≥k} G_j,  Q_zj = e_j · P_j.
+    """
+    l, tension, peak, mean, area_c, refl, absorb, center, waist = k[0], k[1], k[2], k[3], k[4], k[5], k[6], k[7], k[8]
+    momentum, excess, payload_slice, along, across, payload_fy = k[9], k[10], int(k[11]), k[12], k[13], k[14]
+    n = angle_index.size
+    extensible = stretch_index.size > 0
+    theta = np.empty(n)
+    c = np.empty(n)
+    s = np.empty(n)
+    fx = np.empty(n)
+    fy = np.empty(n)
+    half = 0.5 * l
+    angle = 0.0
+    x = q[0]
+    for j in range(n):
+        angle += q[angle_index[j]]
+        theta[j] = angle
+        c[j] = math.cos(angle)
+        s[j] = math.sin(angle)
+        if j > 0:  # centre of slice j from the centre of slice j − 1
+            seg = l + q[stretch_index[j - 1]] if extensible else l
+            x += (seg - half) * c[j - 1] + half * c[j]
+        else:
+            x += half * c[0]
+        local = gaussian_intensity(x, peak, center, waist)
+        if table.size:
+            fx[j], fy[j] = packed_net_force(table, local, mean, area_c, c[j], s[j], angle, flags[j] != 0.0, momentum)
+        else:
+            fx[j], fy[j] = net_slice_force(angle, c[j], s[j], local, mean, area_c, refl, absorb)
+        fy[j] += excess
+    px = tension * c[n - 1]  # P_j, carried across joint j, built from the free end
+    py = tension * s[n - 1]
+    torque = 0.0
+    for j in range(n - 1, -1, -1):
+        seg = l + q[stretch_index[j]] if extensible and j < n - 1 else l
+        torque += seg * (c[j] * py - s[j] * px) + half * (c[j] * fy[j] - s[j] * fx[j])
+        if j == payload_slice:  # −m_p g₀ ŷ at the payload, (l/2 + ρ_e) e_j + ρ_p p_j from hinge j
+            torque += ((half + along) * c[j] - across * s[j]) * payload_fy
+        Q[angle_index[j]] = torque
+        if extensible and j < n - 1:
+            Q[stretch_index[j]] = c[j] * px + s[j] * py
+        px += fx[j]
+        py += fy[j]
+        if j == payload_slice:
+            py += payload_fy
+    Q[0] = px - tension * c[0]
+    Q[1] = py - tension * s[0]
 
 
 def tree_arguments(p: SailParameters, layout: ChainLayout, exu) -> dict:
@@ -180,7 +238,7 @@ def tree_arguments(p: SailParameters, layout: ChainLayout, exu) -> dict:
     joint offset l from the previous slice's hinge, or 0 after a slide), massless PrismaticX
     slides at l along the previous slice; P/D control = springs/dampers with offset 0. A payload makes its
     slice's link the composite body of model/payload.py (mass M, centre of mass ρ_c from the slice centre,
-    inertia J_c); the tree's gravity −g₀ then carries the payload's frame force too."""
+    inertia J_c); the payload's frame force is in the net load (generalized_force)."""
     l, m, J = p.slice_length, p.slice_mass, p.slice_inertia
     size = layout.size
     types = [exu.JointType.PrismaticX, exu.JointType.PrismaticY] + [None] * (size - 2)
@@ -215,7 +273,7 @@ def tree_arguments(p: SailParameters, layout: ChainLayout, exu) -> dict:
         stiffness[i] = p.axial_stiffness
         damping[i] = p.total_axial_damping
     return dict(
-        gravity=[0.0, -p.nominal_acceleration, 0.0],
+        gravity=[0.0, 0.0, 0.0],  # the frame force is in the net load (generalized_force)
         jointTypes=types,
         linkParents=list(range(-1, size - 1)),
         jointTransformations=exu.Matrix3DList([np.eye(3)] * size),

@@ -33,7 +33,8 @@ caller owns a `workspace(n)`):
 1. Slices: cos θ_i, sin θ_i, the arms a_i and the abscissae x_i of the centres; the net applied force
    F_i on every slice from ONE function, `slice_forces_into` (angles and abscissae → forces: the
    radiation load of model/loads.py, Eq. 11 generalised to Gaussian beams and partial reflectors, plus
-   the frame force −m g₀ ŷ); then the follower end tensions −T e₁, T eₙ (Eq. 32), the torsion
+   the frame force −m g₀ ŷ, with their near-cancellation done analytically: loads.applied_forces, whose
+   compiled twin loads.net_slice_force is called here); then the follower end tensions −T e₁, T eₙ (Eq. 32), the torsion
    spring/damper torques on θ_{i+1} − θ_i (Eq. 23), the prescribed axial joint forces s_i e_i
    (extensible chain) and from them the unconstrained accelerations A⁰_i = (F_i, τ_i)/(m, J).
 2. Joints, forward: the right-hand side −g_i(Λ⁰) from A⁰ and w_i, assembled and eliminated in the
@@ -52,7 +53,8 @@ import numpy as np
 from numba import njit
 
 from lightsail_mbs.model import optics, payload
-from lightsail_mbs.model.optics import packed_slice_force
+from lightsail_mbs.model.loads import net_slice_force
+from lightsail_mbs.model.optics import packed_net_force
 from lightsail_mbs.model.parameters import SPEED_OF_LIGHT
 from lightsail_mbs.solvers.reduced.kinematics import ChainModel
 
@@ -73,7 +75,7 @@ from lightsail_mbs.solvers.reduced.kinematics import ChainModel
     CENTER,
     REFL,
     ABSORB,
-    FRAME,
+    MEAN_INTENSITY,
     EXTENSIBLE,
     UNIFORM,
     PAY_SLICE,
@@ -84,8 +86,11 @@ from lightsail_mbs.solvers.reduced.kinematics import ChainModel
     PAY_RE,
     PAY_RP,
     REST_TURN,
-) = range(26)
-N_CONSTANTS = 26
+    FRAME,
+    FRAME_EXCESS,
+    MOMENTUM,
+) = range(29)
+N_CONSTANTS = 29
 
 # rows of the workspace of one right-hand-side evaluation
 (COS, SIN, ARM, ABSCISSA, AX, AY, AL, I_XX, I_XY, I_YY, U_XX, U_XY, U_YY, R_X, R_Y) = range(15)
@@ -102,15 +107,19 @@ def constants(model: ChainModel) -> np.ndarray:
     k[INTENSITY], k[AREA_C] = p.intensity, p.slice_length * p.width / SPEED_OF_LIGHT
     k[WAIST] = 1.0 if p.uniform_beam else p.beam_waist
     k[CENTER], k[REFL], k[ABSORB] = p.beam_center, p.reflectivity, p.absorptivity
-    k[FRAME] = -p.slice_mass * p.nominal_acceleration
+    k[MEAN_INTENSITY] = p.mean_intensity  # the frame force is −(2R + α) Ī l W/c (loads.frame_force)
     k[EXTENSIBLE], k[UNIFORM] = float(model.extensible), float(p.uniform_beam)
     k[REST_TURN] = p.rest_turn  # the springs' rest angle between neighbours (a sail made curved)
+    k[FRAME] = -p.slice_mass * p.nominal_acceleration  # −m g₀ on each slice (the payload's is scaled from it)
+    k[MOMENTUM] = 2.0 * p.reflectivity + p.absorptivity if p.optics is None else p.optical_table().normal_at_zero
     k[PAY_SLICE] = -1.0  # a payload (model/payload.py): its composite slice j, M, J_c, ρ_c, ρ in slice j's axes
     attached = payload.attachment(p)
     if attached is not None:
         k[PAY_SLICE], k[PAY_MASS], k[PAY_INERTIA] = attached.slice_index, attached.mass, attached.inertia
         k[PAY_CE], k[PAY_CP] = attached.centre_along, attached.centre_across
         k[PAY_RE], k[PAY_RP] = attached.along, attached.across
+        # the net load's frame force is −c_n(0) Ī l W/c; the craft's is −m g₀ (0 without a payload)
+        k[FRAME_EXCESS] = k[MOMENTUM] * p.mean_intensity * k[AREA_C] + k[FRAME]
     if p.optics is not None:  # an optical table: the slices' flags and the packed table follow the constants
         k = np.concatenate([k, optics.solver_block(p)])
     return k
@@ -129,27 +138,30 @@ def slice_forces_into(theta, cth, sth, x, k, fx, fy):
 
     theta, cth, sth: slice angles θ_i and their cosines and sines; x: abscissae of the centres (read
     only by the Gaussian beam). Radiation f_i = (I(x_i) l W / c) cos θ_i [2R cos θ_i n_i + α ŷ]
-    (Eq. 11 for R = 1, α = 0; I = I₀ or I₀ exp(−2(x − x_c)²/w²)), plus the frame force −m g₀ ŷ; with an
-    optical table after the constants (case.optics), its law instead (optics.packed_slice_force).
+    (Eq. 11 for R = 1, α = 0; I = I₀ or I₀ exp(−2(x − x_c)²/w²)) plus the frame force
+    −(2R + α) Ī l W/c ŷ = −m g₀ ŷ, summed analytically by loads.net_slice_force: the two nearly cancel
+    (their sum is O(θ²) of each), and summing them in floating point would leave a round-off of
+    ε·m g₀ that the short waves of the chain amplify. With an optical table after the constants
+    (case.optics), its law in the same net form (optics.packed_net_force, frame force −c_n(0) Ī l W/c ŷ).
+    With a payload the craft accelerates at g₀ < c_n(0) Ī/(c ρ h); the difference of the frame forces,
+    c_n(0) Ī l W/c − m g₀ per slice (k[FRAME_EXCESS], a physical O(f₀) push the stem carries), is added.
     """
-    inten0, area_c, refl, absorb, frame = k[INTENSITY], k[AREA_C], k[REFL], k[ABSORB], k[FRAME]
+    inten0, area_c, refl, absorb, mean = k[INTENSITY], k[AREA_C], k[REFL], k[ABSORB], k[MEAN_INTENSITY]
     uniform = k[UNIFORM] != 0.0
+    excess, momentum = k[FRAME_EXCESS], k[MOMENTUM]
     n = theta.size
     table = k[N_CONSTANTS + n :]  # an optical table (model/optics.py), after the n slices' mirrored flags
     for i in range(n):
-        c, s = cth[i], sth[i]
         inten = inten0
         if not uniform:
             dx = (x[i] - k[CENTER]) / k[WAIST]
             inten *= math.exp(-2.0 * dx * dx)
         if table.size:
-            fx[i], fy[i] = packed_slice_force(table, inten * area_c, c, s, theta[i], k[N_CONSTANTS + i] != 0.0)
-            fy[i] += frame
-            continue
-        scale = inten * area_c * c
-        normal = 2.0 * refl * c * scale
-        fx[i] = -normal * s
-        fy[i] = normal * c + absorb * scale + frame
+            mirrored = k[N_CONSTANTS + i] != 0.0
+            fx[i], fy[i] = packed_net_force(table, inten, mean, area_c, cth[i], sth[i], theta[i], mirrored, momentum)
+        else:
+            fx[i], fy[i] = net_slice_force(theta[i], cth[i], sth[i], inten, mean, area_c, refl, absorb)
+        fy[i] += excess
 
 
 @njit(cache=True)

@@ -78,7 +78,7 @@ IMPLICIT = ("Radau", "BDF", "LSODA")
 # the steps. Radau at 1e-6: soft torsion to failure at n = 300 and 1000 moves ≤ 3e-6 relative from
 # rtol 1e-6 to 1e-9, and each decade costs it ~2× more steps.
 DEFAULT_RTOL = {"DOP853": 1e-8, "Radau": 1e-6}
-OPTIONS = ("max_step", "first_step")
+OPTIONS = ("max_step", "first_step", "perturbation")
 STIFFNESS_THRESHOLD = 25.0  # ω_max/ω_slow above which the implicit method is chosen (calibrated)
 FREE_FREE_BETA_L = 4.730040744862704  # β₁L of the lowest free–free beam mode
 RESOLVED_MODES = 10  # the lowest bending or string modes counted as motion the answer needs
@@ -139,7 +139,8 @@ def run(
     rtol: relative tolerance (default DEFAULT_RTOL[method], 1e-6 for scipy's methods); atol: absolute
     tolerance, a scalar or one value per state entry (default rtol × state_scales(model, ν)); method:
     "auto" (default: choose_method, from the case's stiffness), DOP853, Radau, RK45, BDF or LSODA;
-    options: max_step, first_step.
+    options: max_step, first_step, perturbation (m: the amplitude of the seeded roughness
+    shapes.initial_state adds to the start, the conditioning probe of solvers.uncertainty).
     """
     if params.boundary != "free" or params.tip_load != 0.0:  # validations: the dense constrained chain
         from lightsail_mbs.solvers.reduced import supports
@@ -165,7 +166,10 @@ def run(
     if atol is None:
         atol = rtol * state_scales(model, params.defect_mode)
 
-    start = shapes.initial_state(params)
+    perturbation = float(options.pop("perturbation", 0.0))
+    if not (perturbation >= 0 and np.isfinite(perturbation)):
+        raise ParameterError(f"perturbation={perturbation!r} is invalid: allowed a finite value ≥ 0 (m)")
+    start = shapes.initial_state(params, perturbation=perturbation)
     q0 = model.pack(start.x[0], start.y[0], start.theta, start.z)
     y0 = np.concatenate([q0, np.zeros_like(q0)])
     with compile_notice(method):  # one line on stderr if numba has to compile the kernels
@@ -187,6 +191,8 @@ def run(
             formulation="minimal coordinates, O(n) joint-force recursion (block LDLT), compiled; implicit: "
             "O(n) compliant-joint Newton matrix",
         )
+        if perturbation:
+            info["perturbation"] = perturbation
         return trajectory_result(model, settings, trajectory, wall_time=wall, error=error, info=info)
 
 
