@@ -34,6 +34,7 @@ if TYPE_CHECKING:
 KERNEL_SOURCES = (
     "model/loads.py",
     "model/optics.py",
+    "solvers/exudyn/tree.py",
     "solvers/reduced/dop853.py",
     "solvers/reduced/dynamics.py",
     "solvers/reduced/newton.py",

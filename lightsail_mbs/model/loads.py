@@ -138,9 +138,19 @@ def radiation_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tup
 
 
 def frame_force(p: SailParameters) -> float:
-    """y-component of the d'Alembert force −m g₀ = −(2R + α) Ī A/c on each slice in the accelerating
-    frame (N)."""
-    return -(2.0 * p.reflectivity + p.absorptivity) * p.mean_intensity * p.slice_length * p.width / SPEED_OF_LIGHT
+    """y-component of the d'Alembert force −m g₀ on each slice in the accelerating frame (N); without a
+    payload −m g₀ = −(2R + α) Ī A/c, the form :func:`applied_forces` cancels analytically."""
+    return -p.slice_mass * p.nominal_acceleration
+
+
+def frame_force_excess(p: SailParameters) -> float:
+    """(2R + α) Ī A/c − m g₀ on each slice (N): the net form's frame force minus the craft's. Exactly 0
+    without a payload; with a payload of mass m_p the craft accelerates at g₀ M/(M + m_p), and the
+    difference, a physical O(f₀) push that the stem carries, is added to the net force."""
+    if p.payload_mass == 0:
+        return 0.0
+    momentum = 2.0 * p.reflectivity + p.absorptivity if p.optics is None else p.optical_table().normal_at_zero
+    return momentum * p.mean_intensity * p.slice_length * p.width / SPEED_OF_LIGHT + frame_force(p)
 
 
 def applied_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -157,7 +167,7 @@ def applied_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tuple
     two_r = 2.0 * p.reflectivity
     fx = -push * two_r * c * c * s
     fy = -push * (two_r * one_minus_cos * (1.0 + c + c * c) + p.absorptivity * one_minus_cos)
-    fy = fy + (two_r + p.absorptivity) * area_c * (local - p.mean_intensity)
+    fy = fy + (two_r + p.absorptivity) * area_c * (local - p.mean_intensity) + frame_force_excess(p)
     return fx, fy
 
 

@@ -45,7 +45,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from lightsail_mbs.model import optics, payload, shapes
+from lightsail_mbs.model import loads, optics, payload, shapes
 from lightsail_mbs.model.loads import gaussian_intensity, net_slice_force
 from lightsail_mbs.model.optics import packed_net_force
 from lightsail_mbs.model.parameters import SPEED_OF_LIGHT, SailParameters
@@ -140,9 +140,7 @@ def generalized_force(p: SailParameters, layout: ChainLayout):
     """
     momentum = 2.0 * p.reflectivity + p.absorptivity if p.optics is None else p.optical_table().normal_at_zero
     attached = payload.attachment(p)
-    # the net form's frame force −c_n(0) Ī l W/c per slice against the craft's −m g₀ (equal without a payload)
-    excess = 0.0 if attached is None else momentum * p.mean_intensity * p.slice_length * p.width / SPEED_OF_LIGHT
-    excess -= 0.0 if attached is None else p.slice_mass * p.nominal_acceleration
+    excess = loads.frame_force_excess(p)  # c_n(0) Ī l W/c − m g₀ on each slice (0 without a payload)
     angle_index = np.ascontiguousarray(layout.angle_index, dtype=np.int64)
     stretch_index = np.ascontiguousarray(layout.stretch_index, dtype=np.int64)
     constants = np.array(

@@ -52,7 +52,7 @@ import math
 import numpy as np
 from numba import njit
 
-from lightsail_mbs.model import optics, payload
+from lightsail_mbs.model import loads, optics, payload
 from lightsail_mbs.model.loads import net_slice_force
 from lightsail_mbs.model.optics import packed_net_force
 from lightsail_mbs.model.parameters import SPEED_OF_LIGHT
@@ -107,7 +107,7 @@ def constants(model: ChainModel) -> np.ndarray:
     k[INTENSITY], k[AREA_C] = p.intensity, p.slice_length * p.width / SPEED_OF_LIGHT
     k[WAIST] = 1.0 if p.uniform_beam else p.beam_waist
     k[CENTER], k[REFL], k[ABSORB] = p.beam_center, p.reflectivity, p.absorptivity
-    k[MEAN_INTENSITY] = p.mean_intensity  # the frame force is −(2R + α) Ī l W/c (loads.frame_force)
+    k[MEAN_INTENSITY] = p.mean_intensity  # the net form's frame force is −(2R + α) Ī l W/c
     k[EXTENSIBLE], k[UNIFORM] = float(model.extensible), float(p.uniform_beam)
     k[REST_TURN] = p.rest_turn  # the springs' rest angle between neighbours (a sail made curved)
     k[FRAME] = -p.slice_mass * p.nominal_acceleration  # −m g₀ on each slice (the payload's is scaled from it)
@@ -118,8 +118,7 @@ def constants(model: ChainModel) -> np.ndarray:
         k[PAY_SLICE], k[PAY_MASS], k[PAY_INERTIA] = attached.slice_index, attached.mass, attached.inertia
         k[PAY_CE], k[PAY_CP] = attached.centre_along, attached.centre_across
         k[PAY_RE], k[PAY_RP] = attached.along, attached.across
-        # the net load's frame force is −c_n(0) Ī l W/c; the craft's is −m g₀ (0 without a payload)
-        k[FRAME_EXCESS] = k[MOMENTUM] * p.mean_intensity * k[AREA_C] + k[FRAME]
+        k[FRAME_EXCESS] = loads.frame_force_excess(p)  # c_n(0) Ī l W/c − m g₀ (0 without a payload)
     if p.optics is not None:  # an optical table: the slices' flags and the packed table follow the constants
         k = np.concatenate([k, optics.solver_block(p)])
     return k
