@@ -36,6 +36,12 @@ def test_cached_kernels_are_dropped_when_any_kernel_source_changes(tmp_path, mon
     cache_everything()
     lightsail_mbs._drop_stale_kernels()  # sources unchanged: the cache stays
     assert all(p.exists() for p in cached)
+    radau = package / "solvers" / "reduced" / "radau.py"
+    stamp = radau.stat().st_mtime_ns
+    radau.write_text(radau.read_text())  # the same content written anew (as pip installs it): a new time stamp
+    os.utime(radau, ns=(radau.stat().st_atime_ns, stamp + 3_000_000_000))
+    lightsail_mbs._drop_stale_kernels()  # content as recorded: its time stamp is restored, the cache stays
+    assert radau.stat().st_mtime_ns == stamp and all(p.exists() for p in cached)
     dynamics = package / "solvers" / "reduced" / "dynamics.py"
     dynamics.write_text("# kernel, edited\n")
     os.utime(dynamics, ns=(dynamics.stat().st_atime_ns, dynamics.stat().st_mtime_ns + 1_000_000_000))

@@ -49,9 +49,9 @@ MUTATIONS = [
         "exudyn-load",
         "paper-case tests' wide windows (1.5–2.3 s)",
         "lightsail_mbs/solvers/exudyn/tree.py",
-        "f = i_f0 * (c * c) * e  # Eq. (11): f₀ cos²θ n",
-        "f = i_f0 * c * e  # Eq. (11): f₀ cos²θ n",
-        "Exudyn's inline Eq. 11 loses a cos θ (the projected area): f₀ cos θ n",
+        "fx[j], fy[j] = net_slice_force(angle, c[j], s[j], local, mean, area_c, refl, absorb)",
+        "fx[j], fy[j] = net_slice_force(angle, c[j], s[j], local, mean, area_c, 0.95 * refl, absorb)",
+        "Exudyn's net slice force is handed a reflectivity 5 % low (a wrong constant in its load)",
         (
             "tests/solvers/exudyn/test_chain.py::test_soft_torsion_fails_near_two_seconds",
             "tests/test_references.py::test_soft_torsion_failure_time_exudyn",
@@ -62,8 +62,8 @@ MUTATIONS = [
         "reduced-rtol",
         "paper-case tests' wide windows (1.5–2.3 s)",
         "lightsail_mbs/solvers/reduced/solver.py",
-        'DEFAULT_RTOL = {"DOP853": 1e-9, "Radau": 1e-6}',
-        'DEFAULT_RTOL = {"DOP853": 1e-6, "Radau": 1e-6}',
+        'DEFAULT_RTOL = {"DOP853": 1e-8, "Radau": 1e-6}',
+        'DEFAULT_RTOL = {"DOP853": 1e-5, "Radau": 1e-6}',
         "the reduced solver's default DOP853 tolerance loosened 1000× (a tempting speed-up)",
         ("tests/solvers/reduced/test_solver.py::test_soft_torsion_fails_like_the_paper_and_converges",),
         ("tests/solvers/reduced/test_solver.py::test_soft_torsion_fails_like_the_paper_and_converges",),
@@ -72,8 +72,8 @@ MUTATIONS = [
         "radau-rtol",
         "paper-case tests' wide windows (1.5–2.5 s, membrane)",
         "lightsail_mbs/solvers/reduced/solver.py",
-        'DEFAULT_RTOL = {"DOP853": 1e-9, "Radau": 1e-6}',
-        'DEFAULT_RTOL = {"DOP853": 1e-9, "Radau": 1e-5}',
+        'DEFAULT_RTOL = {"DOP853": 1e-8, "Radau": 1e-6}',
+        'DEFAULT_RTOL = {"DOP853": 1e-8, "Radau": 1e-5}',
         "the reduced solver's default Radau tolerance (the extensible membrane) loosened 10×",
         ("tests/solvers/reduced/test_solver.py::test_tnt_soft_fails_like_the_paper_and_converges",),
         ("tests/solvers/reduced/test_solver.py::test_tnt_soft_fails_like_the_paper_and_converges",),
@@ -105,9 +105,9 @@ MUTATIONS = [
         "linear-load-dropped",
         "test_stability's rigid case (every ω² exactly zero)",
         "lightsail_mbs/analysis/linear_stability.py",
-        "return beam(q).copy() - tension_only(q) + _frame_force(p, layout, q)",
-        "return 0.0 * beam(q) + _frame_force(p, layout, q)",
-        "Exudyn's linearisation loses the radiation load (only the frame force is left)",
+        "return beam(q).copy() - tension_only(q)",
+        "return 0.0 * (beam(q).copy() - tension_only(q))",
+        "Exudyn's linearisation loses the net load (radiation and frame force)",
         ("tests/analysis/test_linear_stability.py::test_exudyn_load_stiffness_is_the_axial_first_order_load[rigid]",),
         (
             "tests/analysis/test_linear_stability.py::"
@@ -257,13 +257,18 @@ MUTATIONS = [
 
 
 def copy_repository(target: Path) -> None:
-    """Tracked files (with their modification times) and the package's numba caches."""
+    """Tracked files (with their modification times), the package's numba caches and the record of the kernel
+    sources they were compiled from (lightsail_mbs._drop_stale_kernels)."""
     files = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True).stdout
     for name in files.decode().split("\0"):
         if name and (ROOT / name).is_file():
             (target / name).parent.mkdir(parents=True, exist_ok=True)
             shutil.copy2(ROOT / name, target / name)
-    for cache in (ROOT / "lightsail_mbs").rglob("__pycache__/*.nb[ic]"):
+    caches = [
+        *(ROOT / "lightsail_mbs").rglob("__pycache__/*.nb[ic]"),
+        ROOT / "lightsail_mbs/__pycache__/numba-kernel-sources",
+    ]
+    for cache in filter(Path.is_file, caches):
         destination = target / cache.relative_to(ROOT)
         destination.parent.mkdir(parents=True, exist_ok=True)
         shutil.copy2(cache, destination)
