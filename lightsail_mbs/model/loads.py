@@ -149,8 +149,7 @@ def frame_force_excess(p: SailParameters) -> float:
     difference, a physical O(f₀) push that the stem carries, is added to the net force."""
     if p.payload_mass == 0:
         return 0.0
-    momentum = 2.0 * p.reflectivity + p.absorptivity if p.optics is None else p.optical_table().normal_at_zero
-    return momentum * p.mean_intensity * p.slice_length * p.width / SPEED_OF_LIGHT + frame_force(p)
+    return p.normal_momentum * p.mean_intensity * p.slice_length * p.width / SPEED_OF_LIGHT + frame_force(p)
 
 
 def applied_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -504,14 +504,19 @@ class SailParameters:
         return mean
 
     @property
+    def normal_momentum(self) -> float:
+        """c_n(0): the momentum the flat sail takes from the light, per photon momentum incident on it —
+        2R + α for the R/α facet (2 for the paper's mirror), the table's c_n(0) with an optical table."""
+        if self.optics is None:
+            return 2.0 * self.reflectivity + self.absorptivity
+        return self.optical_table().normal_at_zero
+
+    @property
     def nominal_acceleration(self) -> float:
         """g₀ = (2R + α) Ī / (c ρ h): the flat sail's acceleration (Eq. 4, first order, for R = 1,
         α = 0 and a uniform beam: 2 I₀ / (c ρ h)); with an optical table, c_n(0) Ī / (c ρ h); with a payload
         of mass m_p, times M_sail/(M_sail + m_p) (the whole craft accelerates)."""
-        if self.optics is None:
-            momentum = 2.0 * self.reflectivity + self.absorptivity
-        else:
-            momentum = self.optical_table().normal_at_zero
+        momentum = self.normal_momentum
         if self.payload_mass > 0:  # the whole craft accelerates: c_n(0) Ī L W / (c (M_sail + m_p))
             sail = self.density * self.thickness * self.length * self.width
             return (

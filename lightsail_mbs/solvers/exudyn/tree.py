@@ -138,9 +138,7 @@ def generalized_force(p: SailParameters, layout: ChainLayout):
     (about 5 µs a call at n = 30): it runs at every Newton iterate or explicit stage. Returns the same
     array, overwritten, at every call.
     """
-    momentum = 2.0 * p.reflectivity + p.absorptivity if p.optics is None else p.optical_table().normal_at_zero
     attached = payload.attachment(p)
-    excess = loads.frame_force_excess(p)  # c_n(0) Ī l W/c − m g₀ on each slice (0 without a payload)
     angle_index = np.ascontiguousarray(layout.angle_index, dtype=np.int64)
     stretch_index = np.ascontiguousarray(layout.stretch_index, dtype=np.int64)
     constants = np.array(
@@ -154,8 +152,8 @@ def generalized_force(p: SailParameters, layout: ChainLayout):
             p.absorptivity,
             p.beam_center,
             p.beam_waist,
-            momentum,
-            excess,
+            p.normal_momentum,
+            loads.frame_force_excess(p),  # c_n(0) Ī l W/c − m g₀ on each slice (0 without a payload)
             -1.0 if attached is None else attached.slice_index,
             0.0 if attached is None else attached.along,
             0.0 if attached is None else attached.across,

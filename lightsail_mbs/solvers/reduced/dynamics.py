@@ -111,7 +111,7 @@ def constants(model: ChainModel) -> np.ndarray:
     k[EXTENSIBLE], k[UNIFORM] = float(model.extensible), float(p.uniform_beam)
     k[REST_TURN] = p.rest_turn  # the springs' rest angle between neighbours (a sail made curved)
     k[FRAME] = -p.slice_mass * p.nominal_acceleration  # −m g₀ on each slice (the payload's is scaled from it)
-    k[MOMENTUM] = 2.0 * p.reflectivity + p.absorptivity if p.optics is None else p.optical_table().normal_at_zero
+    k[MOMENTUM] = p.normal_momentum
     k[PAY_SLICE] = -1.0  # a payload (model/payload.py): its composite slice j, M, J_c, ρ_c, ρ in slice j's axes
     attached = payload.attachment(p)
     if attached is not None:
