@@ -44,6 +44,23 @@ def synthetic_sheet(steps=5, t_final=1.0) -> Result:
     return Result.from_tiles(p, "synthetic", times, centres, zero, zero, zero, settings=RunSettings(t_final=t_final))
 
 
+def plate(boundary: str, tiles: int = 9, **changes) -> SailParameters:
+    """A square sheet of tiles × tiles as an unlit Kirchhoff plate (L = W = 1 m, h = 1 cm, E = 1.2e9 Pa, so
+    D = 100 N m) under a uniform pressure of 0.01 Pa, with the given edge support."""
+    return SailParameters(
+        model="sheet",
+        n=tiles,
+        ny=tiles,
+        thickness=0.01,
+        youngs_modulus=1.2e9,
+        intensity=0.0,
+        defect_amplitude=0.0,
+        pressure=0.01,
+        boundary=boundary,
+        **changes,
+    )
+
+
 def read_csv(path) -> list[dict]:
     with open(path, newline="") as handle:
         return list(csv.DictReader(handle))

@@ -4,8 +4,8 @@ import math
 
 import pytest
 
-from lightsail_mbs import SailParameters
 from lightsail_mbs.model import plate_theory
+from tests.helpers import plate
 
 
 def test_navier_series_gives_the_tabulated_centre_deflection():
@@ -19,18 +19,7 @@ def test_navier_series_gives_the_tabulated_centre_deflection():
 
 
 def test_frequencies_and_centre_deflections_of_a_sheet_case():
-    p = SailParameters(
-        model="sheet",
-        n=9,
-        ny=9,
-        thickness=0.01,
-        youngs_modulus=1.2e9,
-        boundary="clamped",
-        pressure=0.01,
-        defect_amplitude=0.0,
-        intensity=0.0,
-        edge_tension=2.0,
-    )
+    p = plate("clamped", edge_tension=2.0)
     D = 1.2e9 * 1e-6 / 12
     assert plate_theory.bending_rigidity(p) == pytest.approx(D)
     assert plate_theory.centre_deflection(p) == pytest.approx(0.00126532 * 0.01 / D)

@@ -8,6 +8,7 @@ from lightsail_mbs import ParameterError, RunSettings, SailParameters, solve
 from lightsail_mbs.model import plate_theory, sheet
 from lightsail_mbs.solvers.exudyn import sheet as exudyn_sheet
 from lightsail_mbs.solvers.reduced import sheet as reduced_sheet
+from tests.helpers import plate
 
 SOFT = dict(model="sheet", youngs_modulus=4.5e9)
 
@@ -64,17 +65,7 @@ def test_sheet_with_one_defect_across_is_the_chain():
 
 
 def test_plate_statics_and_modes_on_a_coarse_grid():
-    p = SailParameters(
-        model="sheet",
-        n=9,
-        ny=9,
-        thickness=0.01,
-        youngs_modulus=1.2e9,
-        intensity=0.0,
-        defect_amplitude=0.0,
-        pressure=0.01,
-        boundary="clamped",
-    )
+    p = plate("clamped")
     w = exudyn_sheet.static_centres(p)[40, 2]
     assert w == pytest.approx(reduced_sheet.static_centres(p)[40, 2], rel=1e-9)
     assert w == pytest.approx(plate_theory.centre_deflection(p), rel=0.11)  # 9 × 9: +10 % (grid error)

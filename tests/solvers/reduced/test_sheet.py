@@ -10,6 +10,7 @@ import pytest
 from lightsail_mbs import RunSettings, SailParameters, solve
 from lightsail_mbs.model import plate_theory, sheet, theory
 from lightsail_mbs.solvers.reduced import sheet as reduced_sheet
+from tests.helpers import plate
 
 SOFT = dict(model="sheet", youngs_modulus=4.5e9)
 
@@ -76,17 +77,7 @@ def test_sheet_with_one_defect_across_is_the_chain():
 def test_simply_supported_plate_statics_and_modes_on_a_coarse_grid():
     """9 × 9 tiles: the centre deflection within 0.2 % of Navier, the first four frequencies within 2.5 %
     (grid error, shrinking with refinement: the slow tests hold 19 × 19 to 1 %)."""
-    p = SailParameters(
-        model="sheet",
-        n=9,
-        ny=9,
-        thickness=0.01,
-        youngs_modulus=1.2e9,
-        intensity=0.0,
-        defect_amplitude=0.0,
-        pressure=0.01,
-        boundary="simply_supported",
-    )
+    p = plate("simply_supported")
     w = reduced_sheet.static_centres(p)[40, 2]
     assert w == pytest.approx(plate_theory.centre_deflection(p), rel=2e-3)
     omega = reduced_sheet.eigenfrequencies(p.replace(pressure=0.0), 4)
@@ -154,17 +145,7 @@ def test_stiff_sheet_survives_with_the_chains_amplitude_ratio():
 def test_plate_statics_within_two_percent_at_39_and_modes_within_one_percent_at_19(boundary):
     """Kirchhoff plates under uniform pressure: centre deflection within 2 % of Timoshenko's at 39 × 39 and
     closer than at 19 × 19; the simply supported plate's first four frequencies within 1 % at 19 × 19."""
-    p = SailParameters(
-        model="sheet",
-        n=39,
-        ny=39,
-        thickness=0.01,
-        youngs_modulus=1.2e9,
-        intensity=0.0,
-        defect_amplitude=0.0,
-        pressure=0.01,
-        boundary=boundary,
-    )
+    p = plate(boundary, tiles=39)
     exact = plate_theory.centre_deflection(p)
     fine = reduced_sheet.static_centres(p)[19 * 39 + 19, 2]
     coarse = reduced_sheet.static_centres(p.replace(n=19, ny=19))[9 * 19 + 9, 2]
