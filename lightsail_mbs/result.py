@@ -287,6 +287,13 @@ class Result:
         return u.get("uncertainty") if u.get("estimated") and u.get("quantity") == "max_amplitude_ratio" else None
 
     @property
+    def base_wall_time(self) -> float:
+        """Wall time (s) of the base run alone; ``wall_time`` is the sum over every run when the uncertainty
+        was estimated (solvers.uncertainty)."""
+        u = self.uncertainty or {}
+        return float(u["base"]["wall_time"]) if "base" in u else self.wall_time
+
+    @property
     def well_conditioned(self) -> bool | None:
         """Whether the answer is insensitive to perturbations at round-off level; None when not estimated."""
         return (self.uncertainty or {}).get("well_conditioned")

@@ -92,6 +92,14 @@ def test_soft_torsion_failure_time_exudyn():
     )
 
 
+@pytest.mark.parametrize("solver", ["reduced", "exudyn"])
+def test_soft_torsion_reported_failure_time(solver):
+    """The answer `simulate` prints: the tightest run of the uncertainty estimate."""
+    reported = lightsail_mbs.solve(paper_case("torsion-soft"), solver, paper_settings("torsion-soft"))
+    assert reported.uncertainty["reported"] == "tight"
+    assert_held(f"soft_torsion_reported_{solver}", reported.failure_time)
+
+
 def test_stable_torsion_frequency_and_amplitude():
     r = solve(paper_case("torsion-stable"), "reduced", paper_settings("torsion-stable"))
     assert r.error is None and not r.failed

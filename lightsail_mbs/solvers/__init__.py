@@ -9,7 +9,7 @@ How to run a case:
 3. ``result = solve(params, "reduced", settings)`` (or ``"exudyn"``), with the solver's own options
    as keywords (Exudyn: ``step_size``, ``newton_rel_tol``, …; reduced: ``rtol``, ``method``, …).
 4. Read the :class:`~lightsail_mbs.result.Result`: ``result.failure_time``, its
-   ``result.failure_time_uncertainty`` and ``result.well_conditioned`` (two twin runs, on by default:
+   ``result.failure_time_uncertainty`` and ``result.well_conditioned`` (twin runs, on by default:
    :mod:`lightsail_mbs.solvers.uncertainty`), ``result.summary()``, ``result.save("run.npz")``.
 
 The chain and the sheet are dispatched by ``params.model`` (``SOLVERS``, ``SHEET_SOLVERS``). Each
@@ -67,9 +67,10 @@ def solve(
     progress : bool
         Show a progress bar on stderr.
     uncertainty : bool
-        Estimate the answer's uncertainty and conditioning from two twin runs (tolerances tightened;
-        start perturbed at round-off level), stored in ``Result.uncertainty``
-        (:mod:`lightsail_mbs.solvers.uncertainty`); costs about 2–4 more runs. Sweeps turn it off.
+        Estimate the answer's uncertainty and conditioning from twin runs (tolerances tightened; start
+        perturbed at round-off level), stored in ``Result.uncertainty``; the Result returned is then the
+        tightest run's (:mod:`lightsail_mbs.solvers.uncertainty`). Costs about 2–7 more runs. Sweeps
+        turn it off.
     **options
         The solver's own numerical options (see its module); an unknown one raises ParameterError.
     """
@@ -85,5 +86,5 @@ def solve(
         if uncertainty:
             from lightsail_mbs.solvers import uncertainty as estimate
 
-            result.uncertainty = estimate.assess(module, params, settings, options, result)
+            result = estimate.assess(module, params, settings, options, result)
     return result

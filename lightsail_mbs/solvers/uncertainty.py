@@ -1,44 +1,52 @@
-"""How sure a run is of its answer: an error bar and a conditioning verdict from two twin runs.
+"""How sure a run is of its answer: an error bar and a conditioning verdict from twin runs.
 
 The answer q of a run is its failure time t_f when the sail fails within the run, else its largest
-amplitude ratio max a(t)/a(0). Two more runs of the same solver say how far q can be trusted:
+amplitude ratio max a(t)/a(0). With the estimate on, a run is a short sequence of runs of the same
+solver, and the one reported is the most accurate of them:
 
-1. **Tight twin** — the same run with every tolerance divided by a factor F (rtol, and atol or the
-   Newton tolerances if given; a fixed step divided by √F, the methods with a fixed step being second
-   order). F = TIGHTEN for the adaptive methods; F = STEP_TIGHTEN = 16 (the step quartered) for
-   generalized-α, whose error in the peak amplitude ratio of an oscillating survivor is not yet in its h²
-   regime at the default step, so that a half-step twin underestimates it; F = WIDE_TIGHTEN = 100 for the
-   reduced solver's DOP853, which crosses a whole run in 20–50 steps at its default rtol, where its error
-   is not yet proportional to rtol (a seeded case: the failure time moves by 1.0e-4, 3.5e-4 and 2.0e-4 s
-   per decade from rtol 1e-8 to 1e-11), so that a one-decade twin underestimates it (measured on seeded
-   random cases: validation/accuracy.md). Its runs are cheap, so two decades cost little. With an error
-   proportional to the tolerance, the base run's
-   integration error is
+1. **A tolerance sequence.** The base run (the solver's default or given tolerances) is repeated with
+   every tolerance divided by a factor F (rtol, and atol or the Newton tolerances if given; a fixed
+   step divided by √F, the methods with a fixed step being second order):
 
-       E_int = |q_tight − q| / (1 − 1/F).
+   - the adaptive methods: one twin, F = TIGHTEN; F = WIDE_TIGHTEN for the reduced solver's DOP853,
+     which crosses a whole run in 20–50 steps at its default rtol, where its error is not yet
+     proportional to rtol (a seeded case: the failure time moves by 1.0e-4, 3.5e-4 and 2.0e-4 s per
+     decade from rtol 1e-8 to 1e-11);
+   - generalized-α (a fixed step h): two twins, at h/2 (F = HALF_TIGHTEN) and h/4
+     (F = STEP_TIGHTEN). At its default step its error is not in its h² regime: the answers of a
+     seeded torsion case at h, h/2, h/4 and h/8 are 1.8158656, 1.8158639, 1.8158687 and 1.8158751 s
+     against 1.8158771 s (validation/accuracy.md), not monotone, so no order can be assumed.
 
-2. **Probe twin** — the same run started from the shape plus a seeded roughness of PROBE_LEVEL · a₀ at
+   The **reported run is the tightest one** (the last of the sequence), and its integration error is
+   bounded by the spread of the sequence, no order of convergence assumed:
+
+       E_int = Σ |q_(k+1) − q_k|   over the sequence base, (h/2,) tight.
+
+   If the error falls by at least half per tightening, the tight run's error is at most the last
+   difference, which E_int contains; in the asymptotic regime E_int overstates it by about F.
+
+2. **Probe twin** — the base run started from the shape plus a seeded roughness of PROBE_LEVEL · a₀ at
    every wavelength the chain carries (shapes.roughness_profile with seed shapes.PERTURBATION_SEED, the
    same for every solver): a perturbation at the level of the solvers' own round-off (a few 1e-16 of
    coordinates of order L) and a million times below any real film's roughness. Its effect
 
-       S = |q_probe − q|
+       S = |q_probe − q_base|
 
    is a property of the question, not of the solver: where the chain's unstable short waves grow
    from perturbations this small, the answer is set by whatever perturbation a run starts from.
 
-The uncertainty of q is U = SAFETY · (E_int + S), and the run is **well-conditioned** when
+The uncertainty of the reported q is U = SAFETY · (E_int + S), and the run is **well-conditioned** when
 S ≤ CONDITION_TOL · |q|. When a twin's verdict differs (one fails within the run, the other not), U is
 infinite and the run ill-conditioned: the sail is at its stability boundary for that run length.
 
-Measured (validation/accuracy.md, 32 seeded random cases of every model): the two solvers' answers
-differ by less than their combined U in 29 of 32 cases (the misses: generalized-α's quarter-step
-estimate, too small where its error is not yet in its h² regime), and by ≤ 1e-3 relative on 28 of the 29
-well-conditioned ones.
+Measured: validation/accuracy.md (seeded random cases of every model: how often the two solvers'
+difference lies within their combined U, and how close they are on the well-conditioned ones).
 
-The estimate costs two more runs (the tight one 1.5–3× a base run). It is on for single runs
-(``solve(..., uncertainty=True)``, the default, and ``lightsail-mbs simulate``); sweeps run without it
-and say so in their outputs.
+The estimate costs the twin runs: 3–4 base runs for the adaptive methods (the tight one 1.5–3× a base
+run), 8 for generalized-α (2 + 4 + 1 more). It is on for single runs (``solve(..., uncertainty=True)``,
+the default, and ``lightsail-mbs simulate``); sweeps run the base run alone and say so in their outputs.
+The reported Result is the tight run's (its trajectories, answer and info), its ``wall_time`` the sum of
+every run's, and ``Result.uncertainty`` records each run (options, answer, wall time).
 """
 
 from __future__ import annotations
@@ -49,14 +57,15 @@ from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.solvers.settings import RunSettings
 
 TIGHTEN = 10.0  # the tight twin's tolerances are the base run's / TIGHTEN (adaptive methods)
-STEP_TIGHTEN = 16.0  # generalized-α (a fixed step): tolerances / 16, the step / 4
 WIDE_TIGHTEN = 100.0  # the reduced solver's DOP853: rtol / 100
+HALF_TIGHTEN = 4.0  # generalized-α (a fixed step): the middle twin, tolerances / 4, the step / 2
+STEP_TIGHTEN = 16.0  # generalized-α: the tight twin, tolerances / 16, the step / 4
 PROBE_LEVEL = 1e-12  # the probe twin's roughness amplitude, in units of the defect amplitude a₀
 SAFETY = 2.0  # U = SAFETY · (E_int + S)
 CONDITION_TOL = 1e-4  # well-conditioned: S ≤ CONDITION_TOL · |q|
 RULE = (
-    f"U = {SAFETY:g}·(E_int + S); E_int = |q(tolerances/F) − q|/(1 − 1/F), F = {TIGHTEN:g} "
-    f"(generalized-α: {STEP_TIGHTEN:g}, the step / {math.sqrt(STEP_TIGHTEN):g}; DOP853: {WIDE_TIGHTEN:g}); "
+    f"reported: the run at tolerances/F; U = {SAFETY:g}·(E_int + S); E_int = Σ|q_(k+1) − q_k| over the runs at "
+    f"tolerances/1, /F: F = {TIGHTEN:g} (DOP853: {WIDE_TIGHTEN:g}; generalized-α: the step /1, /2, /4); "
     f"S = |q(start + seeded roughness {PROBE_LEVEL:g} a₀) − q|; well-conditioned when S ≤ {CONDITION_TOL:g}·|q|"
 )
 
@@ -68,17 +77,30 @@ def answer(result) -> tuple[str, bool, float]:
     return "max_amplitude_ratio", False, float(result.max_amplitude_ratio)
 
 
+def is_fixed_step(info: dict) -> bool:
+    """Whether the base run is generalized-α at a fixed step (Exudyn's chains and sheets)."""
+    return info.get("method") == "generalized-alpha"
+
+
 def tightening(info: dict) -> float:
-    """F of the base run (module docstring): STEP_TIGHTEN for generalized-α, WIDE_TIGHTEN for DOP853, else
-    TIGHTEN."""
+    """F of the tight twin (module docstring): STEP_TIGHTEN for generalized-α, WIDE_TIGHTEN for DOP853,
+    else TIGHTEN."""
     method = info.get("method")
-    return STEP_TIGHTEN if method == "generalized-alpha" else WIDE_TIGHTEN if method == "DOP853" else TIGHTEN
+    return STEP_TIGHTEN if is_fixed_step(info) else WIDE_TIGHTEN if method == "DOP853" else TIGHTEN
 
 
-def tightened(options: dict, info: dict) -> dict:
-    """The tight twin's options: rtol (the one the base run used, from its info) and atol or the Newton
-    tolerances, if given, divided by F = tightening(info); a fixed step divided by √F."""
-    factor = tightening(info)
+def sequence(info: dict) -> list[tuple[str, float]]:
+    """The twins of the tolerance sequence after the base run: (name, F), the tightest last."""
+    if is_fixed_step(info):
+        return [("half", HALF_TIGHTEN), ("tight", STEP_TIGHTEN)]
+    return [("tight", tightening(info))]
+
+
+def tightened(options: dict, info: dict, factor: float | None = None) -> dict:
+    """A twin's options: rtol (the one the base run used, from its info) and atol or the Newton tolerances,
+    if given, divided by F (default tightening(info)); a fixed step divided by √F — the given one, or the
+    base run's (info) when the solver has no rtol to derive it from."""
+    factor = tightening(info) if factor is None else factor
     tight = dict(options)
     if "rtol" in info:
         tight["rtol"] = float(info["rtol"]) / factor
@@ -89,6 +111,8 @@ def tightened(options: dict, info: dict) -> dict:
             )
     if options.get("step_size") is not None:
         tight["step_size"] = options["step_size"] / math.sqrt(factor)
+    elif "rtol" not in info and info.get("step_size") is not None:
+        tight["step_size"] = float(info["step_size"]) / math.sqrt(factor)
     return tight
 
 
@@ -96,41 +120,58 @@ def not_estimated(reason: str) -> dict:
     return {"estimated": False, "well_conditioned": None, "uncertainty": None, "explanation": reason, "rule": RULE}
 
 
-def assess(module, params: SailParameters, settings: RunSettings, options: dict, result) -> dict:
-    """The uncertainty record of `result` (a run of solver module `module` with `options`): runs the two
-    twins and returns the dict stored as Result.uncertainty (module docstring)."""
+def record_of(run, options: dict) -> dict:
+    """What the uncertainty record keeps of one run: its options, wall time, error and answer."""
+    record = {"options": options, "wall_time": run.wall_time, "error": run.error}
+    if run.error is None:
+        _, failed, value = answer(run)
+        record.update(failed=failed, value=value)
+    return record
+
+
+def assess(module, params: SailParameters, settings: RunSettings, options: dict, result):
+    """The Result to report for `result` (a run of solver module `module` with `options`), with its
+    uncertainty record (Result.uncertainty): runs the twins (module docstring) and returns the tightest
+    run, or `result` itself when no estimate can be made."""
+    reason = None
     if result.error is not None:
-        return not_estimated(f"not estimated: the run ended with a solver error ({result.error})")
-    if params.boundary != "free" or params.tip_load:
-        return not_estimated("not estimated: supports and tip loads are validations, not sails")
-    if not result.amplitude[0] > 0:
-        return not_estimated("not estimated: the sail starts flat (no amplitude ratio to measure)")
+        reason = f"not estimated: the run ended with a solver error ({result.error})"
+    elif params.boundary != "free" or params.tip_load:
+        reason = "not estimated: supports and tip loads are validations, not sails"
+    elif not result.amplitude[0] > 0:
+        reason = "not estimated: the sail starts flat (no amplitude ratio to measure)"
+    if reason is not None:
+        result.uncertainty = not_estimated(reason)
+        return result
     quantity, failed, value = answer(result)
-    twins = {}
-    tight_options = tightened(options, result.info)
-    probe_options = {**options, "perturbation": PROBE_LEVEL * params.displacement_scale}
-    for name, twin_options in (("tight", tight_options), ("probe", probe_options)):
-        twin = module.run(params, settings, progress=False, **twin_options)
-        record = {"options": twin_options, "wall_time": twin.wall_time, "error": twin.error}
-        if twin.error is None:
-            twin_quantity, twin_failed, twin_value = answer(twin)
-            record.update(failed=twin_failed, value=twin_value)
-        twins[name] = record
-    for name, record in twins.items():
+    records = {"base": record_of(result, options)}
+    runs = {"base": result}
+    twins = [(name, tightened(options, result.info, factor)) for name, factor in sequence(result.info)]
+    twins.append(("probe", {**options, "perturbation": PROBE_LEVEL * params.displacement_scale}))
+    for name, twin_options in twins:
+        runs[name] = module.run(params, settings, progress=False, **twin_options)
+        records[name] = record_of(runs[name], twin_options)
+    total_wall = sum(record["wall_time"] for record in records.values())
+    for name, record in records.items():
         if record["error"] is not None:
-            return {
+            result.uncertainty = {
                 **not_estimated(f"not estimated: the {name} twin ended with a solver error ({record['error']})"),
                 "quantity": quantity,
                 "value": value,
-                **twins,
+                **records,
             }
-    tight, probe = twins["tight"], twins["probe"]
-    factor = tightening(result.info)
-    integration = abs(tight["value"] - value) / (1.0 - 1.0 / factor) if tight["failed"] == failed else math.inf
-    sensitivity = abs(probe["value"] - value) if probe["failed"] == failed else math.inf
+            return result
+    order = ["base", *(name for name, _ in sequence(result.info))]
+    reported = runs[order[-1]]
+    quantity, failed, value = answer(reported)
+    steps = [records[b]["value"] - records[a]["value"] for a, b in zip(order, order[1:])]
+    same_verdict = all(records[name]["failed"] == failed for name in order)
+    integration = sum(abs(d) for d in steps) if same_verdict else math.inf
+    probe, base = records["probe"], records["base"]
+    sensitivity = abs(probe["value"] - base["value"]) if probe["failed"] == base["failed"] else math.inf
     uncertainty = SAFETY * (integration + sensitivity)
     well = sensitivity <= CONDITION_TOL * abs(value)
-    return {
+    reported.uncertainty = {
         "estimated": True,
         "quantity": quantity,
         "value": value,
@@ -138,14 +179,16 @@ def assess(module, params: SailParameters, settings: RunSettings, options: dict,
         "integration_error": integration,
         "sensitivity": sensitivity,
         "well_conditioned": bool(well),
-        "explanation": explain(params, quantity, value, integration, sensitivity, well, failed, tight, probe),
+        "explanation": explain(params, quantity, value, integration, sensitivity, well, failed),
         "rule": RULE,
-        "tight": tight,
-        "probe": probe,
+        "reported": order[-1],
+        **records,
     }
+    reported.wall_time = total_wall
+    return reported
 
 
-def explain(params, quantity, value, integration, sensitivity, well, failed, tight, probe) -> str:
+def explain(params, quantity, value, integration, sensitivity, well, failed) -> str:
     """One paragraph: how sure the run is and, when it is ill-conditioned, why and what would change it."""
     what = "failure time" if quantity == "failure_time" else "largest amplitude ratio"
     shortest = 2.0 * params.length / params.n

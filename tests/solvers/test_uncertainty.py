@@ -54,16 +54,21 @@ def test_ill_conditioned_case_is_flagged_and_says_why(solver):
     [("torsion-soft", "failure_time", 2.5), ("tnt-stable", "max_amplitude_ratio", 1.0)],
 )
 def test_uncertainty_covers_the_difference_to_a_quarter_step(case, kind, t_final):
-    """Generalized-α at a fixed step h: the answer at h/4 lies within the run's uncertainty."""
+    """Generalized-α asked for a step h reports its run at h/4 (the tightest of h, h/2, h/4); the answer at
+    a quarter of that step, h/16, lies within the reported uncertainty."""
     p = paper_case(case, n=20)
     settings = RunSettings(t_final=t_final)
     h = 2e-3
-    coarse = solve(p, "exudyn", settings, step_size=h)
-    fine = solve(p, "exudyn", settings, step_size=h / 4, uncertainty=False)
-    value = coarse.failure_time if kind == "failure_time" else coarse.max_amplitude_ratio
+    reported = solve(p, "exudyn", settings, step_size=h)
+    fine = solve(p, "exudyn", settings, step_size=h / 16, uncertainty=False)
+    u = reported.uncertainty
+    assert u["quantity"] == kind and u["reported"] == "tight"
+    assert [u[name]["options"]["step_size"] for name in ("base", "half", "tight")] == pytest.approx([h, h / 2, h / 4])
+    assert reported.info["step_size"] == pytest.approx(h / 4)
+    value = reported.failure_time if kind == "failure_time" else reported.max_amplitude_ratio
     fine_value = fine.failure_time if kind == "failure_time" else fine.max_amplitude_ratio
-    assert coarse.uncertainty["quantity"] == kind and coarse.uncertainty["tight"]["options"]["step_size"] < h
-    assert abs(fine_value - value) <= coarse.uncertainty["uncertainty"]
+    assert value == u["value"] == u["tight"]["value"]
+    assert abs(fine_value - value) <= u["uncertainty"]
     assert abs(fine_value - value) > 0  # a real difference, not an exact repeat
 
 
@@ -97,6 +102,48 @@ def test_tight_twin_options():
     quarter = uncertainty.tightened({"step_size": 1e-3}, {"rtol": 1e-7, "method": "generalized-alpha"})
     assert quarter["step_size"] == pytest.approx(2.5e-4) and quarter["rtol"] == pytest.approx(1e-7 / 16)
     assert uncertainty.tightened({}, {"rtol": 1e-8, "method": "DOP853"})["rtol"] == pytest.approx(1e-10)
+
+
+def test_twin_sequences():
+    assert uncertainty.sequence({"method": "generalized-alpha", "rtol": 1e-7}) == [("half", 4.0), ("tight", 16.0)]
+    assert uncertainty.sequence({"method": "DOP853", "rtol": 1e-8}) == [("tight", 100.0)]
+    assert uncertainty.sequence({"method": "Radau", "rtol": 1e-6}) == [("tight", 10.0)]
+    # a fixed-step solver without an rtol (Exudyn's sheet): the twin's step is the base run's / √F
+    half = uncertainty.tightened({}, {"method": "generalized-alpha", "step_size": 1e-3}, 4.0)
+    assert half == {"step_size": pytest.approx(5e-4)}
+
+
+class FakeSolver:
+    """A solver whose failure time is a given function of its step: the rule's bookkeeping in isolation."""
+
+    def __init__(self, failure_time):
+        self.failure_time = failure_time
+
+    def run(self, params, settings, progress=False, step_size=1e-3, perturbation=0.0):
+        from types import SimpleNamespace
+
+        t_f = self.failure_time(step_size) + (1e-9 if perturbation else 0.0)
+        info = {"method": "generalized-alpha", "step_size": step_size}
+        return SimpleNamespace(
+            error=None, amplitude=[1.0], failed=True, failure_time=t_f, info=info, wall_time=1.0, uncertainty=None
+        )
+
+
+def test_reported_run_is_the_tightest_and_its_error_bar_the_spread_of_the_sequence():
+    """Answers at h, h/2, h/4 that do not converge monotonically (as generalized-α at its default step):
+    E_int is the sum of the two differences, whatever the order."""
+    answers = {1e-3: 1.0, 5e-4: 1.0 - 2e-6, 2.5e-4: 1.0 + 5e-6}
+    solver = FakeSolver(lambda h: answers[min(answers, key=lambda k: abs(k - h))])
+    p = paper_case("torsion-soft", n=10)
+    base = solver.run(p, RUN)
+    reported = uncertainty.assess(solver, p, RUN, {}, base)
+    u = reported.uncertainty
+    assert reported is not base and reported.failure_time == pytest.approx(1.0 + 5e-6)
+    assert u["reported"] == "tight" and u["value"] == reported.failure_time
+    assert u["integration_error"] == pytest.approx(2e-6 + 7e-6)
+    assert u["sensitivity"] == pytest.approx(1e-9)
+    assert u["uncertainty"] == pytest.approx(2 * (9e-6 + 1e-9))
+    assert reported.wall_time == pytest.approx(4.0)  # base, h/2, h/4 and the probe
 
 
 @pytest.mark.parametrize(

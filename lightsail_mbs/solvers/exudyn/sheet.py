@@ -311,6 +311,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     info = {
         "formulation": "rigid tiles (NodeRigidBodyRxyz) and ObjectConnectorRigidBodySpringDamper edges, "
         "generalized-alpha, modified Newton, sparse LU",
+        "method": "generalized-alpha",
         "step_size": h,
         "newton_rel_tol": rel_tol,
         "newton_abs_tol": abs_tol,
