@@ -225,6 +225,28 @@ def sequence_text(row: dict) -> str:
     return f"case {row['case']}: " + "; ".join(parts)
 
 
+def probe_case(seed: int) -> None:
+    """Print case `seed`'s answer under the variations of --probe-case (one line each)."""
+    from lightsail_mbs.solvers.exudyn.chain import DEFAULT_RTOL, default_step_size, top_frequency
+
+    p, settings = random_case(seed)
+    h = default_step_size(p, settings)
+    print(f"case {seed}: {describe(p, settings)}; Exudyn step h = {h:.3g} s, ω_max h = {top_frequency(p) * h:.3g}")
+    for spectral_radius in (1.0, 0.9, 0.6):
+        for divisor in (1, 4):
+            r = solve(
+                p,
+                "exudyn",
+                settings,
+                uncertainty=False,
+                rtol=DEFAULT_RTOL / divisor**2,
+                spectral_radius=spectral_radius,
+            )
+            print(f"  exudyn ρ∞ = {spectral_radius:g}, h/{divisor}: {answer(r)[0]} {answer(r)[1]:.10g}", flush=True)
+    r = solve(p, "reduced", settings, uncertainty=False, rtol=1e-11)
+    print(f"  reduced ({r.info['method']}) rtol 1e-11: {answer(r)[0]} {answer(r)[1]:.10g}")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cases", type=int, default=CASES, help=f"number of seeded cases [{CASES}]")
@@ -235,7 +257,17 @@ def main() -> None:
         choices=("exudyn", "reduced"),
         help="with --resume: run this solver again on the finished rows (after a change to it), keep the other",
     )
+    parser.add_argument(
+        "--probe-case",
+        type=int,
+        metavar="SEED",
+        help="instead: case SEED's answer from Exudyn at its step h and h/4 with the numerical damping "
+        "ρ∞ = 1, 0.9, 0.6, and from the reduced solver at rtol 1e-11 (what step refinement does not see)",
+    )
     args = parser.parse_args()
+    if args.probe_case is not None:
+        probe_case(args.probe_case)
+        return
     start = time.perf_counter()
     done = {}
     if args.resume and ROWS.exists():

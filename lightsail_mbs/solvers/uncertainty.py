@@ -39,8 +39,10 @@ The uncertainty of the reported q is U = SAFETY · (E_int + S), and the run is *
 S ≤ CONDITION_TOL · |q|. When a twin's verdict differs (one fails within the run, the other not), U is
 infinite and the run ill-conditioned: the sail is at its stability boundary for that run length.
 
-Measured: validation/accuracy.md (seeded random cases of every model: how often the two solvers'
-difference lies within their combined U, and how close they are on the well-conditioned ones).
+Measured (validation/accuracy.md, 32 seeded random cases of every model): the two solvers' answers
+differ by less than their combined U in 31 of 32 cases, and by ≤ 1e-3 relative (at most 7.6e-5) on all
+29 well-conditioned ones. The miss is an extensible chain whose axial springs neither solver resolves
+(ω_max h ≈ 2200): the answers differ by 1.9e-6 relative while each moves by ≤ 2e-7 along its sequence.
 
 The estimate costs the twin runs: 3–4 base runs for the adaptive methods (the tight one 1.5–3× a base
 run), 8 for generalized-α (2 + 4 + 1 more). It is on for single runs (``solve(..., uncertainty=True)``,
