@@ -160,3 +160,17 @@ def test_reported_run_is_the_tightest_and_its_error_bar_the_spread_of_the_sequen
 )
 def test_value_with_uncertainty_text(value, u, text):
     assert with_uncertainty(value, u) == text
+
+
+def test_exudyn_sheet_estimate_refines_its_step():
+    """Exudyn's sheet has no rtol: its twins halve and quarter the step it ran with."""
+    from lightsail_mbs.solvers.exudyn.sheet import default_step_size
+
+    p = SailParameters(model="sheet", n=4, ny=3, youngs_modulus=4.5e9)
+    settings = RunSettings(t_final=0.3)
+    reported = solve(p, "exudyn", settings)
+    u = reported.uncertainty
+    h = default_step_size(p, settings)
+    assert u["half"]["options"]["step_size"] == pytest.approx(h / 2)
+    assert reported.info["step_size"] == pytest.approx(h / 4)
+    assert u["integration_error"] > 0 and u["uncertainty"] >= 2 * u["integration_error"]
