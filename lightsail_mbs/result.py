@@ -41,6 +41,7 @@ ARRAYS = ("time", "x", "y", "theta", "z", "vx", "vy", "omega", "z_rate", "amplit
 # the sheet's tile arrays (T, N, 3): saved and loaded only when a Result has them
 TILE_ARRAYS = ("tile_centres", "tile_angles", "tile_velocities", "tile_angular_velocities")
 FORMAT = "lightsail-mbs result"  # the "format" entry of a saved run's summary
+TABLE_PREFIX = "optics_table_"  # the .npz arrays of the optical table a run used (Result.save)
 FORMAT_VERSION = 2  # 1: no format entry, run control inside "parameters"
 # what a saved summary must hold (format 1 files too)
 SUMMARY_ENTRIES = ("solver", "parameters", "wall_time", "error", "info")
@@ -341,6 +342,7 @@ class Result:
             "warnings": self.warnings,
             "info": self.info,
             "parameters": self.params.to_dict(),
+            "optics_table_sha256": self.params.optics_digest,
             "settings": self.settings.to_dict(),
             "provenance": self.provenance,
             "format": FORMAT,
@@ -351,13 +353,18 @@ class Result:
     def save(self, path) -> Path:
         """Write PATH.npz (arrays + summary) and PATH.json (summary); returns the .npz path.
 
-        Each file is written to a temporary file in the same folder and then renamed over its name, so a
-        run killed while saving leaves the previous file or none, never a truncated one."""
+        A case whose force law is an optical table file carries a copy of the table in the .npz (arrays
+        ``optics_table_*``; its digest in the summary), so that the run can be read and repeated after the
+        file is moved or rewritten (:meth:`load`). Each file is written to a temporary file in the same
+        folder and then renamed over its name, so a run killed while saving leaves the previous file or
+        none, never a truncated one."""
         path = Path(path).with_suffix(".npz")
         path.parent.mkdir(parents=True, exist_ok=True)
         summary = json.dumps(self.summary(), indent=2, default=_jsonable)
         arrays = {k: getattr(self, k) for k in ARRAYS}
         arrays.update({k: getattr(self, k) for k in TILE_ARRAYS if getattr(self, k) is not None})
+        if self.params.optics_file:
+            arrays.update({TABLE_PREFIX + k: v for k, v in self.params.optical_table().to_arrays().items()})
         write_atomically(path, lambda handle: np.savez_compressed(handle, summary_json=np.array(summary), **arrays))
         write_atomically(path.with_suffix(".json"), lambda handle: handle.write((summary + "\n").encode()))
         return path
@@ -369,6 +376,10 @@ class Result:
         Raises RunFileError, naming the file, if it is missing, is not a NumPy archive, is truncated or
         corrupt, is not a whole saved run (a summary entry or an array missing, arrays of the wrong type
         or of shapes that do not fit the case), or holds a case that is not valid here.
+
+        An optical table file the case names that is gone or holds another table than the run's is
+        replaced by the copy saved with the run (:func:`~lightsail_mbs.model.optics.stored_copy`), and a
+        warning in ``Result.warnings`` says so.
         """
         path = Path(path)
         if not path.is_file():
@@ -385,6 +396,7 @@ class Result:
                 summary = json.loads(str(data["summary_json"]))
                 arrays = {k: np.array(data[k]) for k in ARRAYS}
                 arrays.update({k: np.array(data[k]) for k in TILE_ARRAYS if k in data.files})
+                table = {k[len(TABLE_PREFIX) :]: np.array(data[k]) for k in data.files if k.startswith(TABLE_PREFIX)}
         except RunFileError:
             raise
         except (OSError, ValueError, EOFError, KeyError, zipfile.BadZipFile, zlib.error) as exc:
@@ -405,6 +417,10 @@ class Result:
         if not isinstance(parameters, dict):
             raise RunFileError(f"{path}: not a whole saved run (its parameters are not a JSON object)")
         settings = summary.get("settings") or {k: parameters[k] for k in RUN_FIELDS if k in parameters}
+        warnings = list(summary.get("warnings", []))
+        if table:
+            parameters, note = _with_saved_table(path, parameters, table)
+            warnings += [note] if note else []
         try:
             params, settings = SailParameters.from_dict(parameters), RunSettings.from_dict(settings)
         except (ParameterError, TypeError) as exc:
@@ -418,10 +434,35 @@ class Result:
             info=summary["info"],
             settings=settings,
             provenance=summary.get("provenance", {}),
-            warnings=summary.get("warnings", []),
+            warnings=warnings,
             uncertainty=summary.get("uncertainty"),
             **arrays,
         )
+
+
+def _with_saved_table(path: Path, parameters: dict, arrays: dict) -> tuple[dict, str | None]:
+    """(parameters, warning): the saved run's parameters with ``optics`` pointing at the table saved in it
+    when the file it names is gone or holds another table, and the warning that says so (None when the
+    file is the run's table)."""
+    from lightsail_mbs.model import optics
+
+    try:
+        saved = optics.OpticalTable.from_arrays(arrays, f"{path} (its optical table)")
+    except optics.OpticsFileError as exc:
+        raise RunFileError(str(exc)) from None
+    named = parameters.get("optics")
+    try:
+        if optics.read_table(named).digest == saved.digest:
+            return parameters, None
+        state = "holds another table"
+    except optics.OpticsFileError:
+        state = "cannot be read"
+    copy = optics.stored_copy(saved)
+    note = (
+        f"optics: the table file {named} {state}; this run used the table saved with it, now at {copy} "
+        f"(digest {saved.digest})"
+    )
+    return {**parameters, "optics": str(copy)}, note
 
 
 def with_uncertainty(value: float | None, uncertainty: float | None, digits: int = 6) -> str:

@@ -71,3 +71,15 @@ def read_image(path) -> np.ndarray:
     from PIL import Image
 
     return np.asarray(Image.open(path).convert("RGB"))
+
+
+def table_file(path, scale: float = 1.9):
+    """A small optical table file at `path`: c_n = scale·cos²θ, c_t = 0.01·cos²θ·sin 2θ on |θ| ≤ 1.2 rad."""
+    import numpy as np
+
+    from lightsail_mbs.model import optics
+
+    theta = optics.node_grid(1.2, 0.05)
+    c2 = np.cos(theta) ** 2
+    table = optics.OpticalTable.from_samples(theta, scale * c2, 0.01 * c2 * np.sin(2 * theta), (), "TE")
+    return table.save(path)

@@ -254,3 +254,31 @@ def test_damaged_or_foreign_files_are_one_run_file_error_naming_the_file(tmp_pat
             Result.load(tmp_path / name)
         message = str(err.value)
         assert message.startswith(str(tmp_path / name)) and words in message and "\n" not in message, message
+
+
+def test_a_run_with_a_table_file_outlives_the_file(tmp_path, monkeypatch):
+    """The table is saved with the run: gone or rewritten, the run loads with its own table (a warning says
+    so) and repeats bit for bit."""
+    from lightsail_mbs import solve
+    from tests.helpers import table_file
+
+    monkeypatch.setenv("LIGHTSAIL_MBS_CACHE", str(tmp_path / "cache"))
+    table = table_file(tmp_path / "grating.npz")
+    p = SailParameters(model="torsion", n=8, youngs_modulus=4.5e9, optics=str(table))
+    settings = RunSettings(t_final=0.2)
+    run = solve(p, "reduced", settings, uncertainty=False)
+    saved = run.save(tmp_path / "run.npz")
+    digest = p.optics_digest
+    assert json.loads((tmp_path / "run.json").read_text())["optics_table_sha256"] == digest
+    same = Result.load(saved)
+    assert same.params == p and same.warnings == run.warnings
+    table.unlink()
+    gone = Result.load(saved)
+    assert "cannot be read" in gone.warnings[-1] and "\n" not in gone.warnings[-1]
+    assert gone.params.optics != p.optics and gone.params.optics_digest == digest
+    again = solve(gone.params, "reduced", settings, uncertainty=False)
+    np.testing.assert_array_equal(again.theta, run.theta)
+    table_file(tmp_path / "grating.npz", scale=1.8)  # another table at the run's path
+    rewritten = Result.load(saved)
+    assert "holds another table" in rewritten.warnings[-1] and rewritten.params.optics_digest == digest
+    assert Result.load(saved).params.optics == gone.params.optics  # one copy, named by its digest

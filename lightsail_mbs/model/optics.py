@@ -257,10 +257,16 @@ class OpticalTable:
         return np.ascontiguousarray(np.concatenate([head, self.theta, self.coef_n.ravel(), self.coef_t.ravel()]))
 
     # ---- files ----------------------------------------------------------------------------------
-    def save(self, path) -> Path:
-        """Write the table as .npz (module docstring) and return the path."""
-        path = Path(path)
-        check("out", str(path), path.suffix == ".npz", "a path ending in .npz")
+    @property
+    def digest(self) -> str:
+        """SHA-256 (hex, 16 digits) of what the solvers use: the packed law (packed()) and the polarisation.
+        Two tables with the same digest give the same runs."""
+        h = hashlib.sha256(self.packed().tobytes())
+        h.update(self.polarization.encode())
+        return h.hexdigest()[:16]
+
+    def to_arrays(self) -> dict:
+        """The table as the named arrays of its .npz file (module docstring)."""
         meta = {
             **self.metadata,
             "format": FORMAT,
@@ -270,8 +276,7 @@ class OpticalTable:
             "tangential_constant": self.tangential_constant,
             "bounded": self.bounded,
         }
-        path.parent.mkdir(parents=True, exist_ok=True)
-        arrays = dict(
+        return dict(
             theta=self.theta,
             s_n=self.s_n,
             s_t=self.s_t,
@@ -282,7 +287,45 @@ class OpticalTable:
             metadata=np.array(json.dumps(meta, sort_keys=True)),
             **{f"extra_{k}": np.asarray(v) for k, v in self.extra.items()},
         )
-        _atomic_savez(path, arrays)
+
+    @classmethod
+    def from_arrays(cls, arrays, source: str) -> OpticalTable:
+        """The table of arrays named as by :meth:`to_arrays` (a mapping, e.g. an open .npz); OpticsFileError
+        names `source` and what is wrong."""
+        try:
+            meta = json.loads(str(arrays["metadata"]))
+            if meta.get("format") != FORMAT:
+                raise OpticsFileError(f"{source}: not an optical table (format {meta.get('format')!r})")
+            if meta.get("format_version") != FORMAT_VERSION:
+                raise OpticsFileError(
+                    f"{source}: optical table format version {meta.get('format_version')!r}; this version reads "
+                    f"{FORMAT_VERSION} (write the table again)"
+                )
+            extra = {k[6:]: np.array(arrays[k]) for k in arrays if k.startswith("extra_")}
+            values = [np.array(arrays[k]) for k in ("theta", "s_n", "s_t", "coef_n", "coef_t")]
+        except OpticsFileError:
+            raise
+        except (OSError, ValueError, KeyError) as exc:
+            raise OpticsFileError(f"{source}: not a readable optical table ({exc})") from None
+        try:
+            return cls(
+                *values,
+                normal_constant=meta["normal_constant"],
+                tangential_constant=meta["tangential_constant"],
+                bounded=bool(meta["bounded"]),
+                polarization=meta["polarization"],
+                metadata=meta,
+                extra=extra,
+            )
+        except (KeyError, ParameterError) as exc:
+            raise OpticsFileError(f"{source}: inconsistent optical table ({exc})") from None
+
+    def save(self, path) -> Path:
+        """Write the table as .npz (module docstring) and return the path."""
+        path = Path(path)
+        check("out", str(path), path.suffix == ".npz", "a path ending in .npz")
+        path.parent.mkdir(parents=True, exist_ok=True)
+        _atomic_savez(path, self.to_arrays())
         return path
 
     @classmethod
@@ -293,32 +336,11 @@ class OpticalTable:
             raise OpticsFileError(f"{path}: no such optical table file")
         try:
             with np.load(path, allow_pickle=False) as d:
-                meta = json.loads(str(d["metadata"]))
-                if meta.get("format") != FORMAT:
-                    raise OpticsFileError(f"{path}: not an optical table (format {meta.get('format')!r})")
-                if meta.get("format_version") != FORMAT_VERSION:
-                    raise OpticsFileError(
-                        f"{path}: optical table format version {meta.get('format_version')!r}; this version reads "
-                        f"{FORMAT_VERSION} (write the table again)"
-                    )
-                extra = {k[6:]: np.array(d[k]) for k in d.files if k.startswith("extra_")}
-                arrays = [np.array(d[k]) for k in ("theta", "s_n", "s_t", "coef_n", "coef_t")]
+                return cls.from_arrays({k: d[k] for k in d.files}, str(path))
         except OpticsFileError:
             raise
         except (OSError, ValueError, KeyError) as exc:
             raise OpticsFileError(f"{path}: not a readable optical table ({exc})") from None
-        try:
-            return cls(
-                *arrays,
-                normal_constant=meta["normal_constant"],
-                tangential_constant=meta["tangential_constant"],
-                bounded=bool(meta["bounded"]),
-                polarization=meta["polarization"],
-                metadata=meta,
-                extra=extra,
-            )
-        except (KeyError, ParameterError) as exc:
-            raise OpticsFileError(f"{path}: inconsistent optical table ({exc})") from None
 
     def summary(self) -> dict:
         """What `lightsail-mbs optics info` prints: kind, polarisation, range, nodes, c_n(0), c_t(0), metadata."""
@@ -354,6 +376,15 @@ def read_table(path) -> OpticalTable:
             _READ_CACHE.clear()
         _READ_CACHE[key] = OpticalTable.load(path)
     return _READ_CACHE[key]
+
+
+def stored_copy(table: OpticalTable) -> Path:
+    """A file holding `table`, named by its digest in the cache (:func:`cache_directory`): written once,
+    the same path for the same table."""
+    path = cache_directory() / f"table-{table.digest}.npz"
+    if not (path.is_file() and read_table(path).digest == table.digest):
+        table.save(path)
+    return path
 
 
 # ---- compiled evaluation -------------------------------------------------------------------------

@@ -414,6 +414,17 @@ class SailParameters:
         except optics.OpticsFileError as exc:
             raise ParameterError(f"optics={self.optics!r} is invalid: {exc}") from None
 
+    @property
+    def optics_file(self) -> bool:
+        """Whether the force law comes from a table file (``optics`` is a path)."""
+        return self.optics not in (None, "mirror")
+
+    @property
+    def optics_digest(self) -> str | None:
+        """The digest of the table file's content (OpticalTable.digest) when ``optics`` is a path, else None:
+        what identifies the case's force law, since the file at a path can be rewritten."""
+        return self.optical_table().digest if self.optics_file else None
+
     # ---- derived quantities (paper Sec. III) -------------------------------------------------
     @property
     def slice_length(self) -> float:

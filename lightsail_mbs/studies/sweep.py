@@ -64,9 +64,12 @@ class Case:
 
     def description(self) -> dict:
         """What the key identifies: the case and its run settings in one parameter dict (under the
-        field names of the store's key format, STORED_NAMES), the solver and its options."""
+        field names of the store's key format, STORED_NAMES; with an optical table file, the digest of its
+        content, so that a rewritten table is a new case), the solver and its options."""
         parameters = {STORED_NAMES.get(k, k): v for k, v in self.params.to_dict().items()}
         parameters.update(self.settings.to_dict())
+        if self.params.optics_file:
+            parameters["optics_sha256"] = self.params.optics_digest
         description = {"parameters": parameters, "solver": self.solver, "options": self.options}
         if self.uncertainty:
             description["uncertainty"] = True

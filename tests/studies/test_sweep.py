@@ -46,6 +46,18 @@ def test_key_identifies_parameters_solver_and_options():
         Case(p, "fake", {"bad": object()})
 
 
+def test_key_follows_the_content_of_an_optical_table_file(tmp_path):
+    """A table file rewritten at the same path is a new case: its finished records are not served."""
+    from tests.helpers import table_file
+
+    path = table_file(tmp_path / "grating.npz")
+    p = SailParameters(optics=str(path))
+    first = Case(p, "fake").key
+    assert Case(SailParameters(optics=str(path)), "fake").key == first
+    table_file(path, scale=1.8)
+    assert Case(SailParameters(optics=str(path)), "fake").key != first
+
+
 def test_keys_of_stores_written_before_run_settings_are_unchanged():
     """The key hashes the case and its run in the key format of before the split (parameters named amplitude,
     mode, defect_modes, with t_final & co. among them): the same case and run have the same key as then."""
