@@ -16,6 +16,7 @@ commands, minimum over the repeats. Every table states the load average it was m
 from __future__ import annotations
 
 import argparse
+import functools
 import math
 import os
 import resource
@@ -28,7 +29,11 @@ from pathlib import Path
 
 import numpy as np
 
-from lightsail_mbs import paper_case, paper_settings, solve
+from lightsail_mbs import paper_case, paper_settings
+from lightsail_mbs import solve as solve_with_estimate
+
+solve = functools.partial(solve_with_estimate, uncertainty=False)  # single runs: no error bars in this report
+
 
 ROOT = Path(__file__).resolve().parent.parent
 SOFT_SIZES = (100, 300, 1000, 3000)

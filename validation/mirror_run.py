@@ -20,15 +20,19 @@ Writes validation/mirror_run.md:
 """
 
 import argparse
+import functools
 import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-from lightsail_mbs import RunSettings, paper_case, solve
+from lightsail_mbs import RunSettings, paper_case
+from lightsail_mbs import solve as solve_with_estimate
 from lightsail_mbs.model import optics, rcwa
 from lightsail_mbs.solvers.settings import paper_settings
+
+solve = functools.partial(solve_with_estimate, uncertainty=False)  # single runs: no error bars in this report
 
 OUT = Path(__file__).resolve().parent
 CASES = ("torsion-stable", "torsion-soft", "tnt-stable", "tnt-soft")

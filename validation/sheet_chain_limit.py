@@ -15,16 +15,20 @@ steps, with the load computed without cancellation (loads.facet_forces): whether
 that limit. Writes validation/sheet_chain_limit.md.
 """
 
+import functools
 import os
 import sys
 from pathlib import Path
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-from lightsail_mbs import RunSettings, SailParameters, solve  # noqa: E402
+from lightsail_mbs import RunSettings, SailParameters  # noqa: E402
+from lightsail_mbs import solve as solve_with_estimate  # noqa: E402
 from lightsail_mbs.model import sheet  # noqa: E402
 from lightsail_mbs.solvers.exudyn.sheet import round_off_warning  # noqa: E402
 from lightsail_mbs.studies.tables import fmt  # noqa: E402
+
+solve = functools.partial(solve_with_estimate, uncertainty=False)  # single runs: no error bars in this report
 
 HERE = Path(__file__).resolve().parent
 SOFT_MEMBRANE = 4.5e9

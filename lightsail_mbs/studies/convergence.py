@@ -250,14 +250,16 @@ def converge(
     for n in sizes:
         case = params.replace(n=n)
         start = time.process_time()
-        result = solve(case, "reduced", settings, **options)
+        result = solve(case, "reduced", settings, uncertainty=False, **options)
         cpu = time.process_time() - start
         value, kind = answer(result)
         method = result.info.get("method", "")
         tolerance_noise = None
         if noise and value is not None:
             rtol = options.get("rtol") or DEFAULT_RTOL.get(method, 1e-6)
-            tight = solve(case, "reduced", settings, **{**options, "method": method, "rtol": rtol / 10})
+            tight = solve(
+                case, "reduced", settings, uncertainty=False, **{**options, "method": method, "rtol": rtol / 10}
+            )
             tight_value, tight_kind = answer(tight)
             if tight_value is not None and tight_kind == kind:
                 tolerance_noise = abs(tight_value - value)
