@@ -39,7 +39,11 @@ def comparable(record: dict) -> str:
 
 def assert_same_records(store, records, reference_store, reference):
     """Records equal but for their timings, and their saved Results equal array for array, bit for bit."""
-    assert [comparable(r) for r in records] == [comparable(r) for r in reference]
+    for record, ref in zip(records, reference):
+        mine, theirs = json.loads(comparable(record)), json.loads(comparable(ref))
+        differing = sorted(k for k in mine.keys() | theirs.keys() if mine.get(k) != theirs.get(k))
+        assert not differing, {k: (mine.get(k), theirs.get(k)) for k in differing}
+    assert len(records) == len(reference)
     for record, ref in zip(records, reference):
         mine, theirs = Result.load(store / record["result_path"]), Result.load(reference_store / ref["result_path"])
         for name in ARRAYS:
