@@ -95,6 +95,18 @@ def _interpolate(interp, y_old, x, out):
 
 
 @njit(cache=True)
+def _stages(first, stop, y, h, K, stage, k, work):
+    """Stages first … stop − 1 of the tableau: K[s] = f(y + h Σ_{j<s} A[s, j] K[j])."""
+    for s in range(first, stop):
+        for i in range(y.size):
+            acc = 0.0
+            for j in range(s):
+                acc += A[s, j] * K[j, i]
+            stage[i] = y[i] + h * acc
+        rhs_into(stage, k, work, K[s])
+
+
+@njit(cache=True)
 def advance(k, state, y, f, interp, y_old, t_bound, rtol, atol, max_step, samples, out):
     """Step from state = [t, |h|, steps, nfev, t_old, h_old] until every time in `samples` is passed,
     writing the interpolated states into the rows of out. Returns (status, samples written).
@@ -135,13 +147,7 @@ def advance(k, state, y, f, interp, y_old, t_bound, rtol, atol, max_step, sample
             h_abs = h
             for i in range(size):
                 K[0, i] = f[i]
-            for s in range(1, STAGES):
-                for i in range(size):
-                    acc = 0.0
-                    for j in range(s):
-                        acc += A[s, j] * K[j, i]
-                    stage[i] = y[i] + h * acc
-                rhs_into(stage, k, work, K[s])
+            _stages(1, STAGES, y, h, K, stage, k, work)
             for i in range(size):
                 acc = 0.0
                 for j in range(STAGES):
@@ -184,13 +190,7 @@ def advance(k, state, y, f, interp, y_old, t_bound, rtol, atol, max_step, sample
             state[0], state[1] = t, h_abs
             return NOT_FINITE, written
         if samples[written] <= t_new:
-            for s in range(STAGES + 1, 16):
-                for i in range(size):
-                    acc = 0.0
-                    for j in range(s):
-                        acc += A[s, j] * K[j, i]
-                    stage[i] = y[i] + h * acc
-                rhs_into(stage, k, work, K[s])
+            _stages(STAGES + 1, 16, y, h, K, stage, k, work)
             state[3] += 3
             for i in range(size):
                 d0 = y_new[i] - y[i]
