@@ -196,12 +196,8 @@ class Result:
             time,
             **arrays,
             amplitude=amplitude,
-            wall_time=float(wall_time),
-            error=error,
-            info=dict(info or {}),
-            settings=settings or RunSettings(),
-            provenance=provenance(),
             warnings=shapes.defect_warnings(params, float(amplitude[0])),
+            **_run_record(wall_time, error, info, settings),
         )
 
     @classmethod
@@ -237,13 +233,9 @@ class Result:
             time,
             **{name: empty for name in ARRAYS if name not in ("time", "amplitude")},
             amplitude=amplitude,
-            wall_time=float(wall_time),
-            error=error,
-            info=dict(info or {}),
-            settings=settings or RunSettings(),
-            provenance=provenance(),
             warnings=sheet.defect_warnings(params, float(amplitude[0])),
             **tiles,
+            **_run_record(wall_time, error, info, settings),
         )
 
     @property
@@ -438,6 +430,17 @@ class Result:
             uncertainty=summary.get("uncertainty"),
             **arrays,
         )
+
+
+def _run_record(wall_time, error, info, settings) -> dict:
+    """The fields of a new Result that record its run: wall time, error, solver info, settings, provenance."""
+    return dict(
+        wall_time=float(wall_time),
+        error=error,
+        info=dict(info or {}),
+        settings=settings or RunSettings(),
+        provenance=provenance(),
+    )
 
 
 def _with_saved_table(path: Path, parameters: dict, arrays: dict) -> tuple[dict, str | None]:
