@@ -174,3 +174,14 @@ def test_exudyn_sheet_estimate_refines_its_step():
     assert u["half"]["options"]["step_size"] == pytest.approx(h / 2)
     assert reported.info["step_size"] == pytest.approx(h / 4)
     assert u["integration_error"] > 0 and u["uncertainty"] >= 2 * u["integration_error"]
+
+
+def test_generalized_alpha_over_unresolved_axial_springs_says_so():
+    """The extensible chain's axial springs are far faster than its step: the error bar cannot see their
+    treatment, and the run says so where its answer is printed."""
+    reported = solve(paper_case("tnt-stable", n=10), "exudyn", RunSettings(t_final=0.2))
+    caveat = reported.uncertainty["caveat"]
+    assert "axial springs" in caveat and caveat in reported.warnings and "\n" not in caveat
+    assert reported.info["top_frequency"] * reported.info["step_size"] > 1
+    soft = solve(paper_case("torsion-soft", n=10), "exudyn", RunSettings(t_final=0.2), step_size=1e-3)
+    assert "caveat" not in soft.uncertainty
