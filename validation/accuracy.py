@@ -263,6 +263,8 @@ def probe_case(seed: int) -> None:
                 spectral_radius=spectral_radius,
             )
             print(f"  exudyn ρ∞ = {spectral_radius:g}, h/{divisor}: {answer(r)[0]} {answer(r)[1]:.10g}", flush=True)
+    r = solve(p, "exudyn", settings, uncertainty=False, rtol=DEFAULT_RTOL / 16**2)
+    print(f"  exudyn ρ∞ = {r.info['spectral_radius']:g}, h/16: {answer(r)[0]} {answer(r)[1]:.10g}", flush=True)
     r = solve(p, "reduced", settings, uncertainty=False, rtol=1e-11)
     print(f"  reduced ({r.info['method']}) rtol 1e-11: {answer(r)[0]} {answer(r)[1]:.10g}", flush=True)
     r = solve(p, "reduced", settings, uncertainty=False, method="DOP853", rtol=1e-10)
@@ -287,7 +289,7 @@ def main() -> None:
         type=int,
         metavar="SEED",
         help="instead: case SEED's answer from Exudyn at its step h and h/4 with the numerical damping "
-        "ρ∞ = 1, 0.9, 0.6, and from the reduced solver at rtol 1e-11 and with explicit DOP853 (what step "
+        "ρ∞ = 1, 0.9, 0.6 and at h/16, and from the reduced solver at rtol 1e-11 and with explicit DOP853 (what step "
         "refinement does not see)",
     )
     args = parser.parse_args()
