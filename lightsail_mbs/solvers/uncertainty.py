@@ -102,7 +102,8 @@ def sequence(info: dict) -> list[tuple[str, float]]:
 def tightened(options: dict, info: dict, factor: float | None = None) -> dict:
     """A twin's options: rtol (the one the base run used, from its info) and atol or the Newton tolerances,
     if given, divided by F (default tightening(info)); a fixed step divided by √F — the given one, or the
-    base run's (info) when the solver has no rtol to derive it from."""
+    base run's (info), with its Newton tolerances / F, when the solver has no rtol to derive them from
+    (Exudyn's sheet: / F², as the chain derives them from rtol, fails to converge on its round-off floor)."""
     factor = tightening(info) if factor is None else factor
     tight = dict(options)
     if "rtol" in info:
@@ -116,6 +117,9 @@ def tightened(options: dict, info: dict, factor: float | None = None) -> dict:
         tight["step_size"] = options["step_size"] / math.sqrt(factor)
     elif "rtol" not in info and info.get("step_size") is not None:
         tight["step_size"] = float(info["step_size"]) / math.sqrt(factor)
+        for name in ("newton_rel_tol", "newton_abs_tol"):
+            if options.get(name) is None and info.get(name):
+                tight[name] = float(info[name]) / factor
     return tight
 
 
@@ -188,28 +192,7 @@ def assess(module, params: SailParameters, settings: RunSettings, options: dict,
         **records,
     }
     reported.wall_time = total_wall
-    caveat = unresolved_springs(params, reported.info)
-    if caveat:
-        reported.uncertainty["caveat"] = caveat
-        reported.warnings = [*reported.warnings, caveat]
     return reported
-
-
-def unresolved_springs(params: SailParameters, info: dict) -> str | None:
-    """The caveat of a generalized-α run that steps over the axial springs of an extensible chain
-    (ω_max h > 1), else None. There its error need not fall with the step: on two seeded survivors
-    (validation/accuracy.md, cases 22 and 50, ω_max h ≈ 2000) Exudyn's answers lie 1.9e-6 and 1.6e-5
-    (relative) from the reduced solver's, which an explicit DOP853 run resolving the springs confirms to
-    1e-12; on case 50 the error is 1.2e-5, 1.6e-5, 1.6e-5 at h, h/2, h/4 and 2.5e-7 at h/16, so the step
-    sequence of the estimate cannot see it."""
-    omega, h = info.get("top_frequency"), info.get("step_size")
-    if not (params.extensible and is_fixed_step(info) and omega and h and omega * h > 1.0):
-        return None
-    return (
-        f"generalized-α steps over the axial springs (ω_max h = {omega * h:.3g}): its error need not fall with "
-        "the step there, and the uncertainty cannot see it (up to 2e-5 relative on seeded extensible chains, "
-        "validation/accuracy.md); the reduced solver (--solver reduced) is the reference for this chain"
-    )
 
 
 def explain(params, quantity, value, integration, sensitivity, well, failed) -> str:
