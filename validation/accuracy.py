@@ -32,8 +32,8 @@ from lightsail_mbs.analysis.finite_amplitude import stiffness_ratio, time_scale
 from lightsail_mbs.model import theory
 from lightsail_mbs.result import with_uncertainty
 
-CASES = 64
-DESIGN_CASES = 32  # the uncertainty rule was chosen looking at cases 0–31; 32–63 check it out of sample
+CASES = 96
+DESIGN_CASES = 64  # the uncertainty rule was settled looking at cases 0–63; 64–95 were run once, after
 MODELS = ("rigid", "torsion", "tnt-ext", "tnt-inext")
 TAU_FINAL = 4.0  # run length in units of t_c
 SAMPLES = 400
@@ -173,9 +173,11 @@ def markdown(rows: list[dict], wall: float) -> str:
         f"within their combined uncertainty U_exudyn + U_reduced (required ≥ {COVERAGE:.0%}).",
         *(
             [
-                f"- **Out of sample**: the uncertainty rule (the tolerance sequence) was chosen looking at cases "
-                f"0–{DESIGN_CASES - 1}; on those {coverage_text(rows[:DESIGN_CASES])}, on cases {DESIGN_CASES}–"
-                f"{total - 1} (not looked at before) {coverage_text(rows[DESIGN_CASES:])}."
+                f"- **Out of sample**: the uncertainty rule was settled looking at cases 0–{DESIGN_CASES - 1} (the "
+                "tolerance sequence after the misses of a single quarter-step twin among cases 0–31, Exudyn's "
+                "Newton tolerances ∝ rtol² after the misses 22 and 50); on those "
+                f"{coverage_text(rows[:DESIGN_CASES])}; on cases {DESIGN_CASES}–{total - 1}, run once after the "
+                f"rule was settled, {coverage_text(rows[DESIGN_CASES:])}."
             ]
             if total > DESIGN_CASES
             else []
@@ -247,24 +249,31 @@ def sequence_text(row: dict) -> str:
 
 def probe_case(seed: int) -> None:
     """Print case `seed`'s answer under the variations of --probe-case (one line each)."""
-    from lightsail_mbs.solvers.exudyn.chain import DEFAULT_RTOL, default_step_size, top_frequency
+    from lightsail_mbs.solvers.exudyn.chain import NEWTON_REL_TOL, default_abs_tol, default_step_size, top_frequency
 
     p, settings = random_case(seed)
     h = default_step_size(p, settings)
+    newton = dict(newton_rel_tol=NEWTON_REL_TOL, newton_abs_tol=default_abs_tol(p))
     print(f"case {seed}: {describe(p, settings)}; Exudyn step h = {h:.3g} s, ω_max h = {top_frequency(p) * h:.3g}")
+
+    def exudyn(text, **options):
+        r = solve(p, "exudyn", settings, uncertainty=False, method="generalized-alpha", **options)
+        print(f"  exudyn {text}: {answer(r)[0]} {answer(r)[1]:.10g}", flush=True)
+
     for spectral_radius in (1.0, 0.9, 0.6):
         for divisor in (1, 4):
-            r = solve(
-                p,
-                "exudyn",
-                settings,
-                uncertainty=False,
-                rtol=DEFAULT_RTOL / divisor**2,
+            exudyn(
+                f"ρ∞ = {spectral_radius:g}, h/{divisor}, default Newton tolerances",
+                step_size=h / divisor,
                 spectral_radius=spectral_radius,
+                **newton,
             )
-            print(f"  exudyn ρ∞ = {spectral_radius:g}, h/{divisor}: {answer(r)[0]} {answer(r)[1]:.10g}", flush=True)
-    r = solve(p, "exudyn", settings, uncertainty=False, rtol=DEFAULT_RTOL / 16**2)
-    print(f"  exudyn ρ∞ = {r.info['spectral_radius']:g}, h/16: {answer(r)[0]} {answer(r)[1]:.10g}", flush=True)
+    for factor in (10, 1000):
+        exudyn(
+            f"h, Newton tolerances / {factor}",
+            step_size=h,
+            **{name: value / factor for name, value in newton.items()},
+        )
     r = solve(p, "reduced", settings, uncertainty=False, rtol=1e-11)
     print(f"  reduced ({r.info['method']}) rtol 1e-11: {answer(r)[0]} {answer(r)[1]:.10g}", flush=True)
     r = solve(p, "reduced", settings, uncertainty=False, method="DOP853", rtol=1e-10)
@@ -288,9 +297,9 @@ def main() -> None:
         "--probe-case",
         type=int,
         metavar="SEED",
-        help="instead: case SEED's answer from Exudyn at its step h and h/4 with the numerical damping "
-        "ρ∞ = 1, 0.9, 0.6 and at h/16, and from the reduced solver at rtol 1e-11 and with explicit DOP853 (what step "
-        "refinement does not see)",
+        help="instead: case SEED's answer from Exudyn's generalized-α at its step h and h/4 with the numerical "
+        "damping ρ∞ = 1, 0.9, 0.6, and at h with the Newton tolerances / 10 and / 1000, and from the reduced "
+        "solver at rtol 1e-11 and with explicit DOP853",
     )
     args = parser.parse_args()
     if args.probe_case is not None:
@@ -322,6 +331,10 @@ def main() -> None:
             f"| cpu {row['exudyn_cpu']:.1f}/{row['reduced_cpu']:.1f}",
             flush=True,
         )
+    finished = {**done, **{row["case"]: row for row in rows}}
+    compact = ROWS.with_suffix(".tmp")  # one row per case (--redo appended new ones), replaced atomically
+    compact.write_text("".join(json.dumps(finished[case]) + "\n" for case in sorted(finished)))
+    compact.replace(ROWS)
     if args.cases == CASES and args.first == 0:
         path = Path(__file__).with_name("accuracy.md")
         path.write_text(markdown(rows, time.perf_counter() - start))
