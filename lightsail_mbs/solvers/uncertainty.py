@@ -39,11 +39,12 @@ The uncertainty of the reported q is U = SAFETY · (E_int + S), and the run is *
 S ≤ CONDITION_TOL · |q|. When a twin's verdict differs (one fails within the run, the other not), U is
 infinite and the run ill-conditioned: the sail is at its stability boundary for that run length.
 
-Measured (validation/accuracy.md, 64 seeded random cases of every model; the rule chosen on the first
-32, the other 32 a fresh check): the two solvers' answers differ by less than their combined U in 62 of 64
-cases, and by ≤ 1e-3 relative (at most 7.6e-5) on all 58 well-conditioned ones. The two misses are
-extensible chains whose axial springs Exudyn's generalized-α steps over (unresolved_springs): an error
-the step sequence cannot see, and a run says so in a warning.
+Measured (validation/accuracy.md, 96 seeded random cases of every model; the rule settled on the first
+64, the last 32 run once after): the two solvers' answers differ by less than their combined U in all 96
+cases, and by ≤ 1e-3 relative (at most 7.6e-5) on all 89 well-conditioned ones. For the tight twin to be
+much more accurate than the base run, every error source must shrink: Exudyn's chain tightens its Newton
+tolerances as rtol² (its step as √rtol), since on extensible chains the modified Newton's residual, not
+the step, can set the error (solvers.exudyn.chain).
 
 The estimate costs the twin runs: 3–4 base runs for the adaptive methods (the tight one 1.5–3× a base
 run), 8 for generalized-α (2 + 4 + 1 more). It is on for single runs (``solve(..., uncertainty=True)``,
