@@ -44,7 +44,7 @@ Integrators, chosen per case (``method="auto"``, the choice and its reason in Re
    smoothly with its tolerance (it jumps when one more iteration or a Jacobian update happens), and on an
    extensible chain it can dominate: a seeded survivor (validation/accuracy.md, case 50) is 1.2e-5
    (relative) off at the default tolerances and step h, 1.6e-5 with both tolerances / 10 at h, and
-   1.5e-6 with the absolute one / 1000.
+   3e-7 with both / 1000 (python validation/accuracy.py --probe-case 50).
    The whole run is one ``SolveSteps`` call: restarting it in chunks would perturb the generalized-α
    state at every restart.
 
