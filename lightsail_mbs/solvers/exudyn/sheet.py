@@ -257,20 +257,20 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     abs_tol = default_abs_tol(p, system.conn) if abs_tol is None else float(abs_tol)
     mbs = system.mbs
     s = simulation_settings(settings.t_final, h, rel_tol, abs_tol, spectral_radius)
-    steps_per_sample = int(round(dt / h))
     monitor = FailureMonitor(analysis.plane_amplitude(system.centres(mbs.systemData.GetODE2Coordinates())), settings)
     rows_q = [np.array(mbs.systemData.GetODE2Coordinates())]
     rows_v = [np.array(mbs.systemData.GetODE2Coordinates_t())]
     times = [0.0]
-    watch = {"steps": 0, "failed": False}
+    watch = {"steps": 0, "failed": False, "next_sample": dt}
     bar = Progress(settings.t_final, progress, label=f"exudyn sheet {p.n}x{p.ny}")
 
     def after_step(mbs_, t) -> bool:
         if t < 0.5 * h:  # Exudyn also calls this once at initialisation
             return True
         watch["steps"] += 1
-        if watch["steps"] % steps_per_sample:
+        if t < watch["next_sample"] - 0.25 * h:  # by time: Exudyn may redo a step that Newton failed
             return True
+        watch["next_sample"] += dt
         rows_q.append(np.array(mbs_.systemData.GetODE2Coordinates()))
         rows_v.append(np.array(mbs_.systemData.GetODE2Coordinates_t()))
         times.append(t)

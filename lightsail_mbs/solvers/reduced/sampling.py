@@ -206,19 +206,18 @@ def _fill(rows, first, n, b, extensible, x, y, th, vx, vy, om, z, zd, amp):
 def sampled_run(
     model: ChainModel,
     y0: np.ndarray,
-    initial_amplitude: float,
     settings: RunSettings,
     advance,
     chunk: int,
     progress: bool,
 ):
     """Run the skeleton's sampling loop from y0 with the chain's failure monitor; returns (the
-    Trajectory of the samples, error, wall time)."""
+    Trajectory of the samples, error, wall time). The monitor's initial amplitude is the first sample's,
+    computed as every later one (a sail flat to round-off is flat for both)."""
     start = clock.perf_counter()
-    monitor = FailureMonitor(initial_amplitude, settings)
     times = settings.sample_times()
     trajectory = Trajectory(model, times.size)
-    trajectory.fill(y0[None, :])
+    monitor = FailureMonitor(float(trajectory.fill(y0[None, :])[0]), settings)
 
     def amplitude_of(batch):
         return trajectory.fill(batch.T)

@@ -47,7 +47,6 @@ import math
 
 import numpy as np
 
-from lightsail_mbs import analysis
 from lightsail_mbs.model import shapes
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
 from lightsail_mbs.result import Result
@@ -174,8 +173,7 @@ def run(
     y0 = np.concatenate([q0, np.zeros_like(q0)])
     with compile_notice(method):  # one line on stderr if numba has to compile the kernels
         integrator, advance, chunk = _integrator(method, dynamics, y0, settings, rtol, atol, options)
-        initial = analysis.amplitude(start.x, start.y)
-        trajectory, error, wall = sampled_run(model, y0, initial, settings, advance, chunk, progress)
+        trajectory, error, wall = sampled_run(model, y0, settings, advance, chunk, progress)
         info = dict(
             method=method,
             method_choice=choice,

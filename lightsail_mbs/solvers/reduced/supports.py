@@ -29,7 +29,6 @@ import numpy as np
 from scipy.integrate import BDF, LSODA, Radau
 from scipy.linalg import solve_triangular
 
-from lightsail_mbs import analysis
 from lightsail_mbs.model import shapes
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
 from lightsail_mbs.result import Result
@@ -226,7 +225,6 @@ def run(
     trajectory, error, wall = sampled_run(
         model,
         y0,
-        analysis.amplitude(start.x, start.y),
         settings,
         stepper_advance(method, integrator, y0.size),
         settings.sample_times().size,
