@@ -13,7 +13,8 @@ sheet share the discretisation along x. Each stability number is bisected in log
    defect with E_m = E also on FINE_GRIDS.
 2. Failure time against E (the doubly sinusoidal defect, E_m = E, HORIZON-long runs, on HORIZON_GRIDS):
    the times at which the amplitude reaches 1.5 and 2 a₀ and the growth rate between them, from which
-   the boundary of any run length up to HORIZON can be read.
+   the boundary of any run length up to HORIZON can be read; and the same times against the tiles per
+   half wavelength, for ν_x = ν_y = 1 and 1.5 at RESOLUTION_RATIO E_cr,max (RESOLUTION).
 3. Centred Gaussian beam (waist w = 2, 1, 0.5 m, round on the sheet, a line across the strip), 1-D sine,
    E = 4.5e9 Pa: failure time of sheet and strip (10 µs samples).
 4. Edge tension (follower, all four edges, N per metre; soft bending E = 4.5e9 Pa = E_m) above which the
@@ -26,7 +27,7 @@ sheet share the discretisation along x. Each stability number is bisected in log
    (c) unlit runs at UNLIT_TENSION T_cr,max: the defect released under tension, and the same sheet with
    initial_equilibrium (rest offsets that make the defect an equilibrium under tension).
 
-Writes sheet_physics_{modulus,horizon,gaussian,tension,twin,unlit}.csv (each as soon as its study is
+Writes sheet_physics_{modulus,horizon,resolution,gaussian,tension,twin,unlit}.csv (each as soon as its study is
 done), their summary sheet_physics.md (brackets as uncertainties, sheet against strip),
 sheet_physics.png and sheet_physics_failure.png (the doubly sinusoidal sheet at failure) into OUT; the
 runs go to the store OUT/store/sheet_physics, so a rerun resumes from every finished run. Quick (a smoke
@@ -54,6 +55,8 @@ FINE_BRACKET = (0.2, 0.8)  # its first bracket there, E/E_cr,max (18 × 18: 0.32
 HORIZON = RunSettings(t_final=12.0)
 HORIZON_GRIDS = (12, 18, 24)
 HORIZON_RATIOS = (0.3, 0.5, 1.0, 2.0)  # E/E_cr,max
+RESOLUTION = {1.0: (8, 12, 18, 24), 1.5: (12, 18, 24, 30)}  # ν_x = ν_y: grids of the resolution study
+RESOLUTION_RATIO = 0.5  # its E/E_cr,max (each defect's own E_cr,max, Eq. 8 with its ν)
 TENSION_GRIDS = (12, 18, 24)  # the unlit-twin rule
 UNLIT_TENSION = 8.0  # T/T_cr,max of the unlit runs
 FACTOR = 1.3
@@ -117,10 +120,15 @@ def boundary_rows(found: dict, quantity: str) -> list[dict]:
     return rows
 
 
-def horizon_rows(grids, ratios, settings, store_dir, workers, progress) -> list[dict]:
-    """The doubly sinusoidal sheet (E_m = E) at E = ratio·E_cr,max over `settings.t_final`: the first
-    output times with amplitude ≥ 1.5 and 2 a₀ and the mean growth rate ln(2/1.5)/(t₂ − t₁.₅) between."""
-    cases = [(g, k, sheet_study.with_ratio(base(g, defect_mode_y=1.5), "modulus", k)) for g in grids for k in ratios]
+def horizon_rows(grids, ratios, settings, store_dir, workers, progress, mode=1.5) -> list[dict]:
+    """The doubly sinusoidal sheet ν_x = ν_y = mode (E_m = E) at E = ratio·E_cr,max over `settings.t_final`:
+    the first output times with amplitude ≥ 1.5 and 2 a₀ and the mean growth rate ln(2/1.5)/(t₂ − t₁.₅)
+    between them."""
+    cases = [
+        (g, k, sheet_study.with_ratio(base(g, defect_mode=mode, defect_mode_y=mode), "modulus", k))
+        for g in grids
+        for k in ratios
+    ]
     done = run_cases(
         [c[2] for c in cases],
         store_dir,
@@ -141,7 +149,9 @@ def horizon_rows(grids, ratios, settings, store_dir, workers, progress) -> list[
             rate = math.log(2.0 / 1.5) / (times[2.0] - times[1.5])
         rows.append(
             dict(
+                mode=mode,
                 grid=g,
+                tiles_per_half_wave=g / (2.0 * mode),
                 ratio=k,
                 t_1_5=times[1.5],
                 t_2=times[2.0],
@@ -249,12 +259,13 @@ def gaussian_rows(grids, store_dir, workers, progress) -> list[dict]:
     return rows
 
 
-KINDS = ("twin", "unlit", "modulus", "horizon", "tension", "gaussian")
+KINDS = ("twin", "unlit", "modulus", "horizon", "resolution", "tension", "gaussian")
 TITLES = {
     "twin": "Stabilising edge tension T/T_cr,max, unlit-twin rule, 6 s runs, E = 4.5e9 Pa",
     "unlit": "Unlit sheets under edge tension, 6 s",
     "modulus": "Critical modulus E/E_cr,max, 6 s runs (sheet vs strip)",
     "horizon": "Doubly sinusoidal sheet, E_m = E: failure time against E",
+    "resolution": "Doubly sinusoidal sheets, E_m = E: failure time against the tiles per half wavelength",
     "tension": "Stabilising edge tension T/T_cr,max, paper's rule, 6 s runs, E = 4.5e9 Pa",
     "gaussian": "Centred Gaussian beam, 1-D sine, E = 4.5e9 Pa: failure time (ms)",
 }
@@ -269,6 +280,7 @@ def compute(
     factor=FACTOR,
     run=RUN,
     horizon=HORIZON,
+    resolution=RESOLUTION,
     store_dir,
     workers=None,
     progress=True,
@@ -294,6 +306,14 @@ def compute(
     )
     done("modulus", boundary_rows(modulus, "E/E_cr,max"))
     done("horizon", horizon_rows(horizon_grids, HORIZON_RATIOS, horizon, store_dir, workers, progress))
+    done(
+        "resolution",
+        [
+            row
+            for mode, mode_grids in resolution.items()
+            for row in horizon_rows(mode_grids, (RESOLUTION_RATIO,), horizon, store_dir, workers, progress, mode)
+        ],
+    )
     tension = sheet_study.stability_boundaries(
         tension_cases(grids), "edge_tension", store_dir, lo=0.5, hi=8.0, **common
     )
@@ -314,6 +334,7 @@ def run(out, *, solver="reduced", workers=None, scheduler=None, quick=False, sto
             factor=3.0,
             run=RunSettings(t_final=1.0),
             horizon=RunSettings(t_final=1.0),
+            resolution={1.5: (6,)},
         )
     store_dir = Path(store or out / "store") / NAME
     rows = compute(store_dir=store_dir, workers=workers, progress=progress, out=out, **options)
@@ -344,8 +365,9 @@ def read_rows(out) -> dict:
                 for k in ("unlit_peak_stable", "lit_peak_stable", "unlit_peak_failed", "failure_time_failed")
             }
         )
-    for r in rows["horizon"]:
-        r.update({k: number(r[k]) for k in ("ratio", "t_1_5", "t_2", "growth_rate", "max_ratio", "t_final")})
+    for r in rows["horizon"] + rows["resolution"]:
+        keys = ("mode", "tiles_per_half_wave", "ratio", "t_1_5", "t_2", "growth_rate", "max_ratio", "t_final")
+        r.update({k: number(r[k]) for k in keys})
         r["grid"] = int(r["grid"])
     for r in rows["unlit"]:
         r.update({k: number(r[k]) for k in ("tension_ratio", "max_ratio", "failure_time")})
@@ -404,6 +426,19 @@ def summary_markdown(rows) -> str:
         lines.append(
             f"| {r['grid']}×{r['grid']} | {r['ratio']:g} | {_number(r['t_1_5'], 4)} | {_number(r['t_2'], 4)} | "
             f"{_number(r['growth_rate'])} | {_number(r['max_ratio'], 4)} |"
+        )
+    lines += [
+        "",
+        f"## Doubly sinusoidal sheets, E_m = E, E = {_number(rows['resolution'][0]['ratio'])} E_cr,max: "
+        "failure time against the tiles per half wavelength",
+        "",
+        "| ν_x = ν_y | grid | tiles per half wave | t(1.5 a₀) (s) | t(2 a₀) (s) | growth rate between (1/s) |",
+        "|---|---|---|---|---|---|",
+    ]
+    for r in rows["resolution"]:
+        lines.append(
+            f"| {r['mode']:g} | {r['grid']}×{r['grid']} | {r['tiles_per_half_wave']:.3g} | {_number(r['t_1_5'], 4)} | "
+            f"{_number(r['t_2'], 4)} | {_number(r['growth_rate'])} |"
         )
     lines += ["", "## Stabilising edge tension, unlit-twin rule: T_stable / T_cr,max", ""]
     lines += _boundary_table(
