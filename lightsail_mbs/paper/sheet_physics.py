@@ -25,9 +25,11 @@ sheet share the discretisation along x. Each stability number is bisected in log
    curved defect is not an equilibrium under tension (the membrane force T∇²w ≠ 0), so the unlit sheet
    oscillates with peaks above a₀;
    (c) unlit runs at UNLIT_TENSION T_cr,max: the defect released under tension, and the same sheet with
-   initial_equilibrium (rest offsets that make the defect an equilibrium under tension).
+   initial_equilibrium (rest offsets that make the defect an equilibrium under tension);
+   (d) the doubly sinusoidal sheet above its boundary (SCAN_TENSIONS, TENSION_GRIDS): the peaks of the lit
+   run and of its twin, and when the lit run reached 2 a₀ (the paper's rule).
 
-Writes sheet_physics_{modulus,horizon,resolution,gaussian,tension,twin,unlit}.csv (each as soon as its study is
+Writes sheet_physics_{modulus,horizon,resolution,gaussian,tension,twin,unlit,scan}.csv (each as soon as its study is
 done), their summary sheet_physics.md (brackets as uncertainties, sheet against strip),
 sheet_physics.png and sheet_physics_failure.png (the doubly sinusoidal sheet at failure) into OUT; the
 runs go to the store OUT/store/sheet_physics, so a rerun resumes from every finished run. Quick (a smoke
@@ -59,6 +61,7 @@ RESOLUTION = {1.0: (8, 12, 18, 24), 1.5: (12, 18, 24, 30)}  # ν_x = ν_y: grids
 RESOLUTION_RATIO = 0.5  # its E/E_cr,max (each defect's own E_cr,max, Eq. 8 with its ν)
 TENSION_GRIDS = (12, 18, 24)  # the unlit-twin rule
 UNLIT_TENSION = 8.0  # T/T_cr,max of the unlit runs
+SCAN_TENSIONS = (4.0, 8.0, 32.0, 128.0)  # T/T_cr,max above the boundary: lit and twin peaks
 FACTOR = 1.3
 SOFT = 4.5e9  # Pa: the paper's soft sail, and the soft membrane
 WAISTS = (2.0, 1.0, 0.5)
@@ -203,6 +206,28 @@ def twin_rows(grids, factor, run, store_dir, progress) -> list[dict]:
     return rows
 
 
+def scan_rows(grids, tensions, run, store_dir) -> list[dict]:
+    """The doubly sinusoidal sheet at `tensions` T_cr,max with its unlit twin (studies.sheet.twin_runs)."""
+    rows = []
+    for g in grids:
+        for k in tensions:
+            p = sheet_study.with_ratio(base(g, defect_mode_y=1.5), "edge_tension", k)
+            lit, _, v = sheet_study.twin_runs(p, store_dir, run)
+            doubled = np.nonzero(lit.amplitude >= 2.0 * lit.amplitude[0])[0]
+            rows.append(
+                dict(
+                    grid=g,
+                    tension_ratio=k,
+                    lit_peak=v.lit_max_ratio,
+                    twin_peak=v.unlit_max_ratio,
+                    peak_ratio=v.lit_max_ratio / v.unlit_max_ratio,
+                    twin_rule_failure_time=v.failure_time,
+                    papers_rule_failure_time=float(lit.time[doubled[0]]) if doubled.size else None,
+                )
+            )
+    return rows
+
+
 def unlit_rows(grid, tension, run, store_dir, workers, progress) -> list[dict]:
     """Unlit runs at `tension` T_cr,max: the doubly sinusoidal sheet released under tension and with
     initial_equilibrium, and the strip with initial_equilibrium (amplitude peak and when it reached 2 a₀)."""
@@ -259,10 +284,11 @@ def gaussian_rows(grids, store_dir, workers, progress) -> list[dict]:
     return rows
 
 
-KINDS = ("twin", "unlit", "modulus", "horizon", "resolution", "tension", "gaussian")
+KINDS = ("twin", "unlit", "scan", "modulus", "horizon", "resolution", "tension", "gaussian")
 TITLES = {
     "twin": "Stabilising edge tension T/T_cr,max, unlit-twin rule, 6 s runs, E = 4.5e9 Pa",
     "unlit": "Unlit sheets under edge tension, 6 s",
+    "scan": "Doubly sinusoidal sheet above its tension boundary: lit and twin peaks, 6 s",
     "modulus": "Critical modulus E/E_cr,max, 6 s runs (sheet vs strip)",
     "horizon": "Doubly sinusoidal sheet, E_m = E: failure time against E",
     "resolution": "Doubly sinusoidal sheets, E_m = E: failure time against the tiles per half wavelength",
@@ -281,6 +307,7 @@ def compute(
     run=RUN,
     horizon=HORIZON,
     resolution=RESOLUTION,
+    scan_tensions=SCAN_TENSIONS,
     store_dir,
     workers=None,
     progress=True,
@@ -299,6 +326,7 @@ def compute(
     common = dict(settings=run, factor=factor, workers=workers, progress=progress)
     done("twin", twin_rows(tension_grids, factor, run, store_dir, progress))
     done("unlit", unlit_rows(tension_grids[0], UNLIT_TENSION, run, store_dir, workers, progress))
+    done("scan", scan_rows(tension_grids, scan_tensions, run, store_dir))
     modulus = sheet_study.stability_boundaries(modulus_cases(grids), "modulus", store_dir, lo=2.0, hi=16.0, **common)
     fine = {(DOUBLY, g): p for (label, g), p in modulus_cases(fine_grids).items() if label == DOUBLY}
     modulus.update(
@@ -335,6 +363,7 @@ def run(out, *, solver="reduced", workers=None, scheduler=None, quick=False, sto
             run=RunSettings(t_final=1.0),
             horizon=RunSettings(t_final=1.0),
             resolution={1.5: (6,)},
+            scan_tensions=(8.0,),
         )
     store_dir = Path(store or out / "store") / NAME
     rows = compute(store_dir=store_dir, workers=workers, progress=progress, out=out, **options)
@@ -371,6 +400,9 @@ def read_rows(out) -> dict:
         r["grid"] = int(r["grid"])
     for r in rows["unlit"]:
         r.update({k: number(r[k]) for k in ("tension_ratio", "max_ratio", "failure_time")})
+    for r in rows["scan"]:
+        r.update({k: number(v) for k, v in r.items()})
+        r["grid"] = int(r["grid"])
     for r in rows["gaussian"]:
         r.update(grid=int(r["grid"]), waist_m=float(r["waist_m"]), failure_time_ms=number(r["failure_time_ms"]))
     return rows
@@ -459,6 +491,21 @@ def summary_markdown(rows) -> str:
     ]
     for r in rows["unlit"]:
         lines.append(f"| {r['case']} | {r['grid']} | {_number(r['max_ratio'], 4)} | {_number(r['failure_time'], 4)} |")
+    lines += [
+        "",
+        "## Doubly sinusoidal sheet above its tension boundary: lit run and unlit twin, 6 s",
+        "",
+        "| grid | T / T_cr,max | lit peak / a₀ | twin's peak / a₀ | lit / twin | twin rule: fails at (s) | "
+        "paper's rule: fails at (s) |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for r in rows["scan"]:
+        lines.append(
+            f"| {r['grid']}×{r['grid']} | {r['tension_ratio']:g} | {_number(r['lit_peak'], 4)} | "
+            f"{_number(r['twin_peak'], 4)} | {_number(r['peak_ratio'], 4)} | "
+            f"{_number(r['twin_rule_failure_time'], 4)} | "
+            f"{_number(r['papers_rule_failure_time'], 4)} |"
+        )
     lines += ["", "## Stabilising edge tension, paper's rule: T_stable / T_cr,max", ""]
     lines += _boundary_table(rows["tension"], "T_stable / T_cr,max")
     lines += [

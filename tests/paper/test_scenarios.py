@@ -95,6 +95,8 @@ def test_sheet_physics_scenario(tmp_path):
         "sheet_physics_twin.csv",
         "sheet_physics_unlit.csv",
         "sheet_physics_horizon.csv",
+        "sheet_physics_resolution.csv",
+        "sheet_physics_scan.csv",
         "sheet_physics.md",
     }
     assert all(r["status"] in ("converged", "unbracketed") for r in rows["modulus"] + rows["tension"] + rows["twin"])
