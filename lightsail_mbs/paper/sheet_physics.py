@@ -198,6 +198,7 @@ def twin_rows(grids, factor, run, store_dir, progress) -> list[dict]:
                 runs=2 * len(found.evaluations),
                 unlit_peak_stable=stable and stable.unlit_max_ratio,
                 lit_peak_stable=stable and stable.lit_max_ratio,
+                departure_stable=stable and stable.max_departure,
                 unlit_peak_failed=unstable and unstable.unlit_max_ratio,
                 failure_time_failed=unstable and unstable.failure_time,
                 message=found.message,
@@ -391,7 +392,13 @@ def read_rows(out) -> dict:
         r.update(
             {
                 k: number(r[k])
-                for k in ("unlit_peak_stable", "lit_peak_stable", "unlit_peak_failed", "failure_time_failed")
+                for k in (
+                    "unlit_peak_stable",
+                    "lit_peak_stable",
+                    "departure_stable",
+                    "unlit_peak_failed",
+                    "failure_time_failed",
+                )
             }
         )
     for r in rows["horizon"] + rows["resolution"]:
@@ -479,6 +486,7 @@ def summary_markdown(rows) -> str:
         {
             "twin's peak / a₀ at the stable end": lambda r: _number(r["unlit_peak_stable"], 4),
             "lit peak / a₀ there": lambda r: _number(r["lit_peak_stable"], 4),
+            "largest z_lit − z_twin / a₀ there": lambda r: _number(r["departure_stable"], 3),
             "twin's peak / a₀ at the failing end": lambda r: _number(r["unlit_peak_failed"], 4),
             "failure time there (s)": lambda r: _number(r["failure_time_failed"], 4),
         },
