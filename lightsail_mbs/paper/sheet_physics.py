@@ -10,7 +10,7 @@ sheet share the discretisation along x. Each stability number is bisected in log
 1. Critical modulus: E/E_cr,max (Eq. 8, ν = 1.5) above which the sail survives 6 s, for the strip and the
    sheet with the doubly sinusoidal defect ν_x = ν_y = 1.5 and with half a wave across (ν_y = 0.5), with
    the physical membrane E_m = E and with a soft one (E_m = 4.5e9 Pa), on GRIDS; the doubly sinusoidal
-   defect with E_m = E also on FINE_GRIDS.
+   defect with E_m = E also bisected to a bracket ≤ FINE_FACTOR wide on FINE_GRIDS (its grid convergence).
 2. Failure time against E (the doubly sinusoidal defect, E_m = E, HORIZON-long runs, on HORIZON_GRIDS):
    the times at which the amplitude reaches 1.5 and 2 a₀ and the growth rate between them, from which
    the boundary of any run length up to HORIZON can be read; and the same times against the tiles per
@@ -51,9 +51,12 @@ from lightsail_mbs.studies.tables import print_table, write_csv
 from lightsail_mbs.viz.plots import new_figure, save_figure
 
 NAME = "sheet_physics"
+DOUBLY = "sheet ν_y = 1.5, E_m = E"
 GRIDS = (12, 18)
-FINE_GRIDS = (24, 30)  # the doubly sinusoidal defect with E_m = E
-FINE_BRACKET = (0.2, 0.8)  # its first bracket there, E/E_cr,max (18 × 18: 0.32 – 0.42)
+FINE_GRIDS = (18, 24, 30, 36)  # the doubly sinusoidal defect with E_m = E, bisected to FINE_FACTOR
+FINE_BRACKET = (0.2, 0.8)  # its first bracket there, E/E_cr,max
+FINE_FACTOR = 1.05
+FINE = f"{DOUBLY}, bracket ≤ {FINE_FACTOR}"
 HORIZON = RunSettings(t_final=12.0)
 HORIZON_GRIDS = (12, 18, 24)
 HORIZON_RATIOS = (0.3, 0.5, 1.0, 2.0)  # E/E_cr,max
@@ -67,7 +70,6 @@ SOFT = 4.5e9  # Pa: the paper's soft sail, and the soft membrane
 WAISTS = (2.0, 1.0, 0.5)
 RUN = RunSettings(t_final=6.0)
 GAUSSIAN = RunSettings(t_final=3e-3, output_interval=1e-5)
-DOUBLY = "sheet ν_y = 1.5, E_m = E"
 
 
 def base(grid: int, **changes) -> SailParameters:
@@ -305,6 +307,7 @@ def compute(
     horizon_grids=HORIZON_GRIDS,
     tension_grids=TENSION_GRIDS,
     factor=FACTOR,
+    fine_factor=FINE_FACTOR,
     run=RUN,
     horizon=HORIZON,
     resolution=RESOLUTION,
@@ -329,10 +332,10 @@ def compute(
     done("unlit", unlit_rows(tension_grids[0], UNLIT_TENSION, run, store_dir, workers, progress))
     done("scan", scan_rows(tension_grids, scan_tensions, run, store_dir))
     modulus = sheet_study.stability_boundaries(modulus_cases(grids), "modulus", store_dir, lo=2.0, hi=16.0, **common)
-    fine = {(DOUBLY, g): p for (label, g), p in modulus_cases(fine_grids).items() if label == DOUBLY}
-    modulus.update(
-        sheet_study.stability_boundaries(fine, "modulus", store_dir, lo=FINE_BRACKET[0], hi=FINE_BRACKET[1], **common)
-    )
+    fine = {(FINE, g): p for (label, g), p in modulus_cases(fine_grids).items() if label == DOUBLY}
+    lo, hi = FINE_BRACKET
+    fine_common = {**common, "factor": fine_factor}
+    modulus.update(sheet_study.stability_boundaries(fine, "modulus", store_dir, lo=lo, hi=hi, **fine_common))
     done("modulus", boundary_rows(modulus, "E/E_cr,max"))
     done("horizon", horizon_rows(horizon_grids, HORIZON_RATIOS, horizon, store_dir, workers, progress))
     done(
@@ -361,6 +364,7 @@ def run(out, *, solver="reduced", workers=None, scheduler=None, quick=False, sto
             horizon_grids=(6,),
             tension_grids=(6,),
             factor=3.0,
+            fine_factor=3.0,
             run=RunSettings(t_final=1.0),
             horizon=RunSettings(t_final=1.0),
             resolution={1.5: (6,)},
