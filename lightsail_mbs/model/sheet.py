@@ -91,17 +91,6 @@ An edge tension T (N per metre of edge) pre-stretches every connector so that th
 the isotropic membrane force T (an exact equilibrium), and on a free boundary acts as a follower force
 T·e at each boundary tile's outer edge midpoint along the tile's own outward in-plane axis (the
 chain's TnT end tension, one dimension up). On a supported boundary the ground connectors carry it.
-A curved sheet under that tension is not in equilibrium: the membrane force T∇²w (the 1-D sine: T w'')
-pulls it towards flat, and the released defect oscillates about flat (the paper's TnT chain does the
-same). With initial_equilibrium the rest offsets of all connectors are corrected so that the unlit
-sheet is at rest in its initial shape (equilibrium_offsets: of all corrections the one of least
-complementary energy, i.e. the elastic rest state from which the loads pull the sheet into the defect).
-For the 1-D sine under tension T the bending springs then carry T w'' with rest angles
-(1 + T/(D k²)) times the defect's relative rotations (T/(D k²) = 100 per T_cr,max for the paper's soft
-sail at ν = 1.5); for a doubly curved defect the correction also pre-stresses the membrane and sets
-large rest angles about both in-plane axes, where the Tait–Bryan connector moments are not potential
-forces, and that equilibrium is unstable without the beam (docs: sheet). Without tension it is exact
-and harmless (a doubly curved defect with the bending springs at rest flat, held by the membrane).
 
 Membrane damping
 ----------------
