@@ -12,9 +12,10 @@
 * :func:`twin_verdict`, :func:`twin_runs` and :func:`twin_boundary` — the unlit-twin rule for sheets
   whose initial shape is not an equilibrium without the beam (a doubly curved defect under edge tension:
   the membrane force T∇²w ≠ 0 sets the unlit sheet oscillating about flat, and on free edges its modes
-  add up to peaks above a₀, 1.3–1.7 a₀ for the paper's sail). The twin is the same sheet with I₀ = 0 and
-  the same start. The lit sail fails at the first output sample where its amplitude reaches twice the
-  largest amplitude the twin has had up to then, a(t) ≥ 2 max_{s ≤ t} a_twin(s): the paper's rule
+  add up to peaks above a₀: 1.05–1.4 a₀ at 4–128 T_cr,max for the paper's sail, docs: sheet). The twin
+  is the same sheet with I₀ = 0 and the same start. The lit sail fails at the first output sample
+  where its amplitude reaches twice the largest amplitude the twin has had up to then,
+  a(t) ≥ 2 max_{s ≤ t} a_twin(s): the paper's rule
   measured against what the tensioned sheet does without the beam. Where the unlit sheet holds its
   shape (a_twin = a(0)) it is the paper's rule, sample for sample. The beam-driven part of the motion,
   the plane amplitude of z_lit − z_twin (:func:`twin_departure`), is reported beside it; it is not the
