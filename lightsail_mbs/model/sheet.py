@@ -601,8 +601,9 @@ def equilibrium_offsets(
     the elastic answer, the rest state from which the sheet is pulled into the given shape by the loads
     that r would otherwise release. G K Gᵀ is the connectors' linear stiffness; a free sheet has 6 rigid
     modes, removed by holding one tile, and its r is first cleared of its net force and moment (the
-    followers on a curved edge need not add up to zero; that remainder, 1e-13 of T·W for the paper's
-    defects, moves the sheet as a rigid body). The few connector laws that are not linear in the state
+    followers on a tilted edge have a net transverse force, of order T·W times the edge's slope; that
+    remainder moves the sheet as a rigid body, which the plane fit of the failure rule removes). The few
+    connector laws that are not linear in the state
     (the rotation's xyz angles, the lever arms) are met by repeating the step with the new residual."""
     from scipy.sparse.linalg import splu
 
