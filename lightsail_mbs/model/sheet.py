@@ -603,8 +603,8 @@ def equilibrium_offsets(
     modes, removed by holding one tile, and its r is first cleared of its net force and moment (the
     followers on a tilted edge have a net transverse force, of order T·W times the edge's slope; that
     remainder moves the sheet as a rigid body, which the plane fit of the failure rule removes). The few
-    connector laws that are not linear in the state
-    (the rotation's xyz angles, the lever arms) are met by repeating the step with the new residual."""
+    connector laws that are not linear in the state (the rotation's xyz angles, the lever arms) are met
+    by repeating the step with the new residual."""
     from scipy.sparse.linalg import splu
 
     offset = np.array(conn.offset, float)
