@@ -1,7 +1,9 @@
 """The sheet against the strip: critical modulus, Gaussian beam, stabilising edge tension.
 
 Runs lightsail_mbs.paper.sheet_physics (see its docstring): writes sheet_physics.png,
-sheet_physics_failure.png and sheet_physics_{modulus,gaussian,tension}.csv into --out.
+sheet_physics_failure.png, sheet_physics.md and
+sheet_physics_{twin,unlit,scan,modulus,horizon,resolution,tension,gaussian}.csv into --out; every run goes
+through the store under --out, so a rerun resumes from the finished runs.
 Usage: python scenarios/sheet_physics.py [--out DIR] [--quick] [--workers N]
 """
 

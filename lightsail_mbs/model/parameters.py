@@ -8,7 +8,8 @@ axial stiffness k_s = (n − 1) E h W / L (Sec. III.C).
 Two model families share this one parameter class. The chains ("rigid", "torsion", "tnt") are the
 paper's strip of n slices. The "sheet" is the sail cut into n × ny rigid tiles moving in 3-D
 (:mod:`lightsail_mbs.model.sheet`); its own fields (ny, defect_mode_y, membrane_modulus,
-edge_tension, beam_center_y, pressure, membrane_damping, membrane_reference, bending_reference) are listed in
+edge_tension, beam_center_y, pressure, membrane_damping, membrane_reference, bending_reference,
+initial_equilibrium) are listed in
 SHEET_DEFAULTS, rejected away from their defaults for a chain, and left out of :meth:`to_dict` at
 their defaults, so the record (and the store key) of every chain case is what it was before the
 sheet existed.
@@ -45,6 +46,7 @@ SHEET_DEFAULTS = {
     "membrane_damping": None,
     "membrane_reference": "initial",
     "bending_reference": "flat",
+    "initial_equilibrium": False,
 }
 MEMBRANE_REFERENCES = ("initial", "flat")
 BENDING_REFERENCES = ("flat", "initial")
@@ -151,6 +153,8 @@ class SailParameters:
     membrane_reference: str = "initial"  # in-plane springs at rest in the "initial" (defect) or "flat" shape
     bending_reference: str = "flat"  # bending springs at rest "flat" (the paper: an elastically loaded defect)
     #                                  or in the "initial" shape (a stress-free, manufactured defect)
+    initial_equilibrium: bool = False  # True: the springs' rest state is corrected so that the unlit sheet
+    #                                    (edge tension included) is at rest in the initial shape (model.sheet)
     billow_radius: float = math.inf  # R_c, m: initial circular arc (shapes.py); > 0 concave to the laser; inf: flat
     optics: str | None = None  # the slices' force law from a table: None (R, α above), "mirror", or a table file
     optics_layout: str = "uniform"  # one of OPTICS_LAYOUTS: which slices carry the table turned over
@@ -369,6 +373,9 @@ class SailParameters:
             self.bending_reference,
             self.bending_reference in BENDING_REFERENCES,
             f"one of {', '.join(BENDING_REFERENCES)}",
+        )
+        check(
+            "initial_equilibrium", self.initial_equilibrium, isinstance(self.initial_equilibrium, bool), "True or False"
         )
 
     def _check_optics(self) -> None:

@@ -510,7 +510,127 @@ def connectors(
             offset[:, 3:] = angles_xyz(np.einsum("kji,kjl->kil", ra, rotations[tb]))
     damping = p.stiffness_damping * K
     damping[:, [0, 1, 2, 5]] += t.membrane_damping * K[:, [0, 1, 2, 5]]
-    return Connectors(ta, tb, la, lb, K, damping, offset, kind, gap)
+    out = Connectors(ta, tb, la, lb, K, damping, offset, kind, gap)
+    if p.initial_equilibrium:
+        if centres is None or quaternions is None:
+            centres, quaternions = initial_quaternions(p)
+        out.offset = equilibrium_offsets(p, out, centres, quaternions)
+    return out
+
+
+def static_loads(p: SailParameters, conn: Connectors, centres: np.ndarray, quaternions: np.ndarray) -> np.ndarray:
+    """(N, 6) force (global, N) and torque about the centre (global, N m) on every tile from the connectors
+    and the follower edge tension in a state at rest: the connector law of both solvers (module docstring,
+    solvers.reduced.sheet) without its damping, evaluated in numpy from small quantities."""
+    flat = flat_centres(p)
+    rotations = quaternion_rotation(quaternions)
+    ground = conn.tile_a < 0
+    a = np.maximum(conn.tile_a, 0)
+    RA = np.where(ground[:, None, None], np.eye(3), rotations[a])
+    RB = rotations[conn.tile_b]
+    delta = relative_displacement(
+        conn.tile_a, conn.tile_b, conn.local_a, conn.local_b, centres, quaternions, flat, conn.gap
+    )
+    rmi = rotation_minus_identity(quaternions)
+    rmi_a = np.where(ground[:, None, None], 0.0, rmi[a])
+    # R_Aᵀ R_B − I from the small parts: (R_A − I)ᵀ + (R_B − I) + (R_A − I)ᵀ(R_B − I)
+    rmi_b = rmi[conn.tile_b]
+    relative = np.eye(3) + np.swapaxes(rmi_a, 1, 2) + rmi_b + np.einsum("kji,kjl->kil", rmi_a, rmi_b)
+    strain = np.concatenate([delta, angles_xyz(relative)], axis=1)
+    local = conn.stiffness * (strain - conn.offset)
+    force = np.einsum("kij,kj->ki", RA, local[:, :3])
+    moment = np.einsum("kij,kj->ki", RA, local[:, 3:])
+    lever_a = np.where(ground[:, None], 0.0, np.einsum("kij,kj->ki", RA, conn.local_a))
+    lever_b = np.einsum("kij,kj->ki", RB, conn.local_b)
+    out = np.zeros((len(flat), 6))
+    np.add.at(out[:, :3], conn.tile_b, -force)
+    np.add.at(out[:, 3:], conn.tile_b, -(np.cross(lever_b, force) + moment))
+    inner = ~ground
+    np.add.at(out[:, :3], conn.tile_a[inner], force[inner])
+    np.add.at(out[:, 3:], conn.tile_a[inner], np.cross(lever_a[inner], force[inner]) + moment[inner])
+    tiles, points, forces = edge_followers(p)
+    if len(tiles):
+        f = np.einsum("kij,kj->ki", rotations[tiles], forces)
+        np.add.at(out[:, :3], tiles, f)
+        np.add.at(out[:, 3:], tiles, np.cross(np.einsum("kij,kj->ki", rotations[tiles], points), f))
+    return out
+
+
+def _load_map(p: SailParameters, conn: Connectors, centres: np.ndarray, quaternions: np.ndarray):
+    """G (6N × 6C, sparse): the tiles' forces and torques (static_loads' layout, flattened) per unit change
+    of the connectors' local loads K(strain − offset)."""
+    import scipy.sparse as sparse
+
+    rotations = quaternion_rotation(quaternions)
+    ground = conn.tile_a < 0
+    RA = np.where(ground[:, None, None], np.eye(3), rotations[np.maximum(conn.tile_a, 0)])
+    rows, cols, vals = [], [], []
+
+    def block(tile, lever, sign, keep):
+        cross = np.zeros((len(lever), 3, 3))
+        cross[:, 0, 1], cross[:, 0, 2], cross[:, 1, 2] = -lever[:, 2], lever[:, 1], -lever[:, 0]
+        cross[:, 1, 0], cross[:, 2, 0], cross[:, 2, 1] = lever[:, 2], -lever[:, 1], lever[:, 0]
+        full = np.zeros((len(lever), 6, 6))
+        full[:, :3, :3] = RA
+        full[:, 3:, :3] = cross @ RA
+        full[:, 3:, 3:] = RA
+        c = np.nonzero(keep)[0]
+        r = 6 * tile[c, None, None] + np.arange(6)[None, :, None]
+        q = 6 * c[:, None, None] + np.arange(6)[None, None, :]
+        rows.append(np.broadcast_to(r, (len(c), 6, 6)).ravel())
+        cols.append(np.broadcast_to(q, (len(c), 6, 6)).ravel())
+        vals.append(sign * full[c].ravel())
+
+    lever_b = np.einsum("kij,kj->ki", rotations[conn.tile_b], conn.local_b)
+    block(conn.tile_b, lever_b, -1.0, np.ones(len(conn), bool))
+    lever_a = np.einsum("kij,kj->ki", RA, conn.local_a)
+    block(np.maximum(conn.tile_a, 0), lever_a, 1.0, ~ground)
+    n = 6 * len(centres)
+    return sparse.csc_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), (n, 6 * len(conn)))
+
+
+def equilibrium_offsets(
+    p: SailParameters, conn: Connectors, centres: np.ndarray, quaternions: np.ndarray, iterations: int = 4
+) -> np.ndarray:
+    """The connectors' rest offsets (C, 6) corrected so that the unlit sheet, edge tension included, is at
+    rest in the given state (initial_equilibrium).
+
+    The residual r (static_loads, 6N) is linear in the offsets: a change Δo of the rest strains changes the
+    connectors' local loads by −K Δo and the tiles' loads by −G K Δo (G: _load_map). Of all Δo that cancel r
+    the one of least complementary energy ½ Δℓᵀ K⁻¹ Δℓ (Δℓ = −K Δo) is Δo = −Gᵀλ with (G K Gᵀ) λ = −r:
+    the elastic answer, the rest state from which the sheet is pulled into the given shape by the loads
+    that r would otherwise release. G K Gᵀ is the connectors' linear stiffness; a free sheet has 6 rigid
+    modes, removed by holding one tile, and its r is first cleared of its net force and moment (the
+    followers on a tilted edge have a net transverse force, of order T·W times the edge's slope; that
+    remainder moves the sheet as a rigid body, which the plane fit of the failure rule removes). The few
+    connector laws that are not linear in the state (the rotation's xyz angles, the lever arms) are met
+    by repeating the step with the new residual."""
+    from scipy.sparse.linalg import splu
+
+    offset = np.array(conn.offset, float)
+    G = _load_map(p, conn, centres, quaternions)
+    S = (G @ G.T.multiply(conn.stiffness.ravel()[:, None]).tocsc()).tocsc()
+    keep = np.arange(S.shape[0])
+    free = not np.any(conn.tile_a < 0)
+    if free:
+        held = int(np.argmin(np.linalg.norm(centres[:, :2] - centres[:, :2].mean(axis=0), axis=1)))
+        keep = np.setdiff1d(keep, 6 * held + np.arange(6))
+        rigid = np.zeros((S.shape[0], 6))
+        for i in range(3):
+            rigid[i::6, i] = 1.0
+            axis = np.zeros(3)
+            axis[i] = 1.0
+            rigid[0::6, 3 + i], rigid[1::6, 3 + i], rigid[2::6, 3 + i] = np.cross(axis, centres).T
+            rigid[3 + i :: 6, 3 + i] = 1.0
+    lu = splu(S[keep][:, keep].tocsc())
+    for _ in range(iterations):
+        r = static_loads(p, Connectors(**{**conn.__dict__, "offset": offset}), centres, quaternions).ravel()
+        if free:
+            r = r - rigid @ np.linalg.lstsq(rigid, r, rcond=None)[0]
+        lam = np.zeros(S.shape[0])
+        lam[keep] = lu.solve(-r[keep])
+        offset = offset - (G.T @ lam).reshape(-1, 6) * (conn.stiffness > 0)
+    return offset
 
 
 def relative_displacement(ta, tb, la, lb, centres, quaternions, flat, gap=None) -> np.ndarray:

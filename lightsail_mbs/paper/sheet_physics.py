@@ -4,24 +4,36 @@ The paper's soft-sail values (h = 1 µm, ρ = 1000 kg/m³, I₀ = 0.1 GW/m², a�
 perfect mirror), the sheet's defaults (ν_p = 0, E_m = E, bending springs at rest flat as in the paper,
 membrane springs at rest in the defect), in-house solver, 6 s runs unless said otherwise; "strip" is
 the same model with one tile across (nx × 1: the paper's chain, model.sheet docstring), so strip and
-sheet share the discretisation along x. Each stability number is bisected in log space
-(studies.sheet.stability_boundaries) to a bracket ≤ FACTOR wide, on two grids (GRIDS) for its grid
-convergence.
+sheet share the discretisation along x. Each stability number is bisected in log space to a bracket
+≤ FACTOR wide, on the grids named below for its grid convergence.
 
 1. Critical modulus: E/E_cr,max (Eq. 8, ν = 1.5) above which the sail survives 6 s, for the strip and the
    sheet with the doubly sinusoidal defect ν_x = ν_y = 1.5 and with half a wave across (ν_y = 0.5), with
-   the physical membrane E_m = E and with a soft one (E_m = 4.5e9 Pa): a doubly curved defect couples
-   bending to stretching, so E_m enters (validation/sheet_membrane.md).
-2. Centred Gaussian beam (waist w = 2, 1, 0.5 m, round on the sheet, a line across the strip), 1-D sine,
+   the physical membrane E_m = E and with a soft one (E_m = 4.5e9 Pa), on GRIDS; the doubly sinusoidal
+   defect with E_m = E also bisected to a bracket ≤ FINE_FACTOR wide on FINE_GRIDS (its grid convergence).
+2. Failure time against E (the doubly sinusoidal defect, E_m = E, HORIZON-long runs, on HORIZON_GRIDS):
+   the times at which the amplitude reaches 1.5 and 2 a₀ and the growth rate between them, from which
+   the boundary of any run length up to HORIZON can be read; and the same times against the tiles per
+   half wavelength, for ν_x = ν_y = 1 and 1.5 at RESOLUTION_RATIO E_cr,max (RESOLUTION).
+3. Centred Gaussian beam (waist w = 2, 1, 0.5 m, round on the sheet, a line across the strip), 1-D sine,
    E = 4.5e9 Pa: failure time of sheet and strip (10 µs samples).
-3. Edge tension (follower, all four edges, N per metre; soft bending E = 4.5e9 Pa = E_m) above which the
-   sail survives 6 s, as T/T_cr,max with T_cr,max = ½(2I₀/c)a₀ (Eq. 10 per metre), for the strip, the sheet
-   with the 1-D sine and the sheet with the doubly sinusoidal defect.
+4. Edge tension (follower, all four edges, N per metre; soft bending E = 4.5e9 Pa = E_m) above which the
+   sail survives 6 s, as T/T_cr,max with T_cr,max = ½(2I₀/c)a₀ (Eq. 10 per metre):
+   (a) the paper's rule (amplitude doubled) for the strip and the sheet with the 1-D sine, on GRIDS;
+   (b) the unlit-twin rule (studies.sheet.twin_boundary: amplitude twice the largest amplitude the unlit
+   twin has had so far) for the strip and the doubly sinusoidal sheet, on TENSION_GRIDS: a doubly
+   curved defect is not an equilibrium under tension (the membrane force T∇²w ≠ 0), so the unlit sheet
+   oscillates with peaks above a₀;
+   (c) unlit runs at UNLIT_TENSION T_cr,max: the defect released under tension, and the same sheet with
+   initial_equilibrium (rest offsets that make the defect an equilibrium under tension);
+   (d) the doubly sinusoidal sheet above its boundary (SCAN_TENSIONS, TENSION_GRIDS): the peaks of the lit
+   run and of its twin, and when the lit run reached 2 a₀ (the paper's rule).
 
-Writes sheet_physics_modulus.csv, sheet_physics_gaussian.csv, sheet_physics_tension.csv, their summary
-sheet_physics.md (brackets as uncertainties, sheet against strip), sheet_physics.png and
-sheet_physics_failure.png (the doubly sinusoidal sheet at failure) into OUT; the runs go to the store
-OUT/store/sheet_physics. Quick (a smoke test): one 6 × 6 grid, 1 s runs, factor 3.
+Writes sheet_physics_{modulus,horizon,resolution,gaussian,tension,twin,unlit,scan}.csv (each as soon as its study is
+done), their summary sheet_physics.md (brackets as uncertainties, sheet against strip),
+sheet_physics.png and sheet_physics_failure.png (the doubly sinusoidal sheet at failure) into OUT; the
+runs go to the store OUT/store/sheet_physics, so a rerun resumes from every finished run. Quick (a smoke
+test): 6 × 6 grids, 1 s runs, factor 3.
 Run: lightsail-mbs reproduce --scenario sheet_physics, or python scenarios/sheet_physics.py.
 """
 
@@ -39,7 +51,20 @@ from lightsail_mbs.studies.tables import print_table, write_csv
 from lightsail_mbs.viz.plots import new_figure, save_figure
 
 NAME = "sheet_physics"
+DOUBLY = "sheet ν_y = 1.5, E_m = E"
 GRIDS = (12, 18)
+FINE_GRIDS = (18, 24, 30, 36)  # the doubly sinusoidal defect with E_m = E, bisected to FINE_FACTOR
+FINE_BRACKET = (0.2, 0.8)  # its first bracket there, E/E_cr,max
+FINE_FACTOR = 1.05
+FINE = f"{DOUBLY}, bracket ≤ {FINE_FACTOR}"
+HORIZON = RunSettings(t_final=12.0)
+HORIZON_GRIDS = (12, 18, 24)
+HORIZON_RATIOS = (0.3, 0.5, 1.0, 2.0)  # E/E_cr,max
+RESOLUTION = {1.0: (8, 12, 18, 24), 1.5: (12, 18, 24, 30)}  # ν_x = ν_y: grids of the resolution study
+RESOLUTION_RATIO = 0.5  # its E/E_cr,max (each defect's own E_cr,max, Eq. 8 with its ν)
+TENSION_GRIDS = (12, 18, 24)  # the unlit-twin rule
+UNLIT_TENSION = 8.0  # T/T_cr,max of the unlit runs
+SCAN_TENSIONS = (4.0, 8.0, 32.0, 128.0)  # T/T_cr,max above the boundary: lit and twin peaks
 FACTOR = 1.3
 SOFT = 4.5e9  # Pa: the paper's soft sail, and the soft membrane
 WAISTS = (2.0, 1.0, 0.5)
@@ -63,10 +88,19 @@ def modulus_cases(grids) -> dict:
 
 
 def tension_cases(grids) -> dict:
+    """{(label, grid): SailParameters} of the tension boundaries under the paper's rule."""
     cases = {}
     for g in grids:
         cases[("strip", g)] = base(g, ny=1)
         cases[("sheet, 1-D sine", g)] = base(g)
+    return cases
+
+
+def twin_cases(grids) -> dict:
+    """{(label, grid): SailParameters} of the tension boundaries under the unlit-twin rule."""
+    cases = {}
+    for g in grids:
+        cases[("strip", g)] = base(g, ny=1)
         cases[("sheet ν_y = 1.5", g)] = base(g, defect_mode_y=1.5)
     return cases
 
@@ -86,6 +120,138 @@ def boundary_rows(found: dict, quantity: str) -> list[dict]:
                 ratio=b.value,
                 runs=len(b.evaluations),
                 monotone=b.monotone,
+            )
+        )
+    return rows
+
+
+def horizon_rows(grids, ratios, settings, store_dir, workers, progress, mode=1.5) -> list[dict]:
+    """The doubly sinusoidal sheet ν_x = ν_y = mode (E_m = E) at E = ratio·E_cr,max over `settings.t_final`:
+    the first output times with amplitude ≥ 1.5 and 2 a₀ and the mean growth rate ln(2/1.5)/(t₂ − t₁.₅)
+    between them."""
+    cases = [
+        (g, k, sheet_study.with_ratio(base(g, defect_mode=mode, defect_mode_y=mode), "modulus", k))
+        for g in grids
+        for k in ratios
+    ]
+    done = run_cases(
+        [c[2] for c in cases],
+        store_dir,
+        settings,
+        solver="reduced",
+        workers=workers,
+        label="sheet horizon",
+        progress=progress,
+    )
+    rows = []
+    for (g, k, _), (record, result) in zip(cases, done):
+        times = {}
+        for level in (1.5, 2.0):
+            past = np.nonzero(result.amplitude >= level * result.amplitude[0])[0] if result is not None else []
+            times[level] = float(result.time[past[0]]) if len(past) else None
+        rate = None
+        if None not in times.values():
+            rate = math.log(2.0 / 1.5) / (times[2.0] - times[1.5])
+        rows.append(
+            dict(
+                mode=mode,
+                grid=g,
+                tiles_per_half_wave=g / (2.0 * mode),
+                ratio=k,
+                t_1_5=times[1.5],
+                t_2=times[2.0],
+                growth_rate=rate,
+                max_ratio=None if result is None else float(result.amplitude.max() / result.amplitude[0]),
+                t_final=settings.t_final,
+                error=record.get("error"),
+            )
+        )
+    return rows
+
+
+def twin_rows(grids, factor, run, store_dir, progress) -> list[dict]:
+    """The tension boundaries of twin_cases under the unlit-twin rule, with the twin's and the lit run's
+    peaks (in a₀) at both ends of each bracket."""
+    rows = []
+    for (label, g), p in twin_cases(grids).items():
+        found, verdicts = sheet_study.twin_boundary(
+            (label, g),
+            p,
+            "edge_tension",
+            store_dir,
+            settings=run,
+            lo=0.5,
+            hi=8.0,
+            factor=factor,
+            progress=progress,
+        )
+        lo, hi = found.bracket if found.bracket else (None, None)
+        stable = verdicts.get(found.stable_value)
+        unstable = verdicts.get(found.unstable_value)
+        rows.append(
+            dict(
+                quantity="T/T_cr,max (unlit-twin rule)",
+                case=label,
+                grid=f"{g}×{1 if label == 'strip' else g}",
+                status=found.status,
+                ratio_low=lo,
+                ratio_high=hi,
+                ratio=found.value,
+                runs=2 * len(found.evaluations),
+                unlit_peak_stable=stable and stable.unlit_max_ratio,
+                lit_peak_stable=stable and stable.lit_max_ratio,
+                departure_stable=stable and stable.max_departure,
+                unlit_peak_failed=unstable and unstable.unlit_max_ratio,
+                failure_time_failed=unstable and unstable.failure_time,
+                message=found.message,
+            )
+        )
+    return rows
+
+
+def scan_rows(grids, tensions, run, store_dir) -> list[dict]:
+    """The doubly sinusoidal sheet at `tensions` T_cr,max with its unlit twin (studies.sheet.twin_runs)."""
+    rows = []
+    for g in grids:
+        for k in tensions:
+            p = sheet_study.with_ratio(base(g, defect_mode_y=1.5), "edge_tension", k)
+            lit, _, v = sheet_study.twin_runs(p, store_dir, run)
+            doubled = np.nonzero(lit.amplitude >= 2.0 * lit.amplitude[0])[0]
+            rows.append(
+                dict(
+                    grid=g,
+                    tension_ratio=k,
+                    lit_peak=v.lit_max_ratio,
+                    twin_peak=v.unlit_max_ratio,
+                    peak_ratio=v.lit_max_ratio / v.unlit_max_ratio,
+                    twin_rule_failure_time=v.failure_time,
+                    papers_rule_failure_time=float(lit.time[doubled[0]]) if doubled.size else None,
+                )
+            )
+    return rows
+
+
+def unlit_rows(grid, tension, run, store_dir, workers, progress) -> list[dict]:
+    """Unlit runs at `tension` T_cr,max: the doubly sinusoidal sheet released under tension and with
+    initial_equilibrium, and the strip with initial_equilibrium (amplitude peak and when it reached 2 a₀)."""
+    cases = [
+        ("sheet ν_y = 1.5, released", base(grid, defect_mode_y=1.5)),
+        ("sheet ν_y = 1.5, initial_equilibrium", base(grid, defect_mode_y=1.5, initial_equilibrium=True)),
+        ("strip, released", base(grid, ny=1)),
+        ("strip, initial_equilibrium", base(grid, ny=1, initial_equilibrium=True)),
+    ]
+    params = [sheet_study.with_ratio(p, "edge_tension", tension).replace(intensity=0.0) for _, p in cases]
+    done = run_cases(params, store_dir, run, solver="reduced", workers=workers, label="sheet unlit", progress=progress)
+    rows = []
+    for (label, p), (record, result) in zip(cases, done):
+        rows.append(
+            dict(
+                case=label,
+                grid=f"{grid}×{p.ny}",
+                tension_ratio=tension,
+                max_ratio=None if result is None else float(result.amplitude.max() / result.amplitude[0]),
+                failure_time=None if result is None else result.failure_time,
+                error=record.get("error"),
             )
         )
     return rows
@@ -121,48 +287,91 @@ def gaussian_rows(grids, store_dir, workers, progress) -> list[dict]:
     return rows
 
 
-def compute(*, grids=GRIDS, factor=FACTOR, run=RUN, store_dir, workers=None, progress=True) -> dict:
+KINDS = ("twin", "unlit", "scan", "modulus", "horizon", "resolution", "tension", "gaussian")
+TITLES = {
+    "twin": "Stabilising edge tension T/T_cr,max, unlit-twin rule, 6 s runs, E = 4.5e9 Pa",
+    "unlit": "Unlit sheets under edge tension, 6 s",
+    "scan": "Doubly sinusoidal sheet above its tension boundary: lit and twin peaks, 6 s",
+    "modulus": "Critical modulus E/E_cr,max, 6 s runs (sheet vs strip)",
+    "horizon": "Doubly sinusoidal sheet, E_m = E: failure time against E",
+    "resolution": "Doubly sinusoidal sheets, E_m = E: failure time against the tiles per half wavelength",
+    "tension": "Stabilising edge tension T/T_cr,max, paper's rule, 6 s runs, E = 4.5e9 Pa",
+    "gaussian": "Centred Gaussian beam, 1-D sine, E = 4.5e9 Pa: failure time (ms)",
+}
+
+
+def compute(
+    *,
+    grids=GRIDS,
+    fine_grids=FINE_GRIDS,
+    horizon_grids=HORIZON_GRIDS,
+    tension_grids=TENSION_GRIDS,
+    factor=FACTOR,
+    fine_factor=FINE_FACTOR,
+    run=RUN,
+    horizon=HORIZON,
+    resolution=RESOLUTION,
+    scan_tensions=SCAN_TENSIONS,
+    store_dir,
+    workers=None,
+    progress=True,
+    out=None,
+) -> dict:
+    """Every study (module docstring); with `out`, each one's CSV is written as soon as it is done."""
     store_dir = Path(store_dir)
-    modulus = sheet_study.stability_boundaries(
-        modulus_cases(grids),
-        "modulus",
-        store_dir,
-        settings=run,
-        lo=2.0,
-        hi=16.0,
-        factor=factor,
-        workers=workers,
-        progress=progress,
+    rows = {}
+
+    def done(kind, data):
+        rows[kind] = data
+        if out is not None:
+            write_csv(Path(out) / f"sheet_physics_{kind}.csv", data)
+            print_table(TITLES[kind], data)
+
+    common = dict(settings=run, factor=factor, workers=workers, progress=progress)
+    done("twin", twin_rows(tension_grids, factor, run, store_dir, progress))
+    done("unlit", unlit_rows(tension_grids[0], UNLIT_TENSION, run, store_dir, workers, progress))
+    done("scan", scan_rows(tension_grids, scan_tensions, run, store_dir))
+    modulus = sheet_study.stability_boundaries(modulus_cases(grids), "modulus", store_dir, lo=2.0, hi=16.0, **common)
+    fine = {(FINE, g): p for (label, g), p in modulus_cases(fine_grids).items() if label == DOUBLY}
+    lo, hi = FINE_BRACKET
+    fine_common = {**common, "factor": fine_factor}
+    modulus.update(sheet_study.stability_boundaries(fine, "modulus", store_dir, lo=lo, hi=hi, **fine_common))
+    done("modulus", boundary_rows(modulus, "E/E_cr,max"))
+    done("horizon", horizon_rows(horizon_grids, HORIZON_RATIOS, horizon, store_dir, workers, progress))
+    done(
+        "resolution",
+        [
+            row
+            for mode, mode_grids in resolution.items()
+            for row in horizon_rows(mode_grids, (RESOLUTION_RATIO,), horizon, store_dir, workers, progress, mode)
+        ],
     )
     tension = sheet_study.stability_boundaries(
-        tension_cases(grids),
-        "edge_tension",
-        store_dir,
-        settings=run,
-        lo=0.5,
-        hi=8.0,
-        factor=factor,
-        workers=workers,
-        progress=progress,
+        tension_cases(grids), "edge_tension", store_dir, lo=0.5, hi=8.0, **common
     )
-    return dict(
-        modulus=boundary_rows(modulus, "E/E_cr,max"),
-        tension=boundary_rows(tension, "T/T_cr,max"),
-        gaussian=gaussian_rows(grids, store_dir, workers, progress),
-    )
+    done("tension", boundary_rows(tension, "T/T_cr,max"))
+    done("gaussian", gaussian_rows(grids, store_dir, workers, progress))
+    return rows
 
 
 def run(out, *, solver="reduced", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
     out = Path(out)
-    options = dict(grids=(6,), factor=3.0, run=RunSettings(t_final=1.0)) if quick else {}
-    rows = compute(store_dir=Path(store or out / "store") / NAME, workers=workers, progress=progress, **options)
-    for kind, title in (
-        ("modulus", "Critical modulus E/E_cr,max, 6 s runs (sheet vs strip)"),
-        ("tension", "Stabilising edge tension T/T_cr,max, 6 s runs, E = 4.5e9 Pa"),
-        ("gaussian", "Centred Gaussian beam, 1-D sine, E = 4.5e9 Pa: failure time (ms)"),
-    ):
-        write_csv(out / f"sheet_physics_{kind}.csv", rows[kind])
-        print_table(title, rows[kind])
+    options = {}
+    if quick:
+        options = dict(
+            grids=(6,),
+            fine_grids=(8,),
+            horizon_grids=(6,),
+            tension_grids=(6,),
+            factor=3.0,
+            fine_factor=3.0,
+            run=RunSettings(t_final=1.0),
+            horizon=RunSettings(t_final=1.0),
+            resolution={1.5: (6,)},
+            scan_tensions=(8.0,),
+        )
+    store_dir = Path(store or out / "store") / NAME
+    rows = compute(store_dir=store_dir, workers=workers, progress=progress, out=out, **options)
     (out / "sheet_physics.md").write_text(summary_markdown(rows))
     plot(out / "sheet_physics.png", rows)
     failure_frame(out / "sheet_physics_failure.png", quick)
@@ -177,12 +386,34 @@ def read_rows(out) -> dict:
         return None if text in ("", None) else float(text)
 
     rows = {}
-    for kind in ("modulus", "tension", "gaussian"):
+    for kind in KINDS:
         with open(Path(out) / f"sheet_physics_{kind}.csv", newline="") as handle:
             rows[kind] = list(csv.DictReader(handle))
-    for r in rows["modulus"] + rows["tension"]:
+    for r in rows["modulus"] + rows["tension"] + rows["twin"]:
         r.update({k: number(r[k]) for k in ("ratio", "ratio_low", "ratio_high")})
         r["runs"] = int(r["runs"])
+    for r in rows["twin"]:
+        r.update(
+            {
+                k: number(r[k])
+                for k in (
+                    "unlit_peak_stable",
+                    "lit_peak_stable",
+                    "departure_stable",
+                    "unlit_peak_failed",
+                    "failure_time_failed",
+                )
+            }
+        )
+    for r in rows["horizon"] + rows["resolution"]:
+        keys = ("mode", "tiles_per_half_wave", "ratio", "t_1_5", "t_2", "growth_rate", "max_ratio", "t_final")
+        r.update({k: number(r[k]) for k in keys})
+        r["grid"] = int(r["grid"])
+    for r in rows["unlit"]:
+        r.update({k: number(r[k]) for k in ("tension_ratio", "max_ratio", "failure_time")})
+    for r in rows["scan"]:
+        r.update({k: number(v) for k, v in r.items()})
+        r["grid"] = int(r["grid"])
     for r in rows["gaussian"]:
         r.update(grid=int(r["grid"]), waist_m=float(r["waist_m"]), failure_time_ms=number(r["failure_time_ms"]))
     return rows
@@ -196,30 +427,99 @@ def _bracket(lo, hi) -> str:
     return f"{mid:.3g} (×÷{half:.3f}; {lo:.3g} – {hi:.3g})"
 
 
+def _number(value, digits=3) -> str:
+    return "–" if value is None else f"{value:.{digits}g}"
+
+
+def _boundary_table(data, quantity, extra=None) -> list[str]:
+    """Rows of bisected boundaries: bracket, against the strip of the same grid, runs (and extra columns)."""
+    extra = extra or {}
+    head = f"| case | grid | {quantity}: middle (×÷ half-width; bracket) | sheet / strip (range) | runs |"
+    lines = [head + "".join(f" {name} |" for name in extra), "|---|---|---|---|---|" + "---|" * len(extra)]
+    for r in data:
+        grid = r["grid"].split("×")[0]
+        strip = next((q for q in data if q["case"] == "strip" and q["grid"].split("×")[0] == grid), None)
+        versus = "–"
+        if r["case"] != "strip" and strip and None not in (r["ratio_low"], r["ratio_high"], strip["ratio_low"]):
+            lo, hi = r["ratio_low"] / strip["ratio_high"], r["ratio_high"] / strip["ratio_low"]
+            versus = f"{math.sqrt(lo * hi):.3g} ({lo:.3g} – {hi:.3g})"
+        cells = "".join(f" {f(r)} |" for f in extra.values())
+        lines.append(
+            f"| {r['case']} | {r['grid']} | {_bracket(r['ratio_low'], r['ratio_high'])} | {versus} | "
+            f"{r['runs']} |{cells}"
+        )
+    return lines + [""]
+
+
 def summary_markdown(rows) -> str:
-    """The three studies as Markdown tables: each boundary with its bisection bracket, each sheet's boundary
-    against the strip's of the same grid (ratio range from the two brackets), and the Gaussian failure
-    times of sheet and strip with their ratio, on every grid."""
+    """The studies as Markdown tables: each boundary with its bisection bracket, each sheet's boundary
+    against the strip's of the same grid (ratio range from the two brackets), the failure times against E,
+    the unlit runs, and the Gaussian failure times of sheet and strip with their ratio."""
     lines = ["# The sheet against the strip", ""]
-    for kind, quantity in (("modulus", "E_stable / E_cr,max"), ("tension", "T_stable / T_cr,max")):
-        data = rows[kind]
-        lines += [
-            f"## {'Critical modulus' if kind == 'modulus' else 'Stabilising edge tension'}: {quantity}",
-            "",
-            f"| case | grid | {quantity}: middle (×÷ half-width; bracket) | sheet / strip (range) | runs |",
-            "|---|---|---|---|---|",
-        ]
-        for r in data:
-            grid = r["grid"].split("×")[0]
-            strip = next((q for q in data if q["case"] == "strip" and q["grid"].split("×")[0] == grid), None)
-            versus = "–"
-            if r["case"] != "strip" and strip and None not in (r["ratio_low"], r["ratio_high"], strip["ratio_low"]):
-                lo, hi = r["ratio_low"] / strip["ratio_high"], r["ratio_high"] / strip["ratio_low"]
-                versus = f"{math.sqrt(lo * hi):.3g} ({lo:.3g} – {hi:.3g})"
-            lines.append(
-                f"| {r['case']} | {r['grid']} | {_bracket(r['ratio_low'], r['ratio_high'])} | {versus} | {r['runs']} |"
-            )
-        lines.append("")
+    lines += ["## Critical modulus: E_stable / E_cr,max", ""]
+    lines += _boundary_table(rows["modulus"], "E_stable / E_cr,max")
+    lines += [
+        "## Doubly sinusoidal sheet, E_m = E: failure time against E "
+        f"({_number(rows['horizon'][0]['t_final'])} s runs)",
+        "",
+        "| grid | E / E_cr,max | t(1.5 a₀) (s) | t(2 a₀) (s) | growth rate between (1/s) | largest a / a₀ |",
+        "|---|---|---|---|---|---|",
+    ]
+    for r in rows["horizon"]:
+        lines.append(
+            f"| {r['grid']}×{r['grid']} | {r['ratio']:g} | {_number(r['t_1_5'], 4)} | {_number(r['t_2'], 4)} | "
+            f"{_number(r['growth_rate'])} | {_number(r['max_ratio'], 4)} |"
+        )
+    lines += [
+        "",
+        f"## Doubly sinusoidal sheets, E_m = E, E = {_number(rows['resolution'][0]['ratio'])} E_cr,max: "
+        "failure time against the tiles per half wavelength",
+        "",
+        "| ν_x = ν_y | grid | tiles per half wave | t(1.5 a₀) (s) | t(2 a₀) (s) | growth rate between (1/s) |",
+        "|---|---|---|---|---|---|",
+    ]
+    for r in rows["resolution"]:
+        lines.append(
+            f"| {r['mode']:g} | {r['grid']}×{r['grid']} | {r['tiles_per_half_wave']:.3g} | {_number(r['t_1_5'], 4)} | "
+            f"{_number(r['t_2'], 4)} | {_number(r['growth_rate'])} |"
+        )
+    lines += ["", "## Stabilising edge tension, unlit-twin rule: T_stable / T_cr,max", ""]
+    lines += _boundary_table(
+        rows["twin"],
+        "T_stable / T_cr,max",
+        {
+            "twin's peak / a₀ at the stable end": lambda r: _number(r["unlit_peak_stable"], 4),
+            "lit peak / a₀ there": lambda r: _number(r["lit_peak_stable"], 4),
+            "largest z_lit − z_twin / a₀ there": lambda r: _number(r["departure_stable"], 3),
+            "twin's peak / a₀ at the failing end": lambda r: _number(r["unlit_peak_failed"], 4),
+            "failure time there (s)": lambda r: _number(r["failure_time_failed"], 4),
+        },
+    )
+    lines += [
+        f"## Unlit sheets at {_number(rows['unlit'][0]['tension_ratio'])} T_cr,max, 6 s",
+        "",
+        "| case | grid | largest a / a₀ | reached 2 a₀ at (s) |",
+        "|---|---|---|---|",
+    ]
+    for r in rows["unlit"]:
+        lines.append(f"| {r['case']} | {r['grid']} | {_number(r['max_ratio'], 4)} | {_number(r['failure_time'], 4)} |")
+    lines += [
+        "",
+        "## Doubly sinusoidal sheet above its tension boundary: lit run and unlit twin, 6 s",
+        "",
+        "| grid | T / T_cr,max | lit peak / a₀ | twin's peak / a₀ | lit / twin | twin rule: fails at (s) | "
+        "paper's rule: fails at (s) |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for r in rows["scan"]:
+        lines.append(
+            f"| {r['grid']}×{r['grid']} | {r['tension_ratio']:g} | {_number(r['lit_peak'], 4)} | "
+            f"{_number(r['twin_peak'], 4)} | {_number(r['peak_ratio'], 4)} | "
+            f"{_number(r['twin_rule_failure_time'], 4)} | "
+            f"{_number(r['papers_rule_failure_time'], 4)} |"
+        )
+    lines += ["", "## Stabilising edge tension, paper's rule: T_stable / T_cr,max", ""]
+    lines += _boundary_table(rows["tension"], "T_stable / T_cr,max")
     lines += [
         "## Centred Gaussian beam, 1-D sine, E = 4.5e9 Pa: failure time",
         "",
@@ -240,39 +540,57 @@ def summary_markdown(rows) -> str:
     return "\n".join(lines)
 
 
+def _boundary_panel(ax, data, xlabel) -> None:
+    """Bisection brackets per case (rows) and grid (offset markers), log axis when any is bracketed."""
+    labels = list(dict.fromkeys(r["case"] for r in data))
+    grids = list(dict.fromkeys(r["grid"].split("×")[0] for r in data))
+    for j, g in enumerate(grids):
+        mine = [(i, r) for i, c in enumerate(labels) for r in data if r["case"] == c and r["grid"].split("×")[0] == g]
+        if not mine:
+            continue
+        y = np.array([i for i, _ in mine]) + 0.6 * (j / max(1, len(grids) - 1) - 0.5)
+        mid = np.array([r["ratio"] or np.nan for _, r in mine])
+        lo = np.array([r["ratio_low"] or np.nan for _, r in mine])
+        hi = np.array([r["ratio_high"] or np.nan for _, r in mine])
+        ax.errorbar(mid, y, xerr=[mid - lo, hi - mid], fmt="o", capsize=3, label=f"{g} tiles along L")
+    ax.set_yticks(np.arange(len(labels)), labels, fontsize=7)
+    if any(r["ratio"] for r in data):
+        ax.set_xscale("log")
+    ax.set_xlabel(xlabel)
+    ax.legend(fontsize=7)
+
+
 def plot(path, rows) -> Path:
-    """Left: stability ratios with their brackets per case and grid; right: Gaussian failure times."""
-    fig, ax = new_figure(1, 3, size=(14.0, 4.2))
-    for k, kind in enumerate(("modulus", "tension")):
-        data = rows[kind]
-        labels = list(dict.fromkeys(r["case"] for r in data))
-        grids = list(dict.fromkeys(r["grid"].split("×")[0] for r in data))
-        for j, g in enumerate(grids):
-            mine = [next(r for r in data if r["case"] == c and r["grid"].split("×")[0] == g) for c in labels]
-            y = np.arange(len(labels)) + 0.2 * (j - 0.5)
-            mid = np.array([r["ratio"] or np.nan for r in mine])
-            lo = np.array([r["ratio_low"] or np.nan for r in mine])
-            hi = np.array([r["ratio_high"] or np.nan for r in mine])
-            ax[0, k].errorbar(mid, y, xerr=[mid - lo, hi - mid], fmt="o", capsize=3, label=f"{g} tiles along L")
-        ax[0, k].set_yticks(np.arange(len(labels)), labels, fontsize=7)
-        if any(r["ratio"] for r in data):  # a log axis needs a bracketed boundary
-            ax[0, k].set_xscale("log")
-        ax[0, k].set_xlabel("E_stable / E_cr,max" if kind == "modulus" else "T_stable / T_cr,max")
-        ax[0, k].legend(fontsize=7)
-    g = [r for r in rows["gaussian"]]
+    """Top: critical moduli, failure time against E (doubly sinusoidal, E_m = E); bottom: edge tension
+    (paper's rule and unlit-twin rule, brackets), Gaussian failure times."""
+    fig, ax = new_figure(2, 2, size=(13.0, 8.4))
+    _boundary_panel(ax[0, 0], rows["modulus"], "E_stable / E_cr,max (6 s)")
+    for grid in sorted({r["grid"] for r in rows["horizon"]}):
+        mine = [r for r in rows["horizon"] if r["grid"] == grid]
+        ax[0, 1].plot([r["ratio"] for r in mine], [r["t_2"] or np.nan for r in mine], "o-", label=f"{grid}×{grid}")
+    ax[0, 1].axhline(RUN.t_final, color="0.6", lw=0.8, ls="--")
+    if any(r["t_2"] for r in rows["horizon"]):  # a log axis needs a point
+        ax[0, 1].set_xscale("log")
+    ax[0, 1].set_xlabel("E / E_cr,max (doubly sinusoidal, E_m = E)")
+    ax[0, 1].set_ylabel("time to 2 a₀ (s)")
+    ax[0, 1].legend(fontsize=7)
+    tension = [dict(r, case=f"{r['case']} (paper's rule)") for r in rows["tension"]]
+    tension += [dict(r, case=f"{r['case']} (twin rule)") for r in rows["twin"]]
+    _boundary_panel(ax[1, 0], tension, "T_stable / T_cr,max (6 s)")
+    g = rows["gaussian"]
     for grid in sorted({r["grid"] for r in g}):
         for label, style in (("strip", "s--"), ("sheet", "o-")):
             mine = [r for r in g if r["grid"] == grid and r["case"] == label]
-            ax[0, 2].plot(
+            ax[1, 1].plot(
                 [r["waist_m"] for r in mine],
                 [r["failure_time_ms"] or np.nan for r in mine],
                 style,
                 label=f"{label}, {grid} tiles along L",
             )
-    ax[0, 2].set_xlabel("beam waist w (m)")
-    ax[0, 2].set_ylabel("failure time (ms)")
-    ax[0, 2].legend(fontsize=7)
-    fig.suptitle("The sheet against the strip (in-house solver, 6 s runs; brackets: bisection)", fontsize=10)
+    ax[1, 1].set_xlabel("beam waist w (m)")
+    ax[1, 1].set_ylabel("failure time (ms)")
+    ax[1, 1].legend(fontsize=7)
+    fig.suptitle("The sheet against the strip (in-house solver; brackets: bisection)", fontsize=10)
     return save_figure(fig, path)
 
 

@@ -9,25 +9,41 @@
   in log space through the store (studies.bisection), as ratios to the paper's strip scales:
   E/E_cr,max (Eq. 8, with the defect's ν along x) or the edge tension T/T_cr,max with
   T_cr,max = ½(2I₀/c)a₀ per metre of edge (Eq. 10 per width).
+* :func:`twin_verdict`, :func:`twin_runs` and :func:`twin_boundary` — the unlit-twin rule for sheets
+  whose initial shape is not an equilibrium without the beam (a doubly curved defect under edge tension:
+  the membrane force T∇²w ≠ 0 sets the unlit sheet oscillating about flat, and on free edges its modes
+  add up to peaks above a₀: 1.05–1.4 a₀ at 4–128 T_cr,max for the paper's sail, docs: sheet). The twin
+  is the same sheet with I₀ = 0 and the same start. The lit sail fails at the first output sample
+  where its amplitude reaches twice the largest amplitude the twin has had up to then,
+  a(t) ≥ 2 max_{s ≤ t} a_twin(s): the paper's rule
+  measured against what the tensioned sheet does without the beam. Where the unlit sheet holds its
+  shape (a_twin = a(0)) it is the paper's rule, sample for sample. The beam-driven part of the motion,
+  the plane amplitude of z_lit − z_twin (:func:`twin_departure`), is reported beside it; it is not the
+  rule, because a defect that changes shape as it grows departs from its start by a(0) before its
+  amplitude doubles (4 % earlier for the soft strip: tests/studies/test_sheet.py), and an oscillating
+  sheet whose frequency the beam shifts drifts out of phase with its twin without growing.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from lightsail_mbs import analysis
 from lightsail_mbs.model import plate_theory, theory
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.settings import RunSettings
-from lightsail_mbs.studies.bisection import BoundaryProblem, bisect_boundaries
-from lightsail_mbs.studies.sweep import Case, run_sweep
+from lightsail_mbs.studies.bisection import Boundary, BoundaryProblem, bisect_boundaries
+from lightsail_mbs.studies.sweep import Case, run_cases, run_sweep
 
 WINDOW_RATIO = 1.5
 FAILURE_TIME_LIMIT = 0.01  # relative: the cross-check's agreement on failure times
 DEFLECTION_LIMIT = 1e-3  # in units of a₀: the cross-check's agreement on deflections
+TWIN_STOP_RATIO = 4.0  # both twins run until a(t) ≥ 4 a(0): past twice any unlit peak below 2 a(0)
 QUANTITIES = {
     "modulus": ("youngs_modulus", theory.critical_modulus_max),
     "edge_tension": ("edge_tension", plate_theory.critical_tension_per_width),
@@ -142,3 +158,152 @@ def stability_boundaries(
         workers=workers,
         progress=progress,
     )
+
+
+def twin_departure(lit: Result, unlit: Result) -> np.ndarray:
+    """(T,) plane amplitude of the deflection difference z_lit − z_unlit over the tiles' (x, y), at the lit
+    run's output samples (m; analysis.plane_amplitude of the points (x_lit, y_lit, z_lit − z_unlit)).
+
+    Both runs must share their output times while the lit one runs; the unlit one must not end earlier."""
+    if not (lit.is_sheet and unlit.is_sheet):
+        raise ParameterError("runs are invalid here: allowed two sheet runs")
+    n = len(lit.time)
+    if len(unlit.time) < n or not np.allclose(unlit.time[:n], lit.time, rtol=0, atol=1e-9):
+        raise ParameterError("unlit twin is invalid: allowed a run with the lit run's output times, at least as long")
+    a, b = lit.tile_centres, unlit.tile_centres[:n]
+    points = np.concatenate([a[..., :2], (a[..., 2] - b[..., 2])[..., None]], axis=-1)
+    return analysis.plane_amplitude(points)
+
+
+@dataclass
+class TwinVerdict:
+    """The unlit-twin rule on one case (module docstring).
+
+    Attributes
+    ----------
+    failed : bool
+        a(t) ≥ 2 max_{s ≤ t} a_twin(s) at some output sample of the lit run.
+    failure_time : float or None
+        The first such sample (s).
+    lit_max_ratio : float
+        Largest amplitude of the lit run, in units of a(0).
+    unlit_max_ratio : float
+        Largest amplitude of the unlit twin over its run, in units of a(0).
+    max_departure : float
+        Largest plane amplitude of z_lit − z_twin over the lit run, in units of a(0) (twin_departure).
+    """
+
+    failed: bool
+    failure_time: float | None
+    lit_max_ratio: float
+    unlit_max_ratio: float
+    max_departure: float
+
+
+def twin_verdict(lit: Result, unlit: Result, ratio: float = 2.0) -> TwinVerdict:
+    """The unlit-twin rule (module docstring): lit fails where a(t) ≥ ratio · max_{s ≤ t} a_twin(s)."""
+    n = len(lit.time)
+    departure = twin_departure(lit, unlit)
+    envelope = np.maximum.accumulate(unlit.amplitude[:n])
+    past = np.nonzero(lit.amplitude >= ratio * envelope)[0]
+    a0 = lit.amplitude[0]
+    return TwinVerdict(
+        failed=bool(past.size),
+        failure_time=float(lit.time[past[0]]) if past.size else None,
+        lit_max_ratio=float(lit.amplitude.max() / a0),
+        unlit_max_ratio=float(unlit.amplitude.max() / unlit.amplitude[0]),
+        max_departure=float(departure.max() / a0),
+    )
+
+
+def twin_runs(lit: SailParameters, store_dir, settings: RunSettings, *, progress: bool = False):
+    """(lit Result, unlit Result, TwinVerdict) of one case; both runs through the store, each until
+    TWIN_STOP_RATIO·a(0) or t_final (settings' failure ratio replaced). The unlit twin is the same sheet
+    with I₀ = 0 (its edge tension is kept in N/m)."""
+    stop = settings.replace(failure_ratio=TWIN_STOP_RATIO)
+    done = run_cases(
+        [lit, lit.replace(intensity=0.0)],
+        store_dir,
+        stop,
+        solver="reduced",
+        workers=1,
+        progress=progress,
+        label="unlit twin",
+    )
+    (rec_lit, res_lit), (rec_unlit, res_unlit) = done
+    for record, result in done:
+        if result is None or record.get("error"):
+            raise RuntimeError(f"twin run failed: {record.get('error')}")
+    stopped = res_lit.time[-1] < settings.t_final - 1e-9 and res_lit.amplitude[-1] < 2.0 * res_unlit.amplitude.max()
+    if len(res_unlit.time) < len(res_lit.time) or stopped:
+        raise RuntimeError(
+            f"unlit twin reached {TWIN_STOP_RATIO} a(0) at {res_unlit.time[-1]:.4g} s, or its peaks exceed "
+            f"{TWIN_STOP_RATIO / 2} a(0): the sheet is unstable without the beam, the twin rule does not apply"
+        )
+    return res_lit, res_unlit, twin_verdict(res_lit, res_unlit)
+
+
+def twin_boundary(
+    label,
+    p: SailParameters,
+    quantity: str,
+    store_dir,
+    *,
+    settings: RunSettings | None = None,
+    lo: float = 1.0,
+    hi: float = 8.0,
+    factor: float = 1.3,
+    max_expansions: int = 6,
+    progress: bool = True,
+) -> tuple[Boundary, dict]:
+    """The stable ratio E/E_cr,max or T/T_cr,max of sheet `p` under the unlit-twin rule, bisected in log
+    space (one evaluation at a time: a bracket [lo, hi] grows by doubling its log-width until its ends
+    differ, then is halved until hi/lo ≤ factor). Returns (Boundary with the ratios, {ratio: TwinVerdict}).
+    Every run goes through the store at `store_dir`, so a rerun recomputes nothing."""
+    settings = settings or RunSettings(t_final=6.0)
+    out = Boundary(label)
+    verdicts = {}
+
+    def stable(ratio: float) -> bool:
+        lit = with_ratio(p, quantity, ratio)
+        _, _, v = twin_runs(lit, store_dir, settings)
+        verdicts[ratio] = v
+        out.evaluations.append((ratio, not v.failed, None))
+        out.steps += 1
+        if progress:
+            state = "fails" if v.failed else "stable"
+            print(
+                f"twin {label}: {quantity} ratio {ratio:.4g} {state} (departure {v.max_departure:.3g} a0, "
+                f"unlit peak {v.unlit_max_ratio:.3g} a0)",
+                flush=True,
+            )
+        return not v.failed
+
+    try:
+        s_lo, s_hi = stable(lo), stable(hi)
+        expansions = 0
+        while s_lo == s_hi:
+            if expansions >= max_expansions:
+                out.status = "unbracketed"
+                out.message = f"{'stable' if s_lo else 'unstable'} over [{lo:.6g}, {hi:.6g}]"
+                return out, verdicts
+            width = hi / lo
+            if s_lo:  # stable at both ends: look below
+                lo, hi, s_hi = lo / width**2, lo, s_lo
+                s_lo = stable(lo)
+            else:
+                lo, hi, s_lo = hi, hi * width**2, s_hi
+                s_hi = stable(hi)
+            expansions += 1
+        while hi / lo > factor:
+            mid = math.sqrt(lo * hi)
+            if stable(mid) == s_lo:
+                lo = mid
+            else:
+                hi = mid
+        out.stable_value, out.unstable_value = (hi, lo) if s_hi else (lo, hi)
+        out.status = "converged"
+    except (RuntimeError, ParameterError) as exc:
+        out.status = "error"
+        out.message = str(exc)
+    return out, verdicts

@@ -226,3 +226,68 @@ def test_grid_warnings():
     notes = sheet.defect_warnings(sheet_case(n=40, ny=4, defect_mode_y=1.5), 1e-5)
     assert len(notes) == 1 and "ny = 4" in notes[0]
     assert sheet.defect_warnings(sheet_case(n=40, ny=12, defect_mode_y=1.5), 1e-5) == []
+
+
+def _rigid_part_removed(p, loads_):
+    """The tile loads (N, 6) less their least-squares fit by rigid-body load patterns (net force and
+    moment: what no internal pre-stress can cancel on a free sheet)."""
+    centres, _ = sheet.initial_quaternions(p)
+    rigid = np.zeros((loads_.size, 6))
+    for i in range(3):
+        axis = np.eye(3)[i]
+        rigid[i::6, i] = 1.0
+        rigid[0::6, 3 + i], rigid[1::6, 3 + i], rigid[2::6, 3 + i] = np.cross(axis, centres).T
+        rigid[3 + i :: 6, 3 + i] = 1.0
+    r = loads_.ravel()
+    return r - rigid @ np.linalg.lstsq(rigid, r, rcond=None)[0]
+
+
+@pytest.mark.parametrize(
+    "changes",
+    [
+        dict(defect_mode_y=1.5, edge_tension=2e-5),  # doubly curved under tension
+        dict(edge_tension=2e-5),  # the 1-D sine under tension
+        dict(defect_mode_y=1.0),  # doubly curved, bending springs at rest flat
+        dict(defect_mode_y=1.0, boundary="simply_supported", edge_tension=2e-5),  # no rigid modes
+    ],
+)
+def test_initial_equilibrium_cancels_the_unlit_loads(changes):
+    """initial_equilibrium: the corrected rest offsets leave no internal load on any tile in the initial
+    shape but a rigid-body remainder (net force and moment of the followers on a curved edge), down from
+    loads that set the sheet moving."""
+    p = sheet_case(**changes)
+    q = p.replace(initial_equilibrium=True)
+    centres, quats = sheet.initial_quaternions(p)
+    before = sheet.static_loads(p, sheet.connectors(p), centres, quats)
+    after = sheet.static_loads(q, sheet.connectors(q), centres, quats)
+    assert np.abs(before).max() > 0
+    assert np.abs(_rigid_part_removed(p, after)).max() < 1e-9 * np.abs(before).max()
+    if p.boundary != "free":
+        assert np.abs(after).max() < 1e-9 * np.abs(before).max()
+    # the rest strains change, the springs do not
+    assert np.array_equal(sheet.connectors(p).stiffness, sheet.connectors(q).stiffness)
+
+
+def test_static_loads_are_the_solvers_connector_law():
+    """model.sheet.static_loads (numpy) against the in-house solver's compiled right-hand side at rest."""
+    from lightsail_mbs.solvers.reduced import sheet as reduced_sheet
+
+    p = sheet_case(defect_mode_y=1.5, edge_tension=3e-5, intensity=0.0, bending_reference="flat")
+    model = reduced_sheet.SheetModel(p)
+    rates = model.rhs(0.0, model.y0()).reshape(-1, reduced_sheet.STATE)
+    centres, quats = sheet.initial_quaternions(p)
+    loads_ = sheet.static_loads(p, model.conn, centres, quats)
+    np.testing.assert_allclose(
+        rates[:, 7:10] * model.tiles.mass, loads_[:, :3], rtol=1e-6, atol=1e-6 * np.abs(loads_[:, :3]).max()
+    )
+    torque_body = np.einsum("kji,kj->ki", sheet.quaternion_rotation(quats), loads_[:, 3:])
+    np.testing.assert_allclose(
+        rates[:, 10:] * model.tiles.inertia, torque_body, rtol=1e-6, atol=1e-6 * np.abs(torque_body).max()
+    )
+
+
+def test_initial_equilibrium_is_a_flag():
+    with pytest.raises(ParameterError, match="initial_equilibrium"):
+        sheet_case(initial_equilibrium=1)
+    with pytest.raises(ParameterError, match="initial_equilibrium"):
+        SailParameters(initial_equilibrium=True)

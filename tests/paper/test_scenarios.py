@@ -92,8 +92,14 @@ def test_sheet_physics_scenario(tmp_path):
         "sheet_physics_modulus.csv",
         "sheet_physics_tension.csv",
         "sheet_physics_gaussian.csv",
+        "sheet_physics_twin.csv",
+        "sheet_physics_unlit.csv",
+        "sheet_physics_horizon.csv",
+        "sheet_physics_resolution.csv",
+        "sheet_physics_scan.csv",
         "sheet_physics.md",
     }
-    assert all(r["status"] in ("converged", "unbracketed") for r in rows["modulus"] + rows["tension"])
+    assert all(r["status"] in ("converged", "unbracketed") for r in rows["modulus"] + rows["tension"] + rows["twin"])
+    assert {r["grid"] for r in rows["horizon"]} == {6}
     strip = sorted((r for r in rows["gaussian"] if r["case"] == "strip"), key=lambda r: r["waist_m"])
     assert all(a["failure_time_ms"] < b["failure_time_ms"] for a, b in zip(strip, strip[1:]))

@@ -4,7 +4,7 @@ its boundary in the strip's units, and the solvers' comparison."""
 import numpy as np
 import pytest
 
-from lightsail_mbs import ParameterError, RunSettings, SailParameters
+from lightsail_mbs import ParameterError, RunSettings, SailParameters, solve
 from lightsail_mbs.model import plate_theory
 from lightsail_mbs.studies import sheet as sheet_study
 from lightsail_mbs.studies.store import CaseStore
@@ -72,3 +72,51 @@ def test_compare_deflections_of_identical_and_shifted_runs():
 
         sheet_study.compare_deflections(a, growing_sine())
     assert np.isfinite(d)
+
+
+def test_twin_rule_is_the_papers_rule_without_tension(tmp_path):
+    """Without tension the unlit soft strip holds its shape over 3 s (its bending period is ~2 min), so the
+    twin rule fails the lit strip at the paper's failure time, sample for sample; the departure from the
+    twin reaches a(0) earlier (the defect changes shape as it grows), which is why it is not the rule."""
+    p = SailParameters(model="sheet", n=12, ny=1, youngs_modulus=4.5e9)
+    lit, unlit, v = sheet_study.twin_runs(p, tmp_path, RunSettings(t_final=3.0))
+    assert v.unlit_max_ratio == pytest.approx(1.0, abs=1e-6)
+    doubled = lit.time[np.nonzero(lit.amplitude >= 2.0 * lit.amplitude[0])[0][0]]
+    assert v.failed and v.failure_time == doubled
+    papers = solve(p, "reduced", RunSettings(t_final=3.0))  # the paper's rule: stops at 2 a(0)
+    assert v.failure_time == pytest.approx(papers.failure_time, abs=1.5e-3)
+    departure = sheet_study.twin_departure(lit, unlit) / lit.amplitude[0]
+    early = lit.time[np.nonzero(departure >= 1.0)[0][0]]
+    assert 0.9 * doubled < early < 0.99 * doubled
+    assert np.all(sheet_study.twin_departure(unlit, unlit) == 0.0)
+
+
+def test_twin_boundary_brackets_the_tension_of_a_strip(tmp_path):
+    p = SailParameters(model="sheet", n=8, ny=1, youngs_modulus=4.5e9)
+    found, verdicts = sheet_study.twin_boundary(
+        "strip",
+        p,
+        "edge_tension",
+        tmp_path,
+        settings=RunSettings(t_final=3.0),
+        lo=0.25,
+        hi=8.0,
+        factor=2.0,
+        progress=False,
+    )
+    assert found.status == "converged"
+    lo, hi = found.bracket
+    assert hi / lo <= 2.0
+    assert verdicts[found.unstable_value].failed and not verdicts[found.stable_value].failed
+    again, _ = sheet_study.twin_boundary(
+        "strip",
+        p,
+        "edge_tension",
+        tmp_path,
+        settings=RunSettings(t_final=3.0),
+        lo=0.25,
+        hi=8.0,
+        factor=2.0,
+        progress=False,
+    )
+    assert again.bracket == found.bracket
