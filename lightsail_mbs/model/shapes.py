@@ -287,10 +287,11 @@ MIN_CARRIED_FRACTION = 0.5  # a chain whose initial amplitude is below this frac
 PRECISION_FLOOR = 1e-12  # a₀/L below this is within ~1e4 ulps of the coordinates' round-off
 
 
-def defect_warnings(p: SailParameters, initial_amplitude: float) -> list[str]:
+def defect_warnings(p: SailParameters, initial_amplitude: float, element: str = "slices") -> list[str]:
     """Why a chain of n slices may not carry the case's defect: too few slices per half wavelength of
     its shortest wave, an initial chain amplitude (analysis.amplitude of the initial state) far below
-    a₀, or an a₀ so small against L that double precision barely resolves it. Empty when none applies."""
+    a₀, or an a₀ so small against L that double precision barely resolves it. Empty when none applies.
+    ``element`` names the n bodies along L in the messages ("tiles" for the sheet)."""
     a0 = p.defect_amplitude
     if a0 <= 0:
         return []
@@ -299,12 +300,12 @@ def defect_warnings(p: SailParameters, initial_amplitude: float) -> list[str]:
     per_half_wave = p.n / (2.0 * shortest)
     if per_half_wave < MIN_SLICES_PER_HALF_WAVE:
         notes.append(
-            f"n = {p.n} gives {per_half_wave:.3g} slices per half wavelength of the defect (ν = "
+            f"n = {p.n} gives {per_half_wave:.3g} {element} per half wavelength of the defect (ν = "
             f"{shortest:g}); at least {MIN_SLICES_PER_HALF_WAVE} are needed to resolve it"
         )
     if p.defect_seed is None and initial_amplitude < MIN_CARRIED_FRACTION * a0:
         notes.append(
-            f"the chain carries an initial amplitude of {initial_amplitude:.3g} m, {initial_amplitude / a0:.2g} "
+            f"the initial shape carries an amplitude of {initial_amplitude:.3g} m, {initial_amplitude / a0:.2g} "
             f"of the defect's a₀ = {a0:.3g} m: amplitude ratios measure round-off, not the defect"
         )
     if a0 < PRECISION_FLOOR * p.length:

@@ -721,18 +721,32 @@ def as_strip(p: SailParameters) -> SailParameters:
 
 
 MIN_TILES_PER_HALF_WAVE = shapes.MIN_SLICES_PER_HALF_WAVE
+# A doubly curved defect needs more: the E_m = E critical modulus of ν_x = ν_y = 1.5 (docs/sheet.md,
+# paper.sheet_physics) is about 3× the converged value at 4 tiles per half wavelength, 1.14× at 6 and
+# 1.04× at 8 (bisection brackets on 12, 18, 24 and 30/36 tiles along L).
+CONVERGED_TILES_PER_HALF_WAVE_2D = 8
 
 
 def defect_warnings(p: SailParameters, initial_amplitude: float) -> list[str]:
     """Why a grid of tiles may not carry the case's defect: the chain's checks along x
-    (shapes.defect_warnings) and, for a 2-D defect, too few tiles per half wavelength across the width."""
-    notes = shapes.defect_warnings(p, initial_amplitude)
+    (shapes.defect_warnings), too few tiles per half wavelength across the width, and, for a doubly
+    curved defect, fewer than CONVERGED_TILES_PER_HALF_WAVE_2D tiles per half wavelength in either
+    direction (resolved, but its stability results are not yet converged in the grid)."""
+    notes = shapes.defect_warnings(p, initial_amplitude, element="tiles")
     if p.defect_mode_y is not None and p.defect_amplitude > 0:
-        shortest = p.defect_mode_y if p.defect_seed is None else 0.5 * p.defect_mode_count
-        per_half_wave = p.ny / (2.0 * shortest)
-        if per_half_wave < MIN_TILES_PER_HALF_WAVE:
+        shortest_y = p.defect_mode_y if p.defect_seed is None else 0.5 * p.defect_mode_count
+        per_half_wave_y = p.ny / (2.0 * shortest_y)
+        if per_half_wave_y < MIN_TILES_PER_HALF_WAVE:
             notes.append(
-                f"ny = {p.ny} gives {per_half_wave:.3g} tiles per half wavelength of the defect across the "
-                f"width (ν_y = {shortest:g}); at least {MIN_TILES_PER_HALF_WAVE} are needed to resolve it"
+                f"ny = {p.ny} gives {per_half_wave_y:.3g} tiles per half wavelength of the defect across the "
+                f"width (ν_y = {shortest_y:g}); at least {MIN_TILES_PER_HALF_WAVE} are needed to resolve it"
+            )
+        shortest_x = p.defect_mode if p.defect_seed is None else 0.5 * p.defect_mode_count
+        coarsest = min(p.n / (2.0 * shortest_x), per_half_wave_y)
+        if MIN_TILES_PER_HALF_WAVE <= coarsest < CONVERGED_TILES_PER_HALF_WAVE_2D:
+            notes.append(
+                f"{p.n} × {p.ny} tiles give {coarsest:.3g} tiles per half wavelength of the doubly curved "
+                f"defect; its stability results converge from about {CONVERGED_TILES_PER_HALF_WAVE_2D} (measured "
+                "on the critical modulus of ν = 1.5 × 1.5: about 3× too high at 4, 1.14× at 6, 1.04× at 8)"
             )
     return notes

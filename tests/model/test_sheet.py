@@ -225,7 +225,12 @@ def test_as_strip_is_the_torsion_chain():
 def test_grid_warnings():
     notes = sheet.defect_warnings(sheet_case(n=40, ny=4, defect_mode_y=1.5), 1e-5)
     assert len(notes) == 1 and "ny = 4" in notes[0]
-    assert sheet.defect_warnings(sheet_case(n=40, ny=12, defect_mode_y=1.5), 1e-5) == []
+    coarse = sheet.defect_warnings(sheet_case(n=40, ny=12, defect_mode_y=1.5), 1e-5)
+    assert len(coarse) == 1 and "4 tiles per half wavelength of the doubly curved defect" in coarse[0]
+    assert sheet.defect_warnings(sheet_case(n=40, ny=24, defect_mode_y=1.5), 1e-5) == []
+    along_x = sheet.defect_warnings(sheet_case(n=6, ny=24, defect_mode_y=1.5), 1e-5)
+    assert len(along_x) == 1 and "n = 6 gives 2 tiles per half wavelength" in along_x[0]
+    assert sheet.defect_warnings(sheet_case(n=18, ny=1), 1e-5) == []  # a 1-D sine: no 2-D note
 
 
 def _rigid_part_removed(p, loads_):
