@@ -112,6 +112,13 @@ def test_twin_sequences():
     info = {"method": "generalized-alpha", "step_size": 1e-3, "newton_rel_tol": 1e-8, "newton_abs_tol": 1e-12}
     half = uncertainty.tightened({}, info, 4.0)
     assert half == {"step_size": pytest.approx(5e-4), "newton_rel_tol": 2.5e-9, "newton_abs_tol": 2.5e-13}
+    # a Newton tolerance stops at the floor the base run reports (Exudyn's sheet: its connectors' round-off)
+    floored = {**info, "newton_abs_tol_floor": 5e-13}
+    assert uncertainty.tightened({}, floored, 4.0)["newton_abs_tol"] == 5e-13
+    assert uncertainty.tightened({}, floored, 16.0)["step_size"] == pytest.approx(2.5e-4)
+    assert uncertainty.held_at_floor(uncertainty.tightened({}, floored, 4.0), floored) == ["newton_abs_tol"]
+    assert uncertainty.tightened({"newton_abs_tol": 1e-12}, floored, 16.0)["newton_abs_tol"] == 5e-13
+    assert uncertainty.held_at_floor(half, info) == []
 
 
 class FakeSolver:
@@ -175,6 +182,11 @@ def test_exudyn_sheet_estimate_refines_its_step():
     assert u["half"]["options"]["step_size"] == pytest.approx(h / 2)
     assert reported.info["step_size"] == pytest.approx(h / 4)
     assert u["integration_error"] > 0 and u["uncertainty"] >= 2 * u["integration_error"]
+    # at the physical membrane the base run's Newton tolerance is the connectors' round-off floor already:
+    # the twins keep it (below it Newton does not converge) and the explanation says so
+    floor = reported.info["newton_abs_tol_floor"]
+    assert u["base"]["options"] == {} and reported.info["newton_abs_tol"] == floor
+    assert u["held_at_floor"] == ["newton_abs_tol"] and "round-off floor" in u["explanation"]
 
 
 def test_generalized_alpha_twins_tighten_the_newton_solve_as_f_squared():

@@ -315,6 +315,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         "step_size": h,
         "newton_rel_tol": rel_tol,
         "newton_abs_tol": abs_tol,
+        "newton_abs_tol_floor": ROUND_OFF_FACTOR * round_off_floor(p, system.conn),
         "spectral_radius": spectral_radius,
         "perturbation": float(options.get("perturbation") or 0.0),
         "steps": watch["steps"],
