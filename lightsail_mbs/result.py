@@ -293,10 +293,13 @@ class Result:
 
     def answer_text(self) -> str:
         """The answer with its error bar: 'FAILED at t = 2.1112 ± 0.0001 s' or 'not failed (max amplitude
-        ratio 1.2460 ± 0.0005)', with '(ill-conditioned)' when it is."""
+        ratio 1.2460 ± 0.0005)', with '(ill-conditioned)' when it is; a ratio of exactly 1 in every run (the
+        largest amplitude is the initial one) says so instead of '1 ± 0'."""
         u = self.uncertainty or {}
         if self.failed:
             text = f"FAILED at t = {with_uncertainty(self.failure_time, self.failure_time_uncertainty)} s"
+        elif self.max_amplitude_ratio == 1.0 and not self.max_amplitude_ratio_uncertainty:
+            text = "not failed (max amplitude ratio 1: the amplitude never exceeded its initial value)"
         else:
             ratio = with_uncertainty(self.max_amplitude_ratio, self.max_amplitude_ratio_uncertainty)
             text = f"not failed (max amplitude ratio {ratio})"

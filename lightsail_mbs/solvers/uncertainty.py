@@ -204,8 +204,14 @@ def assess(module, params: SailParameters, settings: RunSettings, options: dict,
         "integration_error": integration,
         "sensitivity": sensitivity,
         "well_conditioned": bool(well),
-        "explanation": explain(params, quantity, value, integration, sensitivity, well, failed)
-        + floor_note(held, result.info),
+        "explanation": " ".join(
+            part
+            for part in (
+                explain(params, quantity, value, integration, sensitivity, well, failed),
+                floor_note(held, result.info),
+            )
+            if part
+        ),
         "rule": RULE,
         "held_at_floor": held,
         "reported": order[-1],
@@ -221,8 +227,8 @@ def floor_note(held: list[str], info: dict) -> str:
         return ""
     floors = ", ".join(f"{name} {info[name + '_floor']:.2g}" for name in held)
     return (
-        f". The twins' Newton tolerances stayed at the connectors' round-off floor ({floors}), so the sequence "
-        "refines the step, not the Newton solve; the reduced solver has no such floor"
+        f"The twins' Newton tolerances stayed at the connectors' round-off floor ({floors}), so the sequence "
+        "refines the step, not the Newton solve; the reduced solver has no such floor."
     )
 
 
@@ -234,11 +240,13 @@ def explain(params, quantity, value, integration, sensitivity, well, failed) -> 
         return (
             f"well-conditioned: a roughness of {PROBE_LEVEL:g} a₀ moves the {what} by "
             f"{sensitivity / abs(value):.1g} relative (≤ {CONDITION_TOL:g}); the uncertainty is dominated by "
-            f"{'the integration error' if integration >= sensitivity else 'that sensitivity'}"
+            f"{'the integration error' if integration >= sensitivity else 'that sensitivity'}."
         )
+    sheet = params.model == "sheet"
+    bodies = "tiles" if sheet else "slices"
     remedy = (
         "It is changed by the roughness the sail starts from (set one explicitly: SailParameters.roughness, "
-        "--roughness; any real film is rougher than 1e-9 a₀), by the number of slices n (fewer slices carry "
+        f"--roughness; any real film is rougher than 1e-9 a₀), by the number of {bodies} (fewer {bodies} carry "
         "fewer unstable short waves) and by bending stiffness or tension; a tighter tolerance does not change it."
     )
     if math.isinf(sensitivity):
@@ -249,8 +257,10 @@ def explain(params, quantity, value, integration, sensitivity, well, failed) -> 
             f"run length, and the verdict is set by perturbations far below any real film's roughness. {remedy}"
         )
     return (
-        f"ill-conditioned: a seeded roughness of {PROBE_LEVEL:g} a₀ at every wavelength the {params.n}-slice "
-        f"chain carries (down to 2L/n = {shortest:.3g} m) moves the {what} by {sensitivity / abs(value):.1g} "
-        f"relative (> {CONDITION_TOL:g}): the chain's short waves grow from perturbations at the level of "
+        f"ill-conditioned: a seeded roughness of {PROBE_LEVEL:g} a₀ at every wavelength the "
+        f"{f'{params.n} × {params.ny}-tile sheet' if sheet else f'{params.n}-slice chain'} carries (down to "
+        f"2L/n = {shortest:.3g} m) moves the {what} by {sensitivity / abs(value):.1g} "
+        f"relative (> {CONDITION_TOL:g}): the {'sheet' if sheet else 'chain'}'s short waves grow from "
+        "perturbations at the level of "
         f"round-off, so the answer depends on them, not on the solver. {remedy}"
     )

@@ -224,3 +224,12 @@ def test_extensible_survivor_whose_error_the_newton_tolerance_sets():
     assert abs(base - reference) > 1e-5 * reference  # the default tolerances' error this test is about
     assert abs(reported.max_amplitude_ratio - reference) < 1e-6 * reference
     assert abs(reported.max_amplitude_ratio - reference) <= reported.max_amplitude_ratio_uncertainty
+
+
+def test_a_sail_that_never_exceeds_its_initial_amplitude_says_so():
+    """A 6 × 6 doubly sinusoidal sheet (E = 4.5e11 Pa, E_m = 4.5e9 Pa) whose amplitude only falls over
+    0.2 s: its largest ratio is the initial 1 in every twin, printed as such rather than '1 ± 0'."""
+    p = SailParameters(model="sheet", n=6, ny=6, defect_mode_y=1.5, youngs_modulus=4.5e11, membrane_modulus=4.5e9)
+    r = solve(p, "reduced", RunSettings(t_final=0.2))
+    assert not r.failed and r.max_amplitude_ratio == 1.0 and r.max_amplitude_ratio_uncertainty == 0.0
+    assert "never exceeded its initial value" in r.answer_text() and "±" not in r.answer_text()
