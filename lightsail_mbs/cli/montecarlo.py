@@ -23,10 +23,6 @@ def register(sub) -> None:
     )
     p.add_argument("--values", required=True, help="comma-separated values of the swept parameter (SI)")
     p.add_argument("--seeds", type=int, default=50, help="defects per value (seeds 0…N−1) [50]")
-    p.add_argument(
-        "--defect-mode-count", "--defect-modes", type=int, default=10, help="modes ν = 1/2 … K/2 in each defect [10]"
-    )
-    p.add_argument("--defect-spectrum", type=float, default=1.0, help="mean amplitude ∝ ν^(−β) [1]")
     p.add_argument("--solver", choices=sorted(SOLVERS), default="exudyn")
     p.add_argument("--store", required=True, help="folder of the per-case store (resumable)")
     p.add_argument("--workers", type=int, default=None, help="local processes [all cores]")
@@ -39,9 +35,7 @@ def register(sub) -> None:
 def run(args) -> int:
     from lightsail_mbs.studies import montecarlo
 
-    base = params_from_args(args).replace(
-        defect_mode_count=args.defect_mode_count, defect_spectrum=args.defect_spectrum, defect_seed=0
-    )
+    base = params_from_args(args).replace(defect_seed=0)  # the seeds 0…N−1 replace any --defect-seed
     try:
         values = [float(v) for v in args.values.split(",") if v.strip()]
     except ValueError:

@@ -24,6 +24,20 @@ CASE_OPTIONS = {
     "--intensity": ("intensity", float, "laser intensity I₀ (W/m²)"),
     "--defect-amplitude": ("defect_amplitude", float, "initial defect amplitude a₀ (m)"),
     "--defect-mode": ("defect_mode", float, "defect mode number ν (wavelengths over L)"),
+    "--defect-seed": (
+        "defect_seed",
+        int,
+        "an integer: a seeded random multi-mode defect of amplitude a₀ (modes ν = 1/2 … K/2); unset: the sine "
+        "of --defect-mode",
+    ),
+    "--defect-mode-count": ("defect_mode_count", int, "multi-mode defect: modes ν_k = k/2, k = 1…K"),
+    "--defect-spectrum": ("defect_spectrum", float, "multi-mode defect: mean amplitude ∝ ν^(−β)"),
+    "--roughness": (
+        "roughness",
+        float,
+        "seeded roughness (m) at every wavelength the slices or tiles carry, added to the defect",
+    ),
+    "--roughness-seed": ("roughness_seed", int, "seed of the roughness"),
     "--mode-y": (
         "defect_mode_y",
         float,
@@ -67,7 +81,12 @@ RUN_OPTIONS = {
     "--failure-ratio": ("failure_ratio", float, "failure when amplitude ≥ ratio × initial"),
 }
 # shorter spellings accepted for some options
-ALIASES = {"--defect-amplitude": ["--amplitude"], "--defect-mode": ["--mode"], "--n": ["--nx"]}
+ALIASES = {
+    "--defect-amplitude": ["--amplitude"],
+    "--defect-mode": ["--mode"],
+    "--n": ["--nx"],
+    "--defect-mode-count": ["--defect-modes"],
+}
 
 
 def add_case_options(parser: argparse.ArgumentParser, run: bool = True) -> None:

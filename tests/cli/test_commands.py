@@ -127,6 +127,23 @@ def test_montecarlo_defect_options(tmp_path):
     assert parser.parse_args(common + ["--vary", "defect_amplitude"]).vary == "defect_amplitude"
 
 
+def test_random_defect_and_roughness_options_reach_the_case(capsys):
+    """The options an ill-conditioned run's explanation names (--roughness) and the seeded multi-mode
+    defects of the Monte Carlo study are case options of every command."""
+    parser = build_parser()
+    args = ["--defect-seed", "3", "--defect-modes", "6", "--defect-spectrum", "2", "--roughness", "1e-12"]
+    for command in (["simulate"], ["stability"], ["converge"]):
+        params = params_from_args(parser.parse_args([*command, *args, "--roughness-seed", "5"]))
+        assert params == SailParameters(
+            defect_seed=3, defect_mode_count=6, defect_spectrum=2.0, roughness=1e-12, roughness_seed=5
+        )
+    assert main(["simulate", "--solver", "reduced", "--n", "12", "--t-final", "0.05", "--quiet", "--json", *args]) == 0
+    printed = json.loads(capsys.readouterr().out)
+    assert printed["parameters"]["defect_seed"] == 3 and printed["parameters"]["roughness"] == 1e-12
+    assert main(["simulate", "--defect-seed", "-1"]) == 2
+    assert "defect_seed" in capsys.readouterr().err
+
+
 def test_reproduce_prints_the_wall_time_of_each_pipeline(tmp_path, capsys, monkeypatch):
     """The command runs the chosen pipelines (a stand-in here) with its options and tabulates their wall times."""
     import types
