@@ -419,6 +419,10 @@ def run_all(work: Path) -> None:
         ("--output-interval", "0", "output_interval"),
         ("--failure-ratio", "1", "failure_ratio"),
         ("--n", "abc", "--n"),
+        ("--defect-seed", "-1", "defect_seed"),
+        ("--defect-mode-count", "0", "defect_mode_count"),
+        ("--defect-spectrum", "nan", "defect_spectrum"),
+        ("--roughness", "-1e-9", "roughness"),
     ):
         cli_row(["simulate", *QUICK, option, value], work, "error", names=[name])
     cli_row(["simulate", *QUICK, "--model", "tnt", "--tension", "-1"], work, "error", names=["tension"])

@@ -17,6 +17,7 @@ resumable store (studies.sheet.stability_boundaries).
 from __future__ import annotations
 
 import json
+import math
 import time
 
 from lightsail_mbs.cli.options import add_case_options, params_from_args
@@ -108,10 +109,34 @@ def run(args) -> int:
     if args.json:
         print(json.dumps(out))
     else:
+        low, high = out[f"{name}_bracket"]
+        shown = {
+            name: bracketed(out[name], low, high),
+            f"{name}_bracket": None,
+            "ratio_to_analytic": bracketed(found.value, found.failed_ratio, found.stable_ratio),
+        }
         for key, value in out.items():
-            text = value if isinstance(value, (bool, list, str)) or value is None else f"{value:.6g}"
-            print(f"{key:26s} {text}")
+            text = shown.get(key, value if isinstance(value, (bool, list, str)) or value is None else f"{value:.6g}")
+            if text is not None:
+                print(f"{key:26s} {text}")
     return 0
+
+
+def bracketed(value: float, low: float, high: float) -> str:
+    """'3.44e+12 (bracket 3.39e+12–3.49e+12)': the value and its bisection bracket, with as many
+    significant digits as tell the bracket's ends apart (at least 2); the ends are rounded outwards, so
+    the printed bracket contains the bisected one."""
+    width = abs(high - low) / abs(value) if value else 0.0
+    digits = max(2, math.ceil(-math.log10(width)) + 1) if 0 < width < 1 else 2
+
+    def rounded(x: float, direction) -> float:
+        if x == 0 or not math.isfinite(x):
+            return x
+        unit = 10.0 ** (math.floor(math.log10(abs(x))) - digits + 1)
+        return direction(x / unit) * unit
+
+    low, high = rounded(low, math.floor), rounded(high, math.ceil)
+    return f"{value:#.{digits}g} (bracket {low:#.{digits}g}–{high:#.{digits}g})"
 
 
 def run_sheet(args, p) -> int:
@@ -156,7 +181,16 @@ def run_sheet(args, p) -> int:
     if args.json:
         print(json.dumps(out))
     else:
+        shown = {}
+        if found.value is not None and found.bracket:
+            low, high = found.bracket
+            shown = {
+                "ratio_to_analytic": bracketed(found.value, low, high),
+                "ratio_bracket": None,
+                "value": bracketed(found.value * analytic, low * analytic, high * analytic),
+            }
         for key, value in out.items():
-            text = value if not isinstance(value, float) else f"{value:.6g}"
-            print(f"{key:26s} {text}")
+            text = shown.get(key, value if not isinstance(value, float) else f"{value:.6g}")
+            if text is not None or key not in shown:
+                print(f"{key:26s} {text}")
     return 0 if found.status == "converged" else 1

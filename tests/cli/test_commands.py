@@ -195,6 +195,30 @@ def test_stability_command_json(model, key, capsys):
     assert lo <= out[key] <= hi <= 1.2 * lo * (1 + 1e-12)
     assert out["ratio_to_analytic"] == pytest.approx(out[key] / out["analytic"])
     assert out["linear_relative_shift"] < 1e-9
+    # as text: the value with its bracket on one line, as many digits as tell the bracket's ends apart
+    assert (
+        main(
+            ["stability", "--model", model, "--n", "10", "--tau-final", "6", "--factor", "1.2"]
+            + (["--tension", "1e-8"] if model == "tnt" else [])
+        )
+        == 0
+    )
+    lines = {line.split()[0]: line.split(None, 1)[1] for line in capsys.readouterr().out.splitlines()}
+    assert f"{key}_bracket" not in lines
+    value, bracket = lines[key].split(" (bracket ")
+    low, high = (float(v) for v in bracket.rstrip(")").split("–"))
+    assert float(value) == pytest.approx(out[key], rel=0.05) and low <= lo and high >= hi
+    assert low == pytest.approx(lo, rel=0.05) and high == pytest.approx(hi, rel=0.05)
+
+
+def test_bracketed_values_show_the_digits_the_bracket_needs():
+    from lightsail_mbs.cli.stability import bracketed
+
+    assert bracketed(3.44056e12, 3.39515e12, 3.48658e12) == "3.44e+12 (bracket 3.39e+12–3.49e+12)"
+    assert bracketed(7.63503, 7.5342, 7.7378) == "7.64 (bracket 7.53–7.74)"
+    assert bracketed(7.63503, 7.63421, 7.63785) == "7.6350 (bracket 7.6342–7.6379)"
+    assert bracketed(2.0, 1.0, 4.0) == "2.0 (bracket 1.0–4.0)"
+    assert bracketed(9.97, 9.951, 9.991) == "9.970 (bracket 9.951–9.991)"
 
 
 def test_cli_render_writes_frames_and_movie(run, tmp_path, capsys):
@@ -308,6 +332,15 @@ def test_stability_of_a_small_sheet_json(tmp_path, capsys):
     lo, hi = out["ratio_bracket"]
     assert out["status"] == "converged" and hi / lo <= 2.0 and lo <= out["ratio_to_analytic"] <= hi
     assert out["analytic"] == pytest.approx(3.336e-6, rel=1e-3) and list(tmp_path.glob("*.json"))
+    # as text, from the store: the value and the ratio each with its bracket
+    args = ["stability", "--model", "sheet", "--nx", "8", "--ny", "3", "--modulus", "4.5e9", "--quantity"]
+    assert main([*args, "edge-tension", "--run-time", "3", "--factor", "2", "--store", str(tmp_path)]) == 0
+    printed = capsys.readouterr().out
+    assert "ratio_bracket" not in printed
+    assert (
+        sum(line.split()[0] in ("value", "ratio_to_analytic") and "(bracket " in line for line in printed.splitlines())
+        == 2
+    )
 
 
 HEAVY = ("matplotlib", "scipy", "exudyn", "numba", "dask", "PIL", "tqdm")

@@ -24,16 +24,18 @@ from tests.sweep_fake import HOLD, MARKERS, executions, held_solve, real_cases
 
 # Fields of a record that are measured, not computed, and so differ between two runs of the same case:
 # the solver's wall time (Result.wall_time, "wall_time"), the worker's wall time for the whole case
-# ("case_wall_time") and the moment the Result was made (provenance "created"). Everything else — the
-# summary, failure time, amplitudes, solver statistics, code version, parameters — must be equal.
+# ("case_wall_time") and the moment the Result was made (provenance "created"), and the state of the
+# checkout when it was made (provenance "git_commit", "git_dirty": a commit or an edited file during the
+# test changes them, not the numbers). Everything else — the summary, failure time, amplitudes, solver
+# statistics, code version, parameters — must be equal.
 RECORD_TIMINGS = ("wall_time", "case_wall_time")
-PROVENANCE_TIMINGS = ("created",)
+PROVENANCE_NOT_COMPUTED = ("created", "git_commit", "git_dirty")
 
 
 def comparable(record: dict) -> str:
     """The record without its measured times, as canonical JSON (exact: floats by their repr)."""
     out = {k: v for k, v in record.items() if k not in RECORD_TIMINGS}
-    out["provenance"] = {k: v for k, v in out.get("provenance", {}).items() if k not in PROVENANCE_TIMINGS}
+    out["provenance"] = {k: v for k, v in out.get("provenance", {}).items() if k not in PROVENANCE_NOT_COMPUTED}
     return json.dumps(out, sort_keys=True)
 
 
