@@ -23,7 +23,11 @@ def register(sub) -> None:
     )
     add_case_options(p)
     sizes = p.add_argument_group("sizes (instead of --n)")
-    sizes.add_argument("--sizes", help="comma-separated numbers of slices, increasing, e.g. 15,30,60,120")
+    sizes.add_argument(
+        "--sizes",
+        help="comma-separated numbers of slices (a sheet: tiles along L, ny = n W/L across), increasing, "
+        "e.g. 15,30,60,120",
+    )
     sizes.add_argument("--n-start", type=int, default=15, help="first n of a geometric sequence [15]")
     sizes.add_argument("--n-max", type=int, default=960, help="largest n of the sequence [960]")
     sizes.add_argument("--factor", type=float, default=2.0, help="ratio of successive n [2]")
@@ -62,7 +66,7 @@ def run(args) -> int:
     else:
         sizes = convergence.geometric_sizes(args.n_start, args.n_max, args.factor)
     markdown = writable_file(args.markdown, "--markdown", ".md") if args.markdown else None
-    options = {"method": args.method}
+    options = {"method": args.method} if base.model != "sheet" or args.method != "auto" else {}
     if args.rtol is not None:
         options["rtol"] = args.rtol
 
@@ -70,7 +74,7 @@ def run(args) -> int:
         if not args.quiet:
             noise = "—" if row.tolerance_noise is None else f"{row.tolerance_noise:.1e}"
             print(
-                f"n = {row.n}: {row.kind} {row.value} (tolerance noise {noise}, {row.method}, "
+                f"n = {row.size}: {row.kind} {row.value} (tolerance noise {noise}, {row.method}, "
                 f"{row.cpu_time:.3g} s CPU)",
                 file=sys.stderr,
                 flush=True,

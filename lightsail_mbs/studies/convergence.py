@@ -21,6 +21,10 @@ shrink), and the answer is called converged to the noise when |d₂| is below th
 the fit, the direct reading: the smallest n from which every finer answer stays within 1 % of the
 finest one.
 
+A sheet (model "sheet") is refined in both directions: n tiles along L and, for ny > 1, ny = round(n W/L)
+across (square tiles); a sheet of one row (ny = 1) stays one row. Its in-house solver has one method
+(Radau), so the tolerance-noise run repeats it at rtol/10.
+
 A chain without bending stiffness (the rigid chain; the TnT membrane without bending springs) is
 flagged ill-posed in n: every wavelength down to the slice length is unstable under the load, so a
 finer chain adds faster-growing modes and its failure time keeps falling — a falling sequence can
@@ -65,6 +69,8 @@ class ConvergenceRow:
         CPU time of the run at the default tolerance (s, this process).
     error : str or None
         A solver failure, recorded.
+    ny : int or None
+        Tiles across the width (a sheet), None for a chain.
     """
 
     n: int
@@ -76,6 +82,12 @@ class ConvergenceRow:
     steps: int
     cpu_time: float
     error: str | None = None
+    ny: int | None = None
+
+    @property
+    def size(self) -> str:
+        """'n' of a chain, 'n×ny' of a sheet."""
+        return str(self.n) if self.ny is None else f"{self.n}×{self.ny}"
 
 
 @dataclass
@@ -245,21 +257,28 @@ def converge(
         raise ParameterError(f"sizes={sizes!r} is invalid: allowed increasing numbers of slices ≥ 2")
     if budget is not None and not budget > 0:
         raise ParameterError(f"budget={budget!r} is invalid: allowed > 0 (CPU seconds)")
+    is_sheet = params.model == "sheet"
+    if is_sheet and "method" in options:
+        if options["method"] not in (None, "auto"):
+            raise ParameterError(f"method={options['method']!r} is invalid for a sheet: its solver is Radau only")
+        options = {k: v for k, v in options.items() if k != "method"}
     rows: list[ConvergenceRow] = []
     notes: list[str] = []
     for n in sizes:
-        case = params.replace(n=n)
+        ny = (1 if params.ny == 1 else max(1, round(n * params.width / params.length))) if is_sheet else None
+        case = params.replace(n=n, ny=ny) if is_sheet else params.replace(n=n)
         start = time.process_time()
         result = solve(case, "reduced", settings, uncertainty=False, **options)
         cpu = time.process_time() - start
         value, kind = answer(result)
-        method = result.info.get("method", "")
+        method = result.info.get("method", "Radau" if is_sheet else "")
         tolerance_noise = None
         if noise and value is not None:
-            rtol = options.get("rtol") or DEFAULT_RTOL.get(method, 1e-6)
-            tight = solve(
-                case, "reduced", settings, uncertainty=False, **{**options, "method": method, "rtol": rtol / 10}
+            rtol = options.get("rtol") or result.info.get("rtol") or DEFAULT_RTOL.get(method, 1e-6)
+            tight_options = (
+                {**options, "rtol": rtol / 10} if is_sheet else {**options, "method": method, "rtol": rtol / 10}
             )
+            tight = solve(case, "reduced", settings, uncertainty=False, **tight_options)
             tight_value, tight_kind = answer(tight)
             if tight_value is not None and tight_kind == kind:
                 tolerance_noise = abs(tight_value - value)
@@ -270,7 +289,7 @@ def converge(
         change = None
         if previous is not None and previous.value is not None and value is not None and previous.kind == kind:
             change = value - previous.value
-        row = ConvergenceRow(n, value, kind, change, tolerance_noise, method, result.info.get("steps", 0), cpu)
+        row = ConvergenceRow(n, value, kind, change, tolerance_noise, method, result.info.get("steps", 0), cpu, ny=ny)
         row.error = result.error
         rows.append(row)
         if progress is not None:
@@ -283,7 +302,7 @@ def converge(
             break
     kinds = {r.kind for r in rows[-3:]}
     values = [r.value for r in rows]
-    ill_posed = params.torsional_stiffness == 0.0
+    ill_posed = params.youngs_modulus == 0.0 if is_sheet else params.torsional_stiffness == 0.0
     if ill_posed:
         what = "failure time keeps falling" if "failure_time" in kinds else "answer is not a limit"
         fit = PowerLawFit(
@@ -316,8 +335,8 @@ def markdown_table(study: ConvergenceStudy) -> str:
     ]
     for r in study.rows:
         lines.append(
-            f"| {r.n} | {unit[r.kind]} | {_fmt(r.value)} | {_fmt(r.change, '+.2e')} | {_fmt(r.tolerance_noise, '.1e')} "
-            f"| {r.method} | {r.steps} | {r.cpu_time:.3g} |"
+            f"| {r.size} | {unit[r.kind]} | {_fmt(r.value)} | {_fmt(r.change, '+.2e')} "
+            f"| {_fmt(r.tolerance_noise, '.1e')} | {r.method} | {r.steps} | {r.cpu_time:.3g} |"
         )
     fit = study.fit
     lines.append("")

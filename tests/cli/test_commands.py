@@ -511,3 +511,11 @@ def test_foreseeable_failures_end_in_one_line_and_status_2_before_any_work(args,
     err = capsys.readouterr().err.strip()
     assert code == 2 and len(err.splitlines()) == 1 and "Traceback" not in err, err
     assert all(word in err for word in words), err
+
+
+def test_converge_refines_a_sheet(capsys):
+    args = ["converge", "--model", "sheet", "--ny", "2", "--width", "0.5", "--sizes", "4,6", "--t-final", "0.1"]
+    assert main([*args, "--no-noise", "--quiet", "--modulus", "4.5e9"]) == 0
+    assert "| 6×3 |" in capsys.readouterr().out
+    assert main([*args, "--method", "DOP853"]) == 2
+    assert "method" in capsys.readouterr().err

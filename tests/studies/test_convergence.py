@@ -71,3 +71,19 @@ def test_chain_without_bending_is_ill_posed():
 def test_bad_sizes_raise_before_running():
     with pytest.raises(ParameterError, match="sizes"):
         convergence.converge(paper_case("rigid"), paper_settings("rigid"), [20, 10])
+
+
+def test_a_sheet_is_refined_in_both_directions():
+    """A sheet of W = L/2: n tiles along L and n/2 across at each size; its single method repeated at
+    rtol/10 for the tolerance noise; a row of tiles (ny = 1) stays one row; a chain method is refused."""
+    from lightsail_mbs import RunSettings, SailParameters
+
+    p = SailParameters(model="sheet", n=4, ny=2, width=0.5, youngs_modulus=4.5e9, defect_mode_y=0.5)
+    study = convergence.converge(p, RunSettings(t_final=0.3), [4, 8])
+    assert [(r.n, r.ny) for r in study.rows] == [(4, 2), (8, 4)]
+    assert all(r.method == "Radau" and r.tolerance_noise is not None for r in study.rows)
+    assert "| 8×4 |" in convergence.markdown_table(study) and not study.ill_posed
+    strip = convergence.converge(p.replace(ny=1, defect_mode_y=None), RunSettings(t_final=0.1), [4, 6], noise=False)
+    assert [r.ny for r in strip.rows] == [1, 1]
+    with pytest.raises(ParameterError, match="method"):
+        convergence.converge(p, RunSettings(t_final=0.1), [4], method="DOP853")
