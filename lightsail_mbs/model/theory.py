@@ -49,13 +49,31 @@ def critical_tension_max(p: SailParameters) -> float:
 
 
 def summary(p: SailParameters) -> dict:
-    """All closed-form numbers of Section II for one case."""
-    return {
+    """All closed-form numbers of Section II for one case; for a sheet, its tiles' instead of the slices'
+    (tile size, mass, plate bending rigidity D = E h³/12 at ν_p = 0, membrane modulus E_m) and the edge
+    tension scale per metre of edge."""
+    numbers = {
         "g0": nominal_acceleration(p),
         "g0_perturbed": perturbed_acceleration(p),
         "radiation_pressure": radiation_pressure(p),
         "e_cr_max": critical_modulus_max(p),
         "t_cr_max": critical_tension_max(p),
+    }
+    if p.model == "sheet":
+        from lightsail_mbs.model.sheet import Tiles
+
+        tiles = Tiles.of(p)
+        return {
+            **numbers,
+            "t_cr_max_per_metre": critical_tension_max(p) / p.width,
+            "tile_length": tiles.a,
+            "tile_width": tiles.b,
+            "tile_mass": tiles.mass,
+            "bending_rigidity": tiles.bending_rigidity,
+            "membrane_modulus": tiles.membrane_modulus,
+        }
+    return {
+        **numbers,
         "slice_length": p.slice_length,
         "slice_mass": p.slice_mass,
         "torsional_stiffness": p.torsional_stiffness,

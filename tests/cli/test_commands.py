@@ -60,6 +60,18 @@ def test_theory_json_paper_numbers():
     assert numbers["g0"] == pytest.approx(2e8 / (299_792_458.0 * 1e-3))
 
 
+def test_theory_of_a_sheet_gives_its_tiles(capsys):
+    """For a sheet: tile size and mass, D = E h³/12 (ν_p = 0), E_m, and T_cr,max per metre of edge."""
+    args = ["theory", "--model", "sheet", "--nx", "10", "--ny", "5", "--width", "0.5", "--modulus", "4.5e9"]
+    assert main([*args, "--membrane-modulus", "1e9", "--json"]) == 0
+    numbers = json.loads(capsys.readouterr().out)
+    assert numbers["tile_length"] == pytest.approx(0.1) and numbers["tile_width"] == pytest.approx(0.1)
+    assert numbers["tile_mass"] == pytest.approx(1000.0 * 1e-6 * 0.01)  # ρ h a b, the default ρ and h
+    assert numbers["bending_rigidity"] == pytest.approx(4.5e9 * 1e-18 / 12)
+    assert numbers["membrane_modulus"] == 1e9 and "slice_length" not in numbers
+    assert numbers["t_cr_max_per_metre"] == pytest.approx(numbers["t_cr_max"] / 0.5)
+
+
 @pytest.mark.parametrize(
     "args, name",
     [
