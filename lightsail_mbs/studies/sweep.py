@@ -165,13 +165,14 @@ class Sweep:
             self.bar.last_print_n += 1
 
     def set_total(self, total: int) -> None:
-        """Tell the progress bar how many cases to expect in all (at least those found or submitted)."""
+        """Tell the progress bar how many cases to expect in all (at least those found or submitted); it is
+        drawn again when the sweep next waits, once for any number of submissions."""
         self.bar.total = max(total, self.bar.n + sum(map(len, self._waiting.values())))
-        if not self.bar.disable:
-            self.bar.refresh()
 
     def wait(self) -> list[tuple[Case, dict]]:
         """Block until some submitted cases are finished; return them as (case, record); [] if none is left."""
+        if not self.bar.disable:
+            self.bar.refresh()
         if self._ready:
             ready, self._ready = self._ready, []
             return ready
