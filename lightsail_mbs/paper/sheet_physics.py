@@ -378,6 +378,42 @@ def run(out, *, solver="reduced", workers=None, scheduler=None, quick=False, sto
     return rows
 
 
+LONG_GRIDS = (18, 24)
+LONG_RATIOS = (2.0, 3.0, 4.0)  # E/E_cr,max, above the 12 s horizon study's
+LONG = RunSettings(t_final=60.0, output_interval=0.01)
+
+
+def long_horizon(
+    out, *, grids=LONG_GRIDS, ratios=LONG_RATIOS, settings=LONG, store=None, workers=None, progress=True
+) -> list[dict]:
+    """Does a finite E stabilise the doubly sinusoidal sheet (ν_x = ν_y = 1.5, E_m = E) for good? The
+    horizon study (2.) at larger E/E_cr,max and over longer runs: when the amplitude reaches 1.5 and 2 a₀,
+    the growth rate between them and the largest amplitude ratio. Writes sheet_long_horizon.csv and
+    sheet_long_horizon.md into `out`; the runs go to the store OUT/store/sheet_physics (resumable)."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    store_dir = Path(store or out / "store") / NAME
+    rows = horizon_rows(grids, ratios, settings, store_dir, workers, progress)
+    write_csv(out / "sheet_long_horizon.csv", rows)
+    title = (
+        f"Doubly sinusoidal sheet, ν = 1.5 × 1.5, E_m = E, {settings.t_final:g} s runs (in-house solver, samples "
+        f"every {settings.sample_interval:g} s): when the amplitude reaches 1.5 and 2 a₀"
+    )
+    print_table(title, rows)
+    columns = {
+        "grid": "tiles along L and W",
+        "ratio": "E/E_cr,max",
+        "t_1_5": "t(1.5 a₀) (s)",
+        "t_2": "t(2 a₀) (s)",
+        "growth_rate": "growth 1.5→2 a₀ (1/s)",
+        "max_ratio": "largest a/a₀",
+    }
+    from lightsail_mbs.studies.tables import markdown_table
+
+    (out / "sheet_long_horizon.md").write_text(f"{title}.\n\n{markdown_table(rows, columns)}\n")
+    return rows
+
+
 def read_rows(out) -> dict:
     """The rows of a finished run back from its CSV files in `out` (numbers as floats, empty as None)."""
     import csv

@@ -103,3 +103,17 @@ def test_sheet_physics_scenario(tmp_path):
     assert {r["grid"] for r in rows["horizon"]} == {6}
     strip = sorted((r for r in rows["gaussian"] if r["case"] == "strip"), key=lambda r: r["waist_m"])
     assert all(a["failure_time_ms"] < b["failure_time_ms"] for a, b in zip(strip, strip[1:]))
+
+
+def test_sheet_long_horizon_writes_its_table(tmp_path):
+    """paper.sheet_physics.long_horizon on one small grid: a row per (grid, E/E_cr,max), CSV and Markdown."""
+    from lightsail_mbs import RunSettings
+    from lightsail_mbs.paper import sheet_physics
+
+    rows = sheet_physics.long_horizon(
+        tmp_path, grids=(6,), ratios=(0.3, 2.0), settings=RunSettings(t_final=2.0, output_interval=0.01), progress=False
+    )
+    assert [(r["grid"], r["ratio"]) for r in rows] == [(6, 0.3), (6, 2.0)]
+    assert all(r["error"] is None and r["max_ratio"] >= 1.0 for r in rows)
+    assert "E/E_cr,max" in (tmp_path / "sheet_long_horizon.md").read_text()
+    assert (tmp_path / "sheet_long_horizon.csv").read_text().count("\n") == 3
