@@ -125,10 +125,10 @@ def boundary_rows(found: dict, quantity: str) -> list[dict]:
     return rows
 
 
-def horizon_rows(grids, ratios, settings, store_dir, workers, progress, mode=1.5) -> list[dict]:
+def horizon_rows(grids, ratios, settings, store_dir, workers, progress, mode=1.5, options=None) -> list[dict]:
     """The doubly sinusoidal sheet ν_x = ν_y = mode (E_m = E) at E = ratio·E_cr,max over `settings.t_final`:
     the first output times with amplitude ≥ 1.5 and 2 a₀ and the mean growth rate ln(2/1.5)/(t₂ − t₁.₅)
-    between them."""
+    between them; `options`: the in-house solver's (rtol)."""
     cases = [
         (g, k, sheet_study.with_ratio(base(g, defect_mode=mode, defect_mode_y=mode), "modulus", k))
         for g in grids
@@ -142,6 +142,7 @@ def horizon_rows(grids, ratios, settings, store_dir, workers, progress, mode=1.5
         workers=workers,
         label="sheet horizon",
         progress=progress,
+        options=options,
     )
     rows = []
     for (g, k, _), (record, result) in zip(cases, done):
@@ -389,11 +390,19 @@ def long_horizon(
     """Does a finite E stabilise the doubly sinusoidal sheet (ν_x = ν_y = 1.5, E_m = E) for good? The
     horizon study (2.) at larger E/E_cr,max and over longer runs: when the amplitude reaches 1.5 and 2 a₀,
     the growth rate between them and the largest amplitude ratio. Writes sheet_long_horizon.csv and
-    sheet_long_horizon.md into `out`; the runs go to the store OUT/store/sheet_physics (resumable)."""
+    sheet_long_horizon.md into `out`; the runs go to the store OUT/store/sheet_physics (resumable).
+
+    Each case is run again at a ten times tighter rtol: a late runaway that the solver's own error
+    seeds moves with the tolerance (columns t_2_rtol10 and max_ratio_rtol10)."""
+    from lightsail_mbs.solvers.reduced.sheet import DEFAULT_RTOL
+
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     store_dir = Path(store or out / "store") / NAME
     rows = horizon_rows(grids, ratios, settings, store_dir, workers, progress)
+    tight = horizon_rows(grids, ratios, settings, store_dir, workers, progress, options={"rtol": DEFAULT_RTOL / 10})
+    for row, twin in zip(rows, tight, strict=True):
+        row.update(t_2_rtol10=twin["t_2"], max_ratio_rtol10=twin["max_ratio"])
     write_csv(out / "sheet_long_horizon.csv", rows)
     title = (
         f"Doubly sinusoidal sheet, ν = 1.5 × 1.5, E_m = E, {settings.t_final:g} s runs (in-house solver, samples "
@@ -407,6 +416,8 @@ def long_horizon(
         "t_2": "t(2 a₀) (s)",
         "growth_rate": "growth 1.5→2 a₀ (1/s)",
         "max_ratio": "largest a/a₀",
+        "t_2_rtol10": "t(2 a₀) at rtol/10 (s)",
+        "max_ratio_rtol10": "largest a/a₀ at rtol/10",
     }
     from lightsail_mbs.studies.tables import markdown_table
 

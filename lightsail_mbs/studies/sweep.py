@@ -248,13 +248,17 @@ def run_cases(
     scheduler=None,
     label: str = "cases",
     progress: bool = True,
+    options: dict | None = None,
 ) -> list[tuple[dict, Result | None]]:
     """Run (or find in the store) every case with its full Result saved; return (record, Result) pairs
-    in order. settings: one RunSettings for every case, or one per case. A case whose solver failed comes
-    back with its record and, if any, its partial Result."""
+    in order. settings: one RunSettings for every case, or one per case; options: the solver's, for every
+    case. A case whose solver failed comes back with its record and, if any, its partial Result."""
     if isinstance(settings, RunSettings):
         settings = [settings] * len(params_list)
-    cases = [Case(p, solver, save_result=True, settings=s) for p, s in zip(params_list, settings, strict=True)]
+    cases = [
+        Case(p, solver, options=dict(options or {}), save_result=True, settings=s)
+        for p, s in zip(params_list, settings, strict=True)
+    ]
     records = run_sweep(cases, store_dir, workers=workers, scheduler=scheduler, label=label, progress=progress)
     out = []
     for record in records:

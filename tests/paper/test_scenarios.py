@@ -117,3 +117,4 @@ def test_sheet_long_horizon_writes_its_table(tmp_path):
     assert all(r["error"] is None and r["max_ratio"] >= 1.0 for r in rows)
     assert "E/E_cr,max" in (tmp_path / "sheet_long_horizon.md").read_text()
     assert (tmp_path / "sheet_long_horizon.csv").read_text().count("\n") == 3
+    assert all(r["max_ratio_rtol10"] >= 1.0 for r in rows)  # each case again at rtol/10
