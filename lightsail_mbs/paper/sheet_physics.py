@@ -393,7 +393,8 @@ def long_horizon(
     sheet_long_horizon.md into `out`; the runs go to the store OUT/store/sheet_physics (resumable).
 
     Each case is run again at a ten times tighter rtol: a late runaway that the solver's own error
-    seeds moves with the tolerance (columns t_2_rtol10 and max_ratio_rtol10)."""
+    seeds moves with the tolerance (columns t_2_rtol10, max_ratio_rtol10, and error_rtol10 when that run
+    ended in a solver error, recorded as a result)."""
     from lightsail_mbs.solvers.reduced.sheet import DEFAULT_RTOL
 
     out = Path(out)
@@ -402,7 +403,7 @@ def long_horizon(
     rows = horizon_rows(grids, ratios, settings, store_dir, workers, progress)
     tight = horizon_rows(grids, ratios, settings, store_dir, workers, progress, options={"rtol": DEFAULT_RTOL / 10})
     for row, twin in zip(rows, tight, strict=True):
-        row.update(t_2_rtol10=twin["t_2"], max_ratio_rtol10=twin["max_ratio"])
+        row.update(t_2_rtol10=twin["t_2"], max_ratio_rtol10=twin["max_ratio"], error_rtol10=twin["error"])
     write_csv(out / "sheet_long_horizon.csv", rows)
     title = (
         f"Doubly sinusoidal sheet, ν = 1.5 × 1.5, E_m = E, {settings.t_final:g} s runs (in-house solver, samples "
@@ -418,6 +419,7 @@ def long_horizon(
         "max_ratio": "largest a/a₀",
         "t_2_rtol10": "t(2 a₀) at rtol/10 (s)",
         "max_ratio_rtol10": "largest a/a₀ at rtol/10",
+        "error_rtol10": "solver error at rtol/10",
     }
     from lightsail_mbs.studies.tables import markdown_table
 
