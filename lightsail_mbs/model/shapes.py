@@ -287,6 +287,12 @@ MIN_CARRIED_FRACTION = 0.5  # a chain whose initial amplitude is below this frac
 PRECISION_FLOOR = 1e-12  # a₀/L below this is within ~1e4 ulps of the coordinates' round-off
 
 
+def shortest_mode(p: SailParameters, mode: float) -> float:
+    """The mode number of the defect's shortest wave in one direction: `mode` (ν or ν_y) for the sine,
+    K/2 for a seeded multi-mode defect of K modes."""
+    return mode if p.defect_seed is None else 0.5 * p.defect_mode_count
+
+
 def defect_warnings(p: SailParameters, initial_amplitude: float, element: str = "slices") -> list[str]:
     """Why a chain of n slices may not carry the case's defect: too few slices per half wavelength of
     its shortest wave, an initial chain amplitude (analysis.amplitude of the initial state) far below
@@ -296,7 +302,7 @@ def defect_warnings(p: SailParameters, initial_amplitude: float, element: str = 
     if a0 <= 0:
         return []
     notes = []
-    shortest = p.defect_mode if p.defect_seed is None else 0.5 * p.defect_mode_count
+    shortest = shortest_mode(p, p.defect_mode)
     per_half_wave = p.n / (2.0 * shortest)
     if per_half_wave < MIN_SLICES_PER_HALF_WAVE:
         notes.append(

@@ -734,14 +734,14 @@ def defect_warnings(p: SailParameters, initial_amplitude: float) -> list[str]:
     direction (resolved, but its stability results are not yet converged in the grid)."""
     notes = shapes.defect_warnings(p, initial_amplitude, element="tiles")
     if p.defect_mode_y is not None and p.defect_amplitude > 0:
-        shortest_y = p.defect_mode_y if p.defect_seed is None else 0.5 * p.defect_mode_count
+        shortest_y = shapes.shortest_mode(p, p.defect_mode_y)
         per_half_wave_y = p.ny / (2.0 * shortest_y)
         if per_half_wave_y < MIN_TILES_PER_HALF_WAVE:
             notes.append(
                 f"ny = {p.ny} gives {per_half_wave_y:.3g} tiles per half wavelength of the defect across the "
                 f"width (ν_y = {shortest_y:g}); at least {MIN_TILES_PER_HALF_WAVE} are needed to resolve it"
             )
-        shortest_x = p.defect_mode if p.defect_seed is None else 0.5 * p.defect_mode_count
+        shortest_x = shapes.shortest_mode(p, p.defect_mode)
         coarsest = min(p.n / (2.0 * shortest_x), per_half_wave_y)
         if MIN_TILES_PER_HALF_WAVE <= coarsest < CONVERGED_TILES_PER_HALF_WAVE_2D:
             notes.append(
