@@ -160,8 +160,8 @@ def _check_format(path: Path, data: dict) -> None:
     version = data.pop("version", VERSION)
     if isinstance(version, bool) or not isinstance(version, int) or not 1 <= version <= VERSION:
         raise CaseFileError(
-            f"{path}: version = {_shown(version)} is invalid: allowed 1 … {VERSION} (this lightsail-mbs reads "
-            f"case files up to version {VERSION}; a newer one wrote this file)"
+            f"{path}: version = {_shown(version)} is invalid: allowed an integer ≤ {VERSION} (this lightsail-mbs "
+            f"reads case files up to version {VERSION}; a newer one wrote this file)"
         )
 
 
@@ -175,7 +175,7 @@ def _typed(path: Path, key: str, value, annotation: str, allowed: str):
         "str": isinstance(value, str),
     }[kind]
     if not ok:
-        what = KIND_TEXT[kind] + (f", {allowed}" if allowed else "")
+        what = allowed if allowed.startswith(KIND_TEXT[kind]) else KIND_TEXT[kind] + (f", {allowed}" if allowed else "")
         raise CaseFileError(f"{path}: {key} = {_shown(value)} is invalid: allowed {what}")
     return float(value) if kind == "float" else value
 
