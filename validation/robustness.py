@@ -4,10 +4,12 @@
 
 Each row tries one input a user could give (bad numbers, bad and unwritable paths, foreign, corrupt and
 truncated files, truncated, corrupt and stale store records, a Dask scheduler that does not answer,
-Ctrl-C, killed sweep workers, an unforeseen internal error) and records what happened: the exit status,
-the first line of stderr, whether a Python traceback reached the user, and the time to fail (wall clock
-of the whole command, Python start-up and imports included; the machine is shared, so these are upper
-bounds) with the command's CPU time, on which the row with a time limit is judged. Every row must be one of:
+Ctrl-C, killed sweep workers, an unforeseen internal error, case files that are malformed, of a newer
+format, name unknown keys, values of the wrong type or out of range, or fields of another model family)
+and records what happened: the exit status, the first line of stderr, whether a Python traceback reached
+the user, and the time to fail (wall clock of the whole command, Python start-up and imports included; the
+machine is shared, so these are upper bounds) with the command's CPU time, on which the row with a time
+limit is judged. Every row must be one of:
 
 * ``error``: exit status 2 and exactly one line on stderr naming the problem (API: ParameterError or
   RunFileError, whose message names the parameter or the file);
@@ -193,6 +195,50 @@ def make_files(work: Path) -> None:
     variant("badcase.npz", json.dumps({**summary, "parameters": {**summary["parameters"], "n": -3}}))
     variant("nosolver.npz", json.dumps({k: v for k, v in summary.items() if k != "solver"}))
     variant("shapes.npz", x=arrays["x"][:3])
+
+
+# ---- case files ----------------------------------------------------------------------------------
+BAD_CASE_FILES = (  # file name, content, words the one-line error must hold (the file, the key, what is allowed)
+    ("syntax.toml", "n = = 3\n", ["syntax.toml", "not valid TOML", "line 1"]),
+    ("unknown.toml", "thicknes = 1e-6\n", ["unknown.toml", "thicknes", "did you mean thickness", "allowed"]),
+    ("type.toml", 'n = "ten"\n', ["type.toml", "n = ", "an integer"]),
+    ("range.toml", "thickness = -1e-6\n", ["range.toml", "thickness=", "> 0"]),
+    ("family.toml", 'model = "torsion"\nny = 3\n', ["family.toml", "ny=3", "unless model='sheet'"]),
+    ("newer.toml", "version = 2\n", ["newer.toml", "version = 2", "up to version 1"]),
+    ("runtable.toml", "[run]\nt_fnal = 1.0\n", ["runtable.toml", "run.t_fnal", "t_final"]),
+    ("missing.toml", None, ["missing.toml", "no such file"]),
+)
+
+
+def case_file_rows(work: Path) -> None:
+    """Case files: a good one runs and --save-case writes the case it ran (read back equal); each kind of
+    bad file is one line naming the file, the key and what is allowed."""
+    from lightsail_mbs import SailParameters
+    from lightsail_mbs.cli import build_parser
+    from lightsail_mbs.cli.options import params_from_args
+
+    SailParameters(n=12, youngs_modulus=4.5e9).to_toml(work / "case.toml")
+    run = ["--t-final", "0.05", "--solver", "reduced", "--quiet", "--no-uncertainty"]
+
+    def saved(out, err):
+        given = params_from_args(
+            build_parser().parse_args(["simulate", str(work / "case.toml"), "--modulus", "4.5e10"])
+        )
+        ok = SailParameters.from_toml(work / "saved.toml") == given and "n=12" in out
+        return ok, "the case file ran (n = 12); --save-case wrote it with --modulus applied, read back equal"
+
+    cli_row(
+        ["simulate", "case.toml", "--modulus", "4.5e10", *run, "--save-case", "saved.toml"], work, "result", check=saved
+    )
+    for name, text, words in BAD_CASE_FILES:
+        if text is not None:
+            (work / name).write_text(text)
+        cli_row(["simulate", name, *run], work, "error", names=words)
+    api_row(
+        "SailParameters.from_toml(a file with an unknown key)",
+        lambda: SailParameters.from_toml(work / "unknown.toml"),
+        names=["unknown.toml", "thicknes"],
+    )
 
 
 # ---- the sweep rows ------------------------------------------------------------------------------
@@ -508,6 +554,7 @@ def run_all(work: Path) -> None:
     cli_row(["stability", "--factor", "1"], work, "error", names=["factor"])
     cli_row(["stability", "--tau-final", "-1"], work, "error", names=["tau_final"])
     cli_row(["store", "no-such-store"], work, "error", names=["no-such-store"])
+    case_file_rows(work)
     # Ctrl-C
     long_run = ["simulate", "--n", "30", "--modulus", "4.5e13", "--t-final", "60", "--quiet", "--out", "long.npz"]
     for solver in ("exudyn", "reduced"):

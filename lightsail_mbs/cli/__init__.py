@@ -19,6 +19,18 @@ from datetime import datetime
 
 from lightsail_mbs.model.parameters import ParameterError
 
+DESCRIPTION = """\
+Does a laser-driven lightsail keep its shape under the beam, or crumple? lightsail-mbs simulates a sail (the
+paper's chain of rigid slices held by torsion or tension springs, or a sheet of tiles) on two independent
+solvers and answers with the time it fails (its defect has doubled) or that it does not, with the answer's
+uncertainty; the closed-form theory, stability boundaries, Monte Carlo sweeps and the paper's figures too.
+
+A case is given by options (--modulus 4.5e9, ...), over a case file or a saved run if one is named first:
+  lightsail-mbs theory torsion-soft --save-case mine.toml
+  lightsail-mbs simulate mine.toml --n 40 --out run.npz
+  lightsail-mbs info run.npz
+Each command's own options: lightsail-mbs COMMAND --help."""
+
 # subcommand modules of this package; each defines register(subparsers) and sets `func`. Registering
 # imports no more than the options need (numpy, the parameter classes): each command imports the
 # library it calls inside its run(), so a command pays only for what it uses.
@@ -50,11 +62,21 @@ class Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = Parser(prog="lightsail-mbs", description=__doc__.splitlines()[0])
-    sub = parser.add_subparsers(dest="command", required=True)
+    parser = Parser(prog="lightsail-mbs", description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
+    sub = parser.add_subparsers(dest="command", required=True, title="commands", metavar="COMMAND")
     for name in COMMANDS:
         importlib.import_module(f".{name}", __name__).register(sub)
     return parser
+
+
+def _version() -> str:
+    from importlib import metadata
+
+    try:
+        return metadata.version("lightsail-mbs")
+    except metadata.PackageNotFoundError:
+        return "(not installed)"
 
 
 def main(argv=None) -> int:

@@ -1,134 +1,94 @@
-"""Shared command-line options: the case (SailParameters) and the run control (RunSettings), one option
-per field."""
+"""Shared command-line options: the case (SailParameters) and the run control (RunSettings).
+
+The case options are generated from the case's field table (lightsail_mbs.model.fields.FIELDS), one per
+field, so none can be missing; a command that takes a case also takes a case source as its positional
+argument (a case file, a saved run's .json or .npz, or a paper case's name, lightsail_mbs.cli.cases), which
+the options then override, and --save-case FILE, which writes the case it runs.
+"""
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
+import sys
 import tempfile
 from pathlib import Path
 
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.model.fields import FIELDS, number
+from lightsail_mbs.model.parameters import PAPER_CASES, ParameterError, SailParameters
 from lightsail_mbs.solvers.settings import RunSettings
 
-# option name -> (SailParameters field, type, help)
-CASE_OPTIONS = {
-    "--model": ("model", str, "rigid | torsion | tnt | sheet"),
-    "--n": ("n", int, "number of slices (sheet: tiles along L, also --nx)"),
-    "--ny": ("ny", int, "sheet: tiles across the width W"),
-    "--length": ("length", float, "sail length L (m)"),
-    "--width": ("width", float, "sail width W (m)"),
-    "--thickness": ("thickness", float, "thickness h (m)"),
-    "--density": ("density", float, "density ρ (kg/m³)"),
-    "--modulus": ("youngs_modulus", float, "Young's modulus E (Pa)"),
-    "--tension": ("tension", float, "boundary tension T (N), TnT only"),
-    "--intensity": ("intensity", float, "laser intensity I₀ (W/m²)"),
-    "--defect-amplitude": ("defect_amplitude", float, "initial defect amplitude a₀ (m)"),
-    "--defect-mode": ("defect_mode", float, "defect mode number ν (wavelengths over L)"),
-    "--defect-seed": (
-        "defect_seed",
-        int,
-        "an integer: a seeded random multi-mode defect of amplitude a₀ (modes ν = 1/2 … K/2); unset: the sine "
-        "of --defect-mode",
-    ),
-    "--defect-mode-count": ("defect_mode_count", int, "multi-mode defect: modes ν_k = k/2, k = 1…K"),
-    "--defect-spectrum": ("defect_spectrum", float, "multi-mode defect: mean amplitude ∝ ν^(−β)"),
-    "--roughness": (
-        "roughness",
-        float,
-        "seeded roughness (m) at every wavelength the slices or tiles carry, added to the defect",
-    ),
-    "--roughness-seed": ("roughness_seed", int, "seed of the roughness"),
-    "--mode-y": (
-        "defect_mode_y",
-        float,
-        "sheet: defect mode ν_y across the width, w = a₀ sin(2πνx/L) sin(2πν_y y/W); unset: uniform across W",
-    ),
-    "--membrane-modulus": ("membrane_modulus", float, "sheet: in-plane (membrane) modulus E_m (Pa); unset: E"),
-    "--edge-tension": ("edge_tension", float, "sheet: follower tension on all four edges (N per metre of edge)"),
-    "--billow-radius": ("billow_radius", float, "initial arc radius R_c (m), > 0 concave to the laser; inf = flat"),
-    "--beam-waist": ("beam_waist", float, "Gaussian beam waist w (m); inf = uniform beam"),
-    "--beam-center": ("beam_center", float, "Gaussian beam axis x_c (m); default L/2"),
-    "--beam-center-y": ("beam_center_y", float, "sheet: Gaussian beam axis y_c (m); default W/2"),
-    "--reflectivity": ("reflectivity", float, "specular reflectivity R"),
-    "--absorptivity": ("absorptivity", float, "absorptivity α"),
-    "--optics": (
-        "optics",
-        str,
-        "the slices' force law from a table: 'mirror' or a table file (lightsail-mbs optics … --out); "
-        "unset: the R/α law",
-    ),
-    "--optics-layout": (
-        "optics_layout",
-        str,
-        "uniform | mirrored-halves (the right half carries the table turned over)",
-    ),
-    "--payload-mass": ("payload_mass", float, "payload on a rigid stem from the sail's middle, mass m_p (kg)"),
-    "--payload-inertia": ("payload_inertia", float, "the payload's own inertia J_p (kg·m²)"),
-    "--payload-stem": ("payload_stem", float, "stem length d from the sail's middle towards the laser (m)"),
-    "--initial-tilt": ("initial_tilt", float, "the initial shape turned about the craft's centre of mass (rad)"),
-    "--torsional-damping": ("torsional_damping", float, "torsional damping c_T (N·m·s/rad)"),
-    "--axial-damping": ("axial_damping", float, "axial damping c_s (N·s/m)"),
-    "--stiffness-damping": (
-        "stiffness_damping",
-        float,
-        "material damping β (s): c = β k on every spring; loss factor η at ω: β = η/ω",
-    ),
-}
+# the options whose name is not --field-name
+OPTION_NAMES = {"youngs_modulus": "--modulus", "defect_mode_y": "--mode-y"}
 # option name -> (RunSettings field, type, help)
 RUN_OPTIONS = {
     "--t-final": ("t_final", float, "final time (s)"),
-    "--output-interval": ("output_interval", float, "output interval (s); default min(1 ms, t_final/1000)"),
+    "--output-interval": ("output_interval", float, "output interval (s) [default: min(1 ms, t_final/1000)]"),
     "--failure-ratio": ("failure_ratio", float, "failure when amplitude ≥ ratio × initial"),
 }
-# shorter spellings accepted for some options
+# other spellings accepted for some options
 ALIASES = {
     "--defect-amplitude": ["--amplitude"],
     "--defect-mode": ["--mode"],
     "--n": ["--nx"],
     "--defect-mode-count": ["--defect-modes"],
+    "--modulus": ["--youngs-modulus"],
+    "--mode-y": ["--defect-mode-y"],
 }
+CASE_FIELDS = {f.name: f for f in dataclasses.fields(SailParameters)}
+OPTION_TYPES = {"int": int, "float": float, "str": str}
+
+
+def option_name(field: str) -> str:
+    """The command-line option of a SailParameters field: --field-name, or its OPTION_NAMES spelling."""
+    return OPTION_NAMES.get(field, "--" + field.replace("_", "-"))
+
+
+def field_help(name: str) -> str:
+    """A case option's help: what the field is, its unit, what is allowed, and its default (or what the
+    default follows)."""
+    info, field = FIELDS[name], CASE_FIELDS[name]
+    if info.follows:
+        default = info.follows
+    elif isinstance(field.default, bool):
+        default = "on" if field.default else "off"
+    else:
+        default = number(field.default)
+    unit = f" ({info.unit})" if info.unit else ""
+    allowed = f"; allowed {info.allowed}" if info.allowed else ""
+    return f"{info.help}{unit}{allowed} [default: {default}]".replace("%", "%%")
 
 
 def add_case_options(parser: argparse.ArgumentParser, run: bool = True) -> None:
-    """The case options (and, with run=True, the run options) on a parser."""
-    defaults = SailParameters()
-    g = parser.add_argument_group("case (defaults: the paper's torsion case)")
-    for opt, (name, typ, text) in CASE_OPTIONS.items():
-        g.add_argument(
-            opt,
-            *ALIASES.get(opt, []),
-            dest=name,
-            type=typ,
-            default=None,
-            help=f"{text} [default {getattr(defaults, name)}]",
+    """The case source, --save-case and one option per case field (and, with run=True, the run options)."""
+    parser.add_argument(
+        "case_file",
+        nargs="?",
+        metavar="CASE",
+        help="the case to start from: a case file (.toml), a saved run (.json or .npz: its case and run) or a "
+        f"paper case ({', '.join(PAPER_CASES)}); the options below override it [default: the paper's torsion case]",
+    )
+    parser.add_argument(
+        "--save-case", metavar="FILE", help="write the case (options applied) to this case file (.toml) and go on"
+    )
+    groups: dict[str, argparse._ArgumentGroup] = {}
+    for name, field in CASE_FIELDS.items():
+        info = FIELDS[name]
+        if info.group not in groups:
+            groups[info.group] = parser.add_argument_group(f"case: {info.group}")
+        kind = field.type.split("|")[0].strip()
+        how = {"action": argparse.BooleanOptionalAction} if kind == "bool" else {"type": OPTION_TYPES[kind]}
+        option = option_name(name)
+        groups[info.group].add_argument(
+            option, *ALIASES.get(option, []), dest=name, default=None, help=field_help(name), **how
         )
-    g.add_argument(
-        "--bending",
-        dest="bending",
-        action=argparse.BooleanOptionalAction,
-        default=None,
-        help="torsional springs k_T = EI/l on/off [default: on for torsion, off for tnt as in the paper]",
-    )
-    g.add_argument(
-        "--axial-springs",
-        dest="axial_springs",
-        action=argparse.BooleanOptionalAction,
-        default=None,
-        help="TnT: extensible slices with k_s = (n−1)EhW/L, or their rigid limit [default on]",
-    )
-    g.add_argument(
-        "--billow-rest",
-        dest="billow_rest",
-        action=argparse.BooleanOptionalAction,
-        default=None,
-        help="torsion springs at rest on the billowed arc (a sail made curved) [default off: at rest flat]",
-    )
     if not run:
         return
     settings = RunSettings()
     g = parser.add_argument_group("run")
     for opt, (name, typ, text) in RUN_OPTIONS.items():
-        g.add_argument(opt, dest=name, type=typ, default=None, help=f"{text} [default {getattr(settings, name)}]")
+        default = "" if "[default" in text else f" [default: {number(getattr(settings, name))}]"
+        g.add_argument(opt, dest=name, type=typ, default=None, help=text + default)
     g.add_argument(
         "--run-past-failure",
         dest="stop_at_failure",
@@ -139,17 +99,41 @@ def add_case_options(parser: argparse.ArgumentParser, run: bool = True) -> None:
 
 
 def params_from_args(args: argparse.Namespace, base: SailParameters | None = None) -> SailParameters:
-    """The SailParameters of the given case options (base's values, or the defaults, for the others)."""
-    names = [v[0] for v in CASE_OPTIONS.values()] + ["bending", "axial_springs", "billow_rest"]
-    given = {k: getattr(args, k) for k in names if getattr(args, k, None) is not None}
-    return base.replace(**given) if base is not None else SailParameters(**given)
+    """The SailParameters of the given case options over the case source (args.case_file), or over base,
+    or over the defaults; with --save-case, the case (and the run entries given) written to that file."""
+    from lightsail_mbs.cli.cases import case_source, merged
+
+    given = {k: getattr(args, k) for k in CASE_FIELDS if getattr(args, k, None) is not None}
+    source = case_source(args)
+    if source is not None and base is not None:
+        raise ParameterError(f"{args.case_file}: a case source is invalid together with --case (give one)")
+    if source is not None:
+        params = merged(args.case_file, SailParameters, source.case, given)
+    else:
+        params = base.replace(**given) if base is not None else SailParameters(**given)
+    if getattr(args, "save_case", None):
+        run = {**(source.run if source else {}), **_given_run(args)}
+        path = writable_file(args.save_case, "--save-case", ".toml")
+        params.to_toml(path, merged(args.case_file, RunSettings, run, _given_run(args), "[run] ") if run else None)
+        print(f"wrote the case to {path}", file=sys.stderr)
+    return params
 
 
 def settings_from_args(args: argparse.Namespace, base: RunSettings | None = None) -> RunSettings:
-    """The RunSettings of the given run options (base's values, or the defaults, for the others)."""
-    names = [v[0] for v in RUN_OPTIONS.values()] + ["stop_at_failure"]
-    given = {k: getattr(args, k) for k in names if getattr(args, k, None) is not None}
+    """The RunSettings of the given run options over the case source's [run] entries, or over base, or over
+    the defaults."""
+    from lightsail_mbs.cli.cases import case_source, merged
+
+    given = _given_run(args)
+    source = case_source(args)
+    if source is not None and source.run:
+        return merged(args.case_file, RunSettings, source.run, given, "[run] ")
     return base.replace(**given) if base is not None else RunSettings(**given)
+
+
+def _given_run(args: argparse.Namespace) -> dict:
+    names = [v[0] for v in RUN_OPTIONS.values()] + ["stop_at_failure"]
+    return {k: getattr(args, k) for k in names if getattr(args, k, None) is not None}
 
 
 def scenario_parser(doc: str, quick_help: str) -> argparse.ArgumentParser:

@@ -1,18 +1,13 @@
 """The case: one validated, immutable parameter set per simulation (SI units throughout).
 
-Paper: Sections III–IV. Derived quantities follow the paper's definitions:
-slice length l = L/n, slice mass m = ρ h W l, centroidal inertia J = m l²/12,
-bending stiffness k_T = E I / l with I = W h³/12 (Sec. III.B),
-axial stiffness k_s = (n − 1) E h W / L (Sec. III.C).
+Paper: Sections III–IV; the derived quantities (slice length, mass, inertia, stiffnesses) are those of
+:class:`~lightsail_mbs.model.derived.DerivedQuantities`. What each field means, its unit and its allowed
+values: :data:`lightsail_mbs.model.fields.FIELDS`; case files: :mod:`lightsail_mbs.model.casefile`.
 
 Two model families share this one parameter class. The chains ("rigid", "torsion", "tnt") are the
 paper's strip of n slices. The "sheet" is the sail cut into n × ny rigid tiles moving in 3-D
-(:mod:`lightsail_mbs.model.sheet`); its own fields (ny, defect_mode_y, membrane_modulus,
-edge_tension, beam_center_y, pressure, membrane_damping, membrane_reference, bending_reference,
-initial_equilibrium) are listed in
-SHEET_DEFAULTS, rejected away from their defaults for a chain, and left out of :meth:`to_dict` at
-their defaults, so the record (and the store key) of every chain case is what it was before the
-sheet existed.
+(:mod:`lightsail_mbs.model.sheet`); its own fields (SHEET_DEFAULTS) are rejected away from their defaults
+for a chain and left out of :meth:`~SailParameters.to_dict` at their defaults (:mod:`lightsail_mbs.model.records`).
 """
 
 from __future__ import annotations
@@ -22,58 +17,21 @@ import math
 import numbers
 from dataclasses import dataclass
 
+from lightsail_mbs.model import casefile
+from lightsail_mbs.model.derived import DerivedQuantities
+from lightsail_mbs.model.fields import (
+    BENDING_REFERENCES,
+    BOUNDARIES,
+    FIELDS,
+    MEMBRANE_REFERENCES,
+    MIN_DEFECT_FRACTION,
+    MODELS,
+    OPTICS_LAYOUTS,
+    SHEET_BOUNDARIES,
+)
+from lightsail_mbs.model.records import LEGACY_NAMES, RUN_FIELDS, SHEET_DEFAULTS, current_names, record  # noqa: F401
+
 SPEED_OF_LIGHT = 299_792_458.0  # m/s
-MODELS = ("rigid", "torsion", "tnt", "sheet")
-CHAIN_MODELS = ("rigid", "torsion", "tnt")
-# Supports of the chain's ends (validations, paper Appendices A–B): "free" (the sail, both ends free),
-# "cantilever" (slice 1 clamped at its initial pose, Appendix A), "pinned" (hinge 0 pinned, hinge n on a
-# roller along x that lets the end tension T through: a string or simply supported beam, Appendix B).
-BOUNDARIES = ("free", "cantilever", "pinned")
-# Supports of the sheet's four edges (the plate and membrane validations): "free" (the sail),
-# "simply_supported" (w = 0 along every edge, no bending moment), "clamped" (w = 0 and no rotation).
-SHEET_BOUNDARIES = ("free", "simply_supported", "clamped")
-# Fields of the validations that to_dict omits at their defaults (a free, unloaded sail), so that the
-# record of a sail lists only what describes it.
-VALIDATION_DEFAULTS = {"boundary": "free", "tip_load": 0.0, "tip_load_time_constant": 0.0}
-# The sheet's own fields at their defaults: omitted by to_dict, and the only values a chain accepts.
-SHEET_DEFAULTS = {
-    "ny": 1,
-    "defect_mode_y": None,
-    "membrane_modulus": None,
-    "edge_tension": 0.0,
-    "beam_center_y": None,
-    "pressure": 0.0,
-    "membrane_damping": None,
-    "membrane_reference": "initial",
-    "bending_reference": "flat",
-    "initial_equilibrium": False,
-}
-MEMBRANE_REFERENCES = ("initial", "flat")
-BENDING_REFERENCES = ("flat", "initial")
-# Fields added after the store's keys were first written, omitted by to_dict at their defaults so that the
-# record (and store key) of every case that does not use them stays what it was.
-LATER_DEFAULTS = {
-    "billow_radius": math.inf,
-    "optics": None,
-    "optics_layout": "uniform",
-    "payload_mass": 0.0,
-    "payload_inertia": 0.0,
-    "payload_stem": 0.0,
-    "billow_rest": False,
-    "initial_tilt": 0.0,
-    "roughness": 0.0,
-    "roughness_seed": 0,
-}
-# How the slices carry an optical table: all alike, or the right half turned over (t → −t; model/optics.py).
-OPTICS_LAYOUTS = ("uniform", "mirrored-halves")
-# Names under which saved runs and store records written before the current field names hold them.
-LEGACY_NAMES = {"amplitude": "defect_amplitude", "mode": "defect_mode", "defect_modes": "defect_mode_count"}
-# Smallest non-zero defect amplitude, as a fraction of L: the solvers scale their tolerances with a₀, and the
-# reduced solver's first-step estimate underflows for a₀ ≲ 1e-200 m. (Physically, anything below ~1e-12 L is
-# round-off already: shapes.defect_warnings says so.)
-MIN_DEFECT_FRACTION = 1e-100
-# Run control that saved runs of that format kept with the case (now solvers.settings.RunSettings).
-RUN_FIELDS = ("t_final", "output_interval", "stop_at_failure", "failure_ratio")
 
 
 class ParameterError(ValueError):
@@ -97,6 +55,11 @@ def finite(name: str, value) -> float:
     return v
 
 
+def _integer(value, low: int, high: float = math.inf) -> bool:
+    """Whether value is an int (not a bool) with low ≤ value ≤ high."""
+    return isinstance(value, int) and not isinstance(value, bool) and low <= value <= high
+
+
 def _as_float(value) -> float:
     """float(value), NaN where that fails (an int beyond the float range)."""
     try:
@@ -106,7 +69,7 @@ def _as_float(value) -> float:
 
 
 @dataclass(frozen=True)
-class SailParameters:
+class SailParameters(DerivedQuantities):
     """One lightsail case: the sail, its supports, its defect and the beam (SI units).
 
     Defaults: the paper's torsion study (Sec. IV.B, Fig. 6). Run control (duration, sampling, stop
@@ -151,10 +114,8 @@ class SailParameters:
     pressure: float = 0.0  # p, Pa: dead pressure along the beam (+z) (the plate validations)
     membrane_damping: float | None = None  # β_m, s: damping β_m k on the stiff springs; None: critical
     membrane_reference: str = "initial"  # in-plane springs at rest in the "initial" (defect) or "flat" shape
-    bending_reference: str = "flat"  # bending springs at rest "flat" (the paper: an elastically loaded defect)
-    #                                  or in the "initial" shape (a stress-free, manufactured defect)
-    initial_equilibrium: bool = False  # True: the springs' rest state is corrected so that the unlit sheet
-    #                                    (edge tension included) is at rest in the initial shape (model.sheet)
+    bending_reference: str = "flat"  # bending springs at rest "flat" or in the "initial" (manufactured) shape
+    initial_equilibrium: bool = False  # True: the springs' rest state corrected: the unlit sheet rests as it starts
     billow_radius: float = math.inf  # R_c, m: initial circular arc (shapes.py); > 0 concave to the laser; inf: flat
     optics: str | None = None  # the slices' force law from a table: None (R, α above), "mirror", or a table file
     optics_layout: str = "uniform"  # one of OPTICS_LAYOUTS: which slices carry the table turned over
@@ -166,24 +127,12 @@ class SailParameters:
 
     def __post_init__(self):
         check("model", self.model, self.model in MODELS, f"one of {', '.join(MODELS)}")
-        check(
-            "n",
-            self.n,
-            isinstance(self.n, int) and not isinstance(self.n, bool) and 2 <= self.n <= 5000,
-            "an integer 2 ≤ n ≤ 5000",
-        )
+        check("n", self.n, _integer(self.n, 2, 5000), "an integer 2 ≤ n ≤ 5000")
         for name in ("length", "width", "thickness", "density"):
             v = finite(name, getattr(self, name))
             check(name, v, v > 0, "> 0")
-        for name in (
-            "youngs_modulus",
-            "tension",
-            "intensity",
-            "defect_amplitude",
-            "torsional_damping",
-            "axial_damping",
-            "stiffness_damping",
-        ):
+        nonnegative = ("youngs_modulus", "tension", "intensity", "defect_amplitude", "torsional_damping")
+        for name in (*nonnegative, "axial_damping", "stiffness_damping"):
             v = finite(name, getattr(self, name))
             check(name, v, v >= 0, "≥ 0")
         check(
@@ -192,19 +141,12 @@ class SailParameters:
             self.youngs_modulus > 0 or not (self.model == "tnt" and self.axial_springs),
             "> 0 for the tnt model with axial springs",
         )
-        check(
-            "defect_seed",
-            self.defect_seed,
-            self.defect_seed is None
-            or (isinstance(self.defect_seed, int) and not isinstance(self.defect_seed, bool) and self.defect_seed >= 0),
-            "None or an integer ≥ 0",
-        )
+        seed = self.defect_seed
+        check("defect_seed", seed, seed is None or _integer(seed, 0), "None or an integer ≥ 0")
         check(
             "defect_mode_count",
             self.defect_mode_count,
-            isinstance(self.defect_mode_count, int)
-            and not isinstance(self.defect_mode_count, bool)
-            and 1 <= self.defect_mode_count <= 200,
+            _integer(self.defect_mode_count, 1, 200),
             "an integer 1 ≤ K ≤ 200",
         )
         finite("defect_spectrum", self.defect_spectrum)
@@ -216,14 +158,7 @@ class SailParameters:
             f"0 ≤ roughness < L/(2πn) = "
             f"{self.length / (2 * math.pi * self.n):.3g} m (slopes of its shortest waves below 45°)",
         )
-        check(
-            "roughness_seed",
-            self.roughness_seed,
-            isinstance(self.roughness_seed, int)
-            and not isinstance(self.roughness_seed, bool)
-            and self.roughness_seed >= 0,
-            "an integer ≥ 0",
-        )
+        check("roughness_seed", self.roughness_seed, _integer(self.roughness_seed, 0), "an integer ≥ 0")
         waist = self.beam_waist
         check(
             "beam_waist",
@@ -314,12 +249,7 @@ class SailParameters:
                 check(name, getattr(self, name), getattr(self, name) == default, f"{default!r} unless model='sheet'")
             check("boundary", self.boundary, self.boundary in BOUNDARIES, f"one of {', '.join(BOUNDARIES)}")
             return
-        check(
-            "ny",
-            self.ny,
-            isinstance(self.ny, int) and not isinstance(self.ny, bool) and 1 <= self.ny <= 500,
-            "an integer 1 ≤ ny ≤ 500",
-        )
+        check("ny", self.ny, _integer(self.ny, 1, 500), "an integer 1 ≤ ny ≤ 500")
         check("n", self.n, self.n <= 500, "an integer 2 ≤ n ≤ 500 for a sheet (n × ny tiles)")
         check(
             "boundary",
@@ -432,102 +362,10 @@ class SailParameters:
         what identifies the case's force law, since the file at a path can be rewritten."""
         return self.optical_table().digest if self.optics_file else None
 
-    # ---- derived quantities (paper Sec. III) -------------------------------------------------
-    @property
-    def slice_length(self) -> float:
-        """l = L / n."""
-        return self.length / self.n
-
-    @property
-    def slice_mass(self) -> float:
-        """m = ρ h W l."""
-        return self.density * self.thickness * self.width * self.slice_length
-
-    @property
-    def slice_inertia(self) -> float:
-        """J = m l² / 12 about the slice centre."""
-        return self.slice_mass * self.slice_length**2 / 12.0
-
-    @property
-    def second_moment_of_area(self) -> float:
-        """I = W h³ / 12."""
-        return self.width * self.thickness**3 / 12.0
-
-    @property
-    def torsional_stiffness(self) -> float:
-        """k_T = E I / l (0 for the rigid model or with bending off)."""
-        if self.model == "rigid" or not self.bending:
-            return 0.0
-        return self.youngs_modulus * self.second_moment_of_area / self.slice_length
-
-    @property
-    def rest_turn(self) -> float:
-        """δ = θ_{k+1} − θ_k of the unstressed sail: −2 asin(l/(2R_c)) when the springs are at rest on the billowed
-        arc (billow_rest), else 0 (flat); the torsion springs act on θ_{k+1} − θ_k − δ."""
-        if not self.billow_rest:
-            return 0.0
-        return -2.0 * math.asin(self.slice_length / (2.0 * float(self.billow_radius)))
-
-    @property
-    def axial_stiffness(self) -> float:
-        """k_s = (n − 1) E h W / L (TnT only; inf in the inextensible limit)."""
-        if self.model != "tnt":
-            return math.inf
-        if not self.axial_springs:
-            return math.inf
-        return (self.n - 1) * self.youngs_modulus * self.thickness * self.width / self.length
-
-    @property
-    def total_torsional_damping(self) -> float:
-        """c_T + β k_T (N·m·s/rad) on the relative rate θ̇_j − θ̇_{j−1} of each interior hinge (0: rigid)."""
-        if self.model == "rigid":
-            return 0.0
-        return self.torsional_damping + self.stiffness_damping * self.torsional_stiffness
-
-    @property
-    def total_axial_damping(self) -> float:
-        """c_s + β k_s (N·s/m) on each axial spring rate ż_j (0 without axial springs)."""
-        if not self.extensible:
-            return 0.0
-        return self.axial_damping + self.stiffness_damping * self.axial_stiffness
-
-    @property
-    def extensible(self) -> bool:
-        """True when the chain has axial spring coordinates z₁…z_{n−1}."""
-        return self.model == "tnt" and self.axial_springs
-
-    @property
-    def displacement_scale(self) -> float:
-        """Typical transverse displacement for solver tolerances: a₀, or 1e-6 L for a flat sail."""
-        return self.defect_amplitude if self.defect_amplitude > 0 else 1e-6 * self.length
-
     @property
     def flat_force(self) -> float:
         """f₀ = (2 I₀ / c) l W: radiation force on a flat slice (Eq. 11)."""
         return 2.0 * self.intensity / SPEED_OF_LIGHT * self.slice_length * self.width
-
-    @property
-    def uniform_beam(self) -> bool:
-        return math.isinf(self.beam_waist)
-
-    @property
-    def mean_intensity(self) -> float:
-        """Ī: the beam intensity averaged over the flat sail 0 ≤ x ≤ L (and 0 ≤ y ≤ W for a sheet, whose
-        Gaussian beam is round; I₀ for the uniform beam)."""
-        if self.uniform_beam:
-            return self.intensity
-        mean = self.intensity * _gaussian_mean(self.beam_waist, self.beam_center, self.length)
-        if self.model == "sheet":  # the sheet's beam is round: I₀ exp(−2((x − x_c)² + (y − y_c)²)/w²)
-            mean *= _gaussian_mean(self.beam_waist, self.sheet_beam_center_y, self.width)
-        return mean
-
-    @property
-    def normal_momentum(self) -> float:
-        """c_n(0): the momentum the flat sail takes from the light, per photon momentum incident on it —
-        2R + α for the R/α facet (2 for the paper's mirror), the table's c_n(0) with an optical table."""
-        if self.optics is None:
-            return 2.0 * self.reflectivity + self.absorptivity
-        return self.optical_table().normal_at_zero
 
     @property
     def nominal_acceleration(self) -> float:
@@ -545,51 +383,37 @@ class SailParameters:
             )
         return momentum * self.mean_intensity / (SPEED_OF_LIGHT * self.density * self.thickness)
 
-    @property
-    def sheet_beam_center_y(self) -> float:
-        """y_c of the sheet's Gaussian beam (m): beam_center_y, or W/2 when it is None."""
-        return 0.5 * self.width if self.beam_center_y is None else float(self.beam_center_y)
-
     def replace(self, **changes) -> SailParameters:
         """A copy with some fields changed (validated again)."""
         if "model" in changes and "bending" not in changes:
             changes["bending"] = None
         return dataclasses.replace(self, **changes)
 
-    def tip_force(self, t):
-        """P(t) = P₀(1 − e^(−t/τ)) (paper Eq. 43; P₀ for τ = 0), N."""
-        if self.tip_load_time_constant == 0:
-            return self.tip_load
-        return self.tip_load * -math.expm1(-t / self.tip_load_time_constant)
+    @classmethod
+    def from_toml(cls, path) -> SailParameters:
+        """The case of a case file (:mod:`lightsail_mbs.model.casefile`; its [run] table is not read here).
+        ParameterError, naming the file and the key, for a bad file or value."""
+        return case_of(path, **read_case_file(path)[0])
+
+    def to_toml(self, path, settings=None):
+        """Write this case as a case file (:func:`~lightsail_mbs.model.casefile.write_case`), with settings (a
+        RunSettings) as its [run] table."""
+        return casefile.write_case(path, self, settings)
 
     def to_dict(self) -> dict:
         """The fields as a dict (the validation fields, the later ones and the sheet's fields omitted at their
-        defaults)."""
-        d = dataclasses.asdict(self)
-        for name, default in {**VALIDATION_DEFAULTS, **LATER_DEFAULTS, **SHEET_DEFAULTS}.items():
-            if d[name] == default:
-                del d[name]
-        return d
+        defaults: :func:`lightsail_mbs.model.records.record`)."""
+        return record(dataclasses.asdict(self))
 
     @classmethod
     def from_dict(cls, d: dict) -> SailParameters:
         """The case of a dict from to_dict; the names of older saved runs (LEGACY_NAMES) are read too
         and their run-control entries (RUN_FIELDS) skipped. An unknown key raises ParameterError."""
         names = {f.name for f in dataclasses.fields(cls)}
-        known = {}
-        for key, value in d.items():
-            key = LEGACY_NAMES.get(key, key)
-            if key in RUN_FIELDS:
-                continue
+        known = current_names(d)
+        for key in known:
             check("parameters", key, key in names, f"field names of SailParameters ({', '.join(sorted(names))})")
-            known[key] = value
         return cls(**known)
-
-
-def _gaussian_mean(waist: float, center: float, span: float) -> float:
-    """(1/span) ∫₀^span exp(−2(s − center)²/waist²) ds."""
-    r = math.sqrt(2.0) / waist
-    return math.sqrt(math.pi / 8.0) * waist / span * (math.erf(r * (span - center)) + math.erf(r * center))
 
 
 def paper_case(name: str, **changes) -> SailParameters:
@@ -601,12 +425,24 @@ def paper_case(name: str, **changes) -> SailParameters:
     return SailParameters(**{**PAPER_CASES[name], **changes})
 
 
-# The paper gives no E for its TnT runs; 1e11 Pa (a stiff polymer/ceramic film, k_s ≈ 2.9e6 N/m at n = 30)
-TNT_DEFAULT_MODULUS = 1e11
-PAPER_CASES = {
-    "rigid": dict(model="rigid", n=40, intensity=1e11, defect_amplitude=1e-3, defect_mode=1.5),
-    "torsion-stable": dict(model="torsion", youngs_modulus=4.5e13),
-    "torsion-soft": dict(model="torsion", youngs_modulus=4.5e9),
-    "tnt-stable": dict(model="tnt", tension=3.34e-3, youngs_modulus=TNT_DEFAULT_MODULUS),
-    "tnt-soft": dict(model="tnt", tension=3.34e-8, youngs_modulus=TNT_DEFAULT_MODULUS),
-}
+PAPER_CASES = casefile.CaseFolder(
+    ("rigid", "torsion-stable", "torsion-soft", "tnt-stable", "tnt-soft"), lambda path: read_case_file(path)[0]
+)  # name -> the fields its case file (model/cases/NAME.toml) sets
+
+
+def read_case_file(path) -> tuple[dict, dict]:
+    """(the case's fields, the [run] table) of a case file, names and types checked
+    (:func:`lightsail_mbs.model.casefile.read`); ParameterError naming the file and the key."""
+    fields = {f.name: (f.type, FIELDS[f.name].allowed) for f in dataclasses.fields(SailParameters)}
+    try:
+        return casefile.read(path, fields)
+    except casefile.CaseFileError as exc:
+        raise ParameterError(str(exc)) from None
+
+
+def case_of(source, **fields) -> SailParameters:
+    """SailParameters(**fields), a ParameterError prefixed with source (the file the fields come from)."""
+    try:
+        return SailParameters(**fields)
+    except ParameterError as exc:
+        raise ParameterError(f"{source}: {exc}") from None

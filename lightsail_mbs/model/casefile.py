@@ -1,0 +1,211 @@
+"""Case files: a case, and optionally how to run it, as a flat TOML file.
+
+::
+
+    format = "lightsail-mbs case"
+    version = 1
+    model = "torsion"
+    youngs_modulus = 4.5e+09  # Young's modulus E (Pa)
+
+    [run]
+    t_final = 6.0
+
+Keys are the fields of :class:`~lightsail_mbs.model.parameters.SailParameters` (a field left out keeps its
+default); the optional ``[run]`` table holds those of
+:class:`~lightsail_mbs.solvers.settings.RunSettings`. ``format`` and ``version`` may be left out of a
+hand-written file; a file of a newer version is refused. Reading checks names and types here
+(:func:`read`); the values' ranges are checked by the classes built from them. Every problem is one line
+naming the file, the key and what is allowed (:class:`CaseFileError`).
+
+The paper's cases ship as case files in the folder ``cases`` next to this module (:class:`CaseFolder`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import json
+import math
+from collections.abc import Mapping
+from pathlib import Path
+
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python 3.10
+    import tomli as tomllib
+
+from lightsail_mbs.model.fields import FIELDS, number
+from lightsail_mbs.model.records import RUN_FIELDS
+
+FORMAT = "lightsail-mbs case"
+VERSION = 1
+RUN_TABLE = "run"
+PAPER_FOLDER = Path(__file__).with_name("cases")
+KIND_TEXT = {"int": "an integer", "float": "a number", "bool": "true or false", "str": "a string"}
+
+
+class CaseFileError(ValueError):
+    """A case file that cannot be read: one line naming the file, the key and what is allowed."""
+
+
+def read(path, fields: Mapping[str, tuple[str, str]]) -> tuple[dict, dict]:
+    """(case, run) of a case file: the case's entries and those of its [run] table.
+
+    fields maps each field name to (its type annotation, e.g. "float | None", and the text of its allowed
+    values); a float field's integer value is read as a float. Raises CaseFileError for a missing or
+    unreadable file, a TOML syntax error, a foreign format, a newer version, an unknown key or table, or
+    a value of the wrong type."""
+    path = Path(path)
+    try:
+        with path.open("rb") as handle:
+            data = tomllib.load(handle)
+    except FileNotFoundError:
+        raise CaseFileError(f"{path}: no such file (expected a case file, .toml)") from None
+    except IsADirectoryError:
+        raise CaseFileError(f"{path}: a folder, allowed a case file (.toml)") from None
+    except OSError as exc:
+        raise CaseFileError(f"{path}: cannot read it ({exc.strerror or exc})") from None
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise CaseFileError(f"{path}: not valid TOML ({exc})") from None
+    _check_format(path, data)
+    run = data.pop(RUN_TABLE, {})
+    if not isinstance(run, dict):
+        raise CaseFileError(f"{path}: {RUN_TABLE} = {run!r} is invalid: allowed a [run] table")
+    case = {}
+    for key, value in data.items():
+        if key not in fields:
+            raise CaseFileError(f"{path}: {_unknown(key, value, fields)}")
+        case[key] = _typed(path, key, value, *fields[key])
+    for key, value in run.items():
+        if key not in RUN_FIELDS:
+            hint = _close(key, RUN_FIELDS)
+            raise CaseFileError(
+                f"{path}: unknown key {RUN_TABLE}.{key}{hint}: allowed in [run] {', '.join(RUN_FIELDS)}"
+            )
+        if isinstance(value, (dict, list)) or not isinstance(value, (bool, int, float)):
+            raise CaseFileError(
+                f"{path}: {RUN_TABLE}.{key} = {_shown(value)} is invalid: allowed a number or true/false"
+            )
+    return case, run
+
+
+def write(path, case: Mapping, run: Mapping | None = None, comments: Mapping[str, str] | None = None) -> Path:
+    """Write a case file: the format entry, each of case's entries (None left out) with its comment,
+    and run's entries as a [run] table. Returns the path."""
+    comments = comments or {}
+    lines = [f"format = {_value(FORMAT)}", f"version = {VERSION}", ""]
+    for key, value in case.items():
+        if value is not None:
+            note = f"  # {comments[key]}" if key in comments else ""
+            lines.append(f"{key} = {_value(value)}{note}")
+    entries = {k: v for k, v in (run or {}).items() if v is not None}
+    if entries:
+        lines += ["", f"[{RUN_TABLE}]", *(f"{key} = {_value(value)}" for key, value in entries.items())]
+    path = Path(path)
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
+def write_case(path, params, settings=None) -> Path:
+    """Write the case file of params (a SailParameters: its case_fields, each with its help as a comment)
+    and of settings (a RunSettings, or None) as its [run] table."""
+    notes = {k: f"{v.help} ({v.unit})" if v.unit else v.help for k, v in FIELDS.items()}
+    return write(path, case_fields(params), settings.to_dict() if settings else None, notes)
+
+
+def case_fields(params) -> dict:
+    """The fields a case file holds: all but those that are None, those of the other model family at their
+    defaults, and those whose default follows other fields (bending, beam_center) at that default."""
+    followed = type(params)(model=params.model, length=params.length)
+    family = "sheet" if params.model == "sheet" else "chain"
+    out = {}
+    for f in dataclasses.fields(params):
+        value, info = getattr(params, f.name), FIELDS[f.name]
+        if value is None or (info.family not in ("all", family) and value == f.default):
+            continue
+        if info.follows is None or value != getattr(followed, f.name):
+            out[f.name] = value
+    return out
+
+
+class CaseFolder(Mapping):
+    """Case files in a folder by name (NAME.toml), in the given order; each is read, by read_case(path),
+    when it is asked for."""
+
+    def __init__(self, names, read_case, folder: Path = PAPER_FOLDER):
+        self._names, self._read, self.folder = tuple(names), read_case, Path(folder)
+
+    def path(self, name: str) -> Path:
+        return self.folder / f"{name}.toml"
+
+    def __getitem__(self, name):
+        if name not in self._names:
+            raise KeyError(name)
+        return self._read(self.path(name))
+
+    def __iter__(self):
+        return iter(self._names)
+
+    def __len__(self) -> int:
+        return len(self._names)
+
+    def __contains__(self, name) -> bool:
+        return name in self._names
+
+
+def _check_format(path: Path, data: dict) -> None:
+    found = data.pop("format", FORMAT)
+    if found != FORMAT:
+        raise CaseFileError(f"{path}: format = {_shown(found)} is invalid: allowed {_value(FORMAT)}")
+    version = data.pop("version", VERSION)
+    if isinstance(version, bool) or not isinstance(version, int) or not 1 <= version <= VERSION:
+        raise CaseFileError(
+            f"{path}: version = {_shown(version)} is invalid: allowed an integer ≤ {VERSION} (this lightsail-mbs "
+            f"reads case files up to version {VERSION}; a newer one wrote this file)"
+        )
+
+
+def _typed(path: Path, key: str, value, annotation: str, allowed: str):
+    """value if it has the field's type (an int as a float for a float field); CaseFileError otherwise."""
+    kind = annotation.split("|")[0].strip()
+    ok = {
+        "bool": isinstance(value, bool),
+        "int": isinstance(value, int) and not isinstance(value, bool),
+        "float": isinstance(value, (int, float)) and not isinstance(value, bool),
+        "str": isinstance(value, str),
+    }[kind]
+    if not ok:
+        what = allowed if allowed.startswith(KIND_TEXT[kind]) else KIND_TEXT[kind] + (f", {allowed}" if allowed else "")
+        raise CaseFileError(f"{path}: {key} = {_shown(value)} is invalid: allowed {what}")
+    return float(value) if kind == "float" else value
+
+
+def _unknown(key: str, value, fields) -> str:
+    if isinstance(value, dict):
+        return f"unknown table [{key}]: allowed the case's fields at the top and a [{RUN_TABLE}] table"
+    return f"unknown key {key}{_close(key, fields)}: allowed format, version, {', '.join(fields)}"
+
+
+def _close(key: str, names) -> str:
+    match = difflib.get_close_matches(key, list(names), n=1)
+    return f" (did you mean {match[0]}?)" if match else ""
+
+
+def _value(value) -> str:
+    """A TOML literal of a flat scalar: true/false, an integer, a float, a basic string."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        return number(value) if math.isfinite(value) else {math.inf: "inf", -math.inf: "-inf"}.get(value, "nan")
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)  # JSON's string escapes are TOML's basic-string escapes
+    raise TypeError(f"not a flat scalar: {type(value).__name__}")
+
+
+def _shown(value) -> str:
+    try:
+        return _value(value)
+    except TypeError:
+        return f"a {type(value).__name__} ({value!r})"[:80]

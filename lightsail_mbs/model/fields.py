@@ -1,0 +1,236 @@
+"""What each field of the case (:class:`~lightsail_mbs.model.parameters.SailParameters`) means: its group,
+unit, help text, allowed values, the field its default follows, and the model family it belongs to.
+
+One table, FIELDS, in the order of the class's fields; the command-line case options, the case files'
+keys and their error messages are generated from it (tests/model/test_parameters.py checks that it names
+every field of the class and nothing else). The defaults themselves are the class's.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+MODELS = ("rigid", "torsion", "tnt", "sheet")
+CHAIN_MODELS = ("rigid", "torsion", "tnt")
+# Supports of the chain's ends (validations, paper Appendices A–B): "free" (the sail, both ends free),
+# "cantilever" (slice 1 clamped at its initial pose, Appendix A), "pinned" (hinge 0 pinned, hinge n on a
+# roller along x that lets the end tension T through: a string or simply supported beam, Appendix B).
+BOUNDARIES = ("free", "cantilever", "pinned")
+# Supports of the sheet's four edges (the plate and membrane validations): "free" (the sail),
+# "simply_supported" (w = 0 along every edge, no bending moment), "clamped" (w = 0 and no rotation).
+SHEET_BOUNDARIES = ("free", "simply_supported", "clamped")
+MEMBRANE_REFERENCES = ("initial", "flat")
+BENDING_REFERENCES = ("flat", "initial")
+# How the slices carry an optical table: all alike, or the right half turned over (t → −t; model/optics.py).
+OPTICS_LAYOUTS = ("uniform", "mirrored-halves")
+# Smallest non-zero defect amplitude, as a fraction of L: the solvers scale their tolerances with a₀, and the
+# reduced solver's first-step estimate underflows for a₀ ≲ 1e-200 m. (Physically, anything below ~1e-12 L is
+# round-off already: shapes.defect_warnings says so.)
+MIN_DEFECT_FRACTION = 1e-100
+
+
+class FieldInfo(NamedTuple):
+    group: str  # the concern the field belongs to (the command line's option groups)
+    unit: str  # SI unit, "" for a number without one
+    help: str  # what the field is, for a user
+    allowed: str  # the values allowed, as the error messages state them ("" for True/False)
+    follows: str | None = None  # the default when it follows other fields ("the sail's middle L/2")
+    family: str = "all"  # "chain" or "sheet": the model family that uses it (the other keeps its default)
+
+
+def _choices(values) -> str:
+    return "one of " + ", ".join(values)
+
+
+SAIL, DEFECT, BEAM, DAMPING, SUPPORTS, PAYLOAD, SHEET = (
+    "sail",
+    "defect",
+    "beam and optics",
+    "damping",
+    "supports and loads",
+    "payload",
+    "sheet (--model sheet)",
+)
+FIELDS = {
+    "model": FieldInfo(
+        SAIL, "", "model family: chains of n slices (rigid, torsion, tnt) or a sheet of n × ny tiles", _choices(MODELS)
+    ),
+    "n": FieldInfo(SAIL, "", "number of slices (sheet: tiles along L)", "an integer 2 ≤ n ≤ 5000 (≤ 500 for a sheet)"),
+    "length": FieldInfo(SAIL, "m", "sail length L", "> 0"),
+    "width": FieldInfo(SAIL, "m", "sail width W", "> 0"),
+    "thickness": FieldInfo(SAIL, "m", "film thickness h", "> 0"),
+    "density": FieldInfo(SAIL, "kg/m³", "film density ρ", "> 0"),
+    "youngs_modulus": FieldInfo(SAIL, "Pa", "Young's modulus E", "≥ 0 (> 0 for the tnt model with axial springs)"),
+    "tension": FieldInfo(
+        SUPPORTS,
+        "N",
+        "boundary tension T of the TnT chain (the paper's per-width value × W)",
+        "≥ 0; 0 unless model=tnt",
+        family="chain",
+    ),
+    "intensity": FieldInfo(BEAM, "W/m²", "laser intensity I₀ (on the beam axis for a Gaussian beam)", "≥ 0"),
+    "defect_amplitude": FieldInfo(DEFECT, "m", "initial defect amplitude a₀", "0 or 1e-100 L ≤ a₀ < L/(2πν)"),
+    "defect_mode": FieldInfo(DEFECT, "", "defect mode number ν: wavelengths of the sine defect over L (Eq. 1)", "> 0"),
+    "defect_seed": FieldInfo(
+        DEFECT,
+        "",
+        "an integer: a seeded random multi-mode defect of amplitude a₀ (modes ν = 1/2 … K/2)",
+        "an integer ≥ 0",
+        follows="the sine of defect_mode",
+    ),
+    "defect_mode_count": FieldInfo(DEFECT, "", "multi-mode defect: modes ν_k = k/2, k = 1…K", "an integer 1 ≤ K ≤ 200"),
+    "defect_spectrum": FieldInfo(DEFECT, "", "multi-mode defect: mean amplitude ∝ ν_k^(−β), the exponent β", "finite"),
+    "roughness": FieldInfo(
+        DEFECT,
+        "m",
+        "seeded roughness at every wavelength the slices or tiles carry, added to the defect",
+        "0 ≤ … < L/(2πn)",
+    ),
+    "roughness_seed": FieldInfo(DEFECT, "", "seed of the roughness", "an integer ≥ 0"),
+    "beam_waist": FieldInfo(BEAM, "m", "Gaussian beam waist w: I₀ exp(−2(x − x_c)²/w²); inf: a uniform beam", "> 0"),
+    "beam_center": FieldInfo(BEAM, "m", "Gaussian beam axis x_c", "finite", follows="the sail's middle L/2"),
+    "reflectivity": FieldInfo(BEAM, "", "specular reflectivity R (the paper: 1)", "0 ≤ R ≤ 1, R + α ≤ 1"),
+    "absorptivity": FieldInfo(BEAM, "", "absorptivity α (transmissivity 1 − R − α)", "0 ≤ α ≤ 1 − R"),
+    "bending": FieldInfo(
+        SAIL,
+        "",
+        "torsional springs k_T = EI/l on or off",
+        "",
+        follows="on for torsion and sheet, off for rigid and tnt",
+    ),
+    "axial_springs": FieldInfo(
+        SAIL,
+        "",
+        "tnt: extensible slices with k_s = (n−1)EhW/L, or their rigid (inextensible) limit",
+        "",
+        family="chain",
+    ),
+    "torsional_damping": FieldInfo(DAMPING, "N·m·s/rad", "torsional damping c_T", "≥ 0", family="chain"),
+    "axial_damping": FieldInfo(DAMPING, "N·s/m", "axial damping c_s", "≥ 0", family="chain"),
+    "stiffness_damping": FieldInfo(
+        DAMPING, "s", "material damping β: c = β k on every spring; loss factor η at ω: β = η/ω", "≥ 0"
+    ),
+    "boundary": FieldInfo(
+        SUPPORTS,
+        "",
+        "supports: a chain's ends or a sheet's four edges (the validations; free: the sail)",
+        f"chain: {_choices(BOUNDARIES)}; sheet: {_choices(SHEET_BOUNDARIES)}",
+    ),
+    "tip_load": FieldInfo(
+        SUPPORTS, "N", "transverse (+y) dead load P₀ at the centre of slice n (Eq. 43)", "finite", family="chain"
+    ),
+    "tip_load_time_constant": FieldInfo(
+        SUPPORTS, "s", "ramp of the tip load, P(t) = P₀(1 − e^(−t/τ)); 0: P₀ from t = 0", "≥ 0", family="chain"
+    ),
+    "ny": FieldInfo(SHEET, "", "tiles across the width W", "an integer 1 ≤ ny ≤ 500", family="sheet"),
+    "defect_mode_y": FieldInfo(
+        SHEET,
+        "",
+        "defect mode ν_y across the width: w = a₀ sin(2πνx/L) sin(2πν_y y/W)",
+        "> 0",
+        follows="uniform across W",
+        family="sheet",
+    ),
+    "membrane_modulus": FieldInfo(
+        SHEET, "Pa", "in-plane (membrane) modulus E_m", "> 0", follows="E (youngs_modulus)", family="sheet"
+    ),
+    "edge_tension": FieldInfo(
+        SHEET,
+        "N/m",
+        "follower tension on all four edges, per metre of edge (and the pre-stress)",
+        "≥ 0",
+        family="sheet",
+    ),
+    "beam_center_y": FieldInfo(SHEET, "m", "Gaussian beam axis y_c", "finite", follows="W/2", family="sheet"),
+    "pressure": FieldInfo(
+        SHEET, "Pa", "dead pressure p along the beam (+z), the plate validations", "finite", family="sheet"
+    ),
+    "membrane_damping": FieldInfo(
+        SHEET,
+        "s",
+        "damping β_m k on the stiff in-plane springs",
+        "≥ 0",
+        follows="critical for the top in-plane mode",
+        family="sheet",
+    ),
+    "membrane_reference": FieldInfo(
+        SHEET,
+        "",
+        "in-plane springs at rest in the initial (defect) or the flat shape",
+        _choices(MEMBRANE_REFERENCES),
+        family="sheet",
+    ),
+    "bending_reference": FieldInfo(
+        SHEET,
+        "",
+        "bending springs at rest flat (the paper: an elastically loaded defect) or in the initial shape "
+        "(a stress-free, manufactured defect)",
+        _choices(BENDING_REFERENCES),
+        family="sheet",
+    ),
+    "initial_equilibrium": FieldInfo(
+        SHEET,
+        "",
+        "correct the springs' rest state so that the unlit sheet (edge tension included) rests in its initial shape",
+        "",
+        family="sheet",
+    ),
+    "billow_radius": FieldInfo(
+        SAIL,
+        "m",
+        "initial circular arc R_c: > 0 concave to the laser, < 0 convex; inf: flat",
+        "|R_c| ≥ l/(2 sin(π/2n))",
+        family="chain",
+    ),
+    "optics": FieldInfo(
+        BEAM,
+        "",
+        "the slices' force law from a table: 'mirror' or a table file (lightsail-mbs optics … --out)",
+        "'mirror' or a path",
+        follows="the R/α law",
+        family="chain",
+    ),
+    "optics_layout": FieldInfo(
+        BEAM,
+        "",
+        "which slices carry the table turned over (mirrored-halves: the right half)",
+        _choices(OPTICS_LAYOUTS),
+        family="chain",
+    ),
+    "payload_mass": FieldInfo(
+        PAYLOAD, "kg", "payload mass m_p on a rigid stem from the sail's middle", "≥ 0", family="chain"
+    ),
+    "payload_inertia": FieldInfo(PAYLOAD, "kg·m²", "the payload's own inertia J_p", "≥ 0", family="chain"),
+    "payload_stem": FieldInfo(
+        PAYLOAD, "m", "stem length d from the sail's middle towards the laser", "≥ 0", family="chain"
+    ),
+    "billow_rest": FieldInfo(
+        SAIL,
+        "",
+        "torsion springs at rest on the billowed arc (a sail made curved); off: at rest flat",
+        "",
+        family="chain",
+    ),
+    "initial_tilt": FieldInfo(
+        SUPPORTS,
+        "rad",
+        "the initial shape turned counter-clockwise about the craft's centre of mass",
+        "|tilt| < π/2",
+        family="chain",
+    ),
+}
+
+
+def number(value) -> str:
+    """A number as a user reads it: the shortest text that reads back to the same float, in scientific
+    notation when large or small (4.5e+13, 1e-06, not 45000000000000.0); other values as str()."""
+    if isinstance(value, bool) or not isinstance(value, float):
+        return str(value)
+    if value == 0 or not math.isfinite(value) or 1e-4 <= abs(value) < 1e6:
+        return repr(value)
+    for digits in range(17):
+        text = f"{value:.{digits}e}"
+        if float(text) == value:
+            return text
+    return repr(value)
