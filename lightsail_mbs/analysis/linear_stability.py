@@ -44,8 +44,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg as sl
-from scipy.linalg import null_space
 
 from lightsail_mbs.model import shapes
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
@@ -182,6 +180,8 @@ def spectrum_of_jacobian(jac: np.ndarray) -> Spectrum:
 
 def spectrum_of_system(mass: np.ndarray, stiffness: np.ndarray) -> Spectrum:
     """ω² = eig(K, M) of M q̈ + K q = 0; growth rate max Re √(−ω²)."""
+    import scipy.linalg as sl  # here, not at import: solve() uses this module's reduced-model part
+
     w2 = sl.eigvals(stiffness, mass)
     growth = float(np.sqrt(-w2.astype(complex)).real.max())
     return Spectrum(np.sort(w2.real), growth)
@@ -249,6 +249,8 @@ def reduced_acceleration_jacobian(p: SailParameters):
     qdd = np.stack([dynamics.rhs(0.0, state)[dof:] for state in states.T], axis=1)
     A = (qdd[:, :dof] - qdd[:, dof:]) / (2 * step)
     if p.boundary == "pinned":
+        from scipy.linalg import null_space
+
         basis = null_space(dynamics.constraint_jacobian(q0, centre_jacobian(model, q0)))
     elif p.boundary == "cantilever":
         basis = np.eye(dof)[:, dynamics.free]

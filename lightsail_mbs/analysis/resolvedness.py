@@ -88,7 +88,10 @@ class Resolvedness:
         return self.growth_rate_refined / self.growth_rate
 
     def to_dict(self) -> dict:
-        return {**asdict(self), "rate_ratio": self.rate_ratio}
+        """The verdict as a record (Result.info), without its CPU time: records of repeated runs stay equal."""
+        record = {**asdict(self), "rate_ratio": self.rate_ratio}
+        del record["cpu_time"]
+        return record
 
     def warning(self) -> str | None:
         """One line for Result.warnings when the case is ill-posed in n at this n, else None."""

@@ -102,9 +102,7 @@ def test_seeded_random_membranes_either_side_of_the_trough_compression():
 
 def test_extensible_membrane_is_assessed_in_its_inextensible_limit():
     p = paper_case("tnt-soft")
-    assert resolvedness.assess(p).to_dict() | {"cpu_time": 0} == resolvedness.assess(
-        p.replace(axial_springs=False)
-    ).to_dict() | {"cpu_time": 0}
+    assert resolvedness.assess(p).to_dict() == resolvedness.assess(p.replace(axial_springs=False)).to_dict()
 
 
 @pytest.mark.parametrize(
