@@ -44,8 +44,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg as sl
-from scipy.linalg import null_space
 
 from lightsail_mbs.model import shapes
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
@@ -70,9 +68,11 @@ def unlit(p: SailParameters) -> SailParameters:
 
 
 # ---- reduced solver ------------------------------------------------------------------------
-def reduced_jacobian(p: SailParameters, step: float = FD_STEP, state: shapes.ChainState | None = None) -> np.ndarray:
+def reduced_jacobian(
+    p: SailParameters, step: float = FD_STEP, state: shapes.ChainState | None = None, *, positions_only: bool = False
+) -> np.ndarray:
     """∂ẏ/∂y of the reduced model at rest in `state` (default: the flat state), y = (q, q̇)
-    (2·dof square), central differences."""
+    (2·dof square), central differences; with ``positions_only`` its first dof columns (2·dof × dof)."""
     from lightsail_mbs.solvers.reduced.dynamics import ChainDynamics
     from lightsail_mbs.solvers.reduced.kinematics import ChainModel
 
@@ -83,11 +83,37 @@ def reduced_jacobian(p: SailParameters, step: float = FD_STEP, state: shapes.Cha
     q0 = model.pack(state.x[0], state.y[0], state.theta, state.z)
     y0 = np.concatenate([q0, np.zeros_like(q0)])
     size = y0.size
-    cols = np.concatenate([y0[:, None] + step * np.eye(size), y0[:, None] - step * np.eye(size)], axis=1)
+    shifts = step * np.eye(size)[:, : q0.size if positions_only else size]
+    cols = np.concatenate([y0[:, None] + shifts, y0[:, None] - shifts], axis=1)
     dof = model.dof
     acc = ChainDynamics(model).accelerations(cols[:dof], cols[dof:])
     rates = np.concatenate([cols[dof:], acc])
-    return (rates[:, :size] - rates[:, size:]) / (2.0 * step)
+    half = shifts.shape[1]
+    return (rates[:, :half] - rates[:, half:]) / (2.0 * step)
+
+
+def growth_modes(p: SailParameters) -> tuple[np.ndarray, np.ndarray]:
+    """Growth rates Re λ (s⁻¹, descending) and angle parts (n × modes, columns) of the eigenmodes of the reduced
+    model linearised at rest in its initial state (:func:`reduced_jacobian` at ``shapes.initial_state(p)``: the
+    defect shape under the load, where the load's second-order terms act at first order).
+
+    Without dampers (the only velocity-linear terms) ∂ẏ/∂y = [[0, I], [A, 0]] at rest and λ = ±√μ, μ = eig(A): the
+    dof position columns and the eigenproblem of the dof × dof block A = ∂q̈/∂q; with dampers the whole 2·dof
+    Jacobian."""
+    damped = p.total_torsional_damping > 0 or p.total_axial_damping > 0
+    jac = reduced_jacobian(p, state=shapes.initial_state(p), positions_only=not damped)
+    dof = jac.shape[0] // 2
+    angles = slice(2, 2 + p.n)
+    if damped:
+        values, vectors = np.linalg.eig(jac)
+        rates, shapes_ = values.real, vectors[:dof][angles]
+    else:
+        mu, vectors = np.linalg.eig(jac[dof:])
+        rates, shapes_ = np.sqrt(mu.astype(complex)).real, vectors[angles]
+    order = np.argsort(-rates)
+    shapes_ = shapes_[:, order]
+    peak = shapes_[np.argmax(np.abs(shapes_), axis=0), np.arange(shapes_.shape[1])]
+    return rates[order], (shapes_ * (np.abs(peak) / np.where(peak == 0, 1, peak))).real
 
 
 # ---- Exudyn --------------------------------------------------------------------------------
@@ -154,6 +180,8 @@ def spectrum_of_jacobian(jac: np.ndarray) -> Spectrum:
 
 def spectrum_of_system(mass: np.ndarray, stiffness: np.ndarray) -> Spectrum:
     """ω² = eig(K, M) of M q̈ + K q = 0; growth rate max Re √(−ω²)."""
+    import scipy.linalg as sl  # here, not at import: solve() uses this module's reduced-model part
+
     w2 = sl.eigvals(stiffness, mass)
     growth = float(np.sqrt(-w2.astype(complex)).real.max())
     return Spectrum(np.sort(w2.real), growth)
@@ -221,6 +249,8 @@ def reduced_acceleration_jacobian(p: SailParameters):
     qdd = np.stack([dynamics.rhs(0.0, state)[dof:] for state in states.T], axis=1)
     A = (qdd[:, :dof] - qdd[:, dof:]) / (2 * step)
     if p.boundary == "pinned":
+        from scipy.linalg import null_space
+
         basis = null_space(dynamics.constraint_jacobian(q0, centre_jacobian(model, q0)))
     elif p.boundary == "cantilever":
         basis = np.eye(dof)[:, dynamics.free]

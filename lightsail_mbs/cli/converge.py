@@ -1,5 +1,6 @@
 """`lightsail-mbs converge --vary n`: a case at increasing n, its answer against n with the fitted order and
-the n needed for 1 % (lightsail_mbs.studies.convergence)."""
+the n needed for 1 % — or "not converging" when the answers are not monotone, the fit is unphysical or the
+case is ill-posed in n (lightsail_mbs.studies.convergence)."""
 
 from __future__ import annotations
 
@@ -13,7 +14,8 @@ from lightsail_mbs.model.parameters import PAPER_CASES, ParameterError
 def register(sub) -> None:
     p = sub.add_parser(
         "converge",
-        help="run a case at increasing n: failure time (or max amplitude ratio) vs n, fitted order, n for 1 %%",
+        help="run a case at increasing n: failure time (or max amplitude ratio) vs n, fitted order, n for 1 %% "
+        "(or 'not converging')",
     )
     p.add_argument("--vary", choices=["n"], default="n", help="what is refined: the number of slices n [n]")
     p.add_argument(
@@ -75,7 +77,7 @@ def run(args) -> int:
             noise = "—" if row.tolerance_noise is None else f"{row.tolerance_noise:.1e}"
             print(
                 f"n = {row.size}: {row.kind} {row.value} (tolerance noise {noise}, {row.method}, "
-                f"{row.cpu_time:.3g} s CPU)",
+                f"{row.cpu_time:.3g} s CPU; fastest-growing wave: {convergence.wave_text(row.resolvedness)})",
                 file=sys.stderr,
                 flush=True,
             )

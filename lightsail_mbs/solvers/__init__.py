@@ -87,4 +87,7 @@ def solve(
             from lightsail_mbs.solvers import uncertainty as estimate
 
             result = estimate.assess(module, params, settings, options, result)
+    from lightsail_mbs.analysis import resolvedness
+
+    resolvedness.annotate(params, result)  # the resolvedness-in-n verdict: info and, if ill-posed, a warning
     return result

@@ -16,19 +16,26 @@ t(n) = t_∞ + C n^(−p). With d₁ = t(n₂) − t(n₁), d₂ = t(n₃) − t
 
 (p = log₂(d₁/d₂) for doubling sizes; found by bisection otherwise), then C = d₂/(n₃^(−p) − n₂^(−p)),
 t_∞ = t(n₃) − C n₃^(−p), and the n needed for 1 %, |C| n^(−p) ≤ 0.01 |t_∞|: n₁% = (|C|/(0.01 |t_∞|))^(1/p).
-The fit is refused when d₁ and d₂ differ in sign or |d₂| ≥ |d₁| ("not converging": the changes do not
-shrink), and the answer is called converged to the noise when |d₂| is below the tolerance noise. Beside
-the fit, the direct reading: the smallest n from which every finer answer stays within 1 % of the
-finest one.
+The fit is refused ("not converging", with no limit and no n for 1 %) when d₁ and d₂ differ in sign or
+|d₂| ≥ |d₁| (the changes do not shrink); when the answers over the last four sizes are not monotone in n (a
+power law is, and the size before the fitted three tests it); when the order is above ORDER_MAX (absurd for a
+chain whose slices converge at second or fourth order); when the extrapolation abs(t_∞ − t(n₃)) exceeds the change
+abs(t(n₃) − t(n₁)) already seen over the fitted sizes (for doubling sizes: p < 1/2, a limit the data do not
+support); and when the limit is unphysical (a failure time ≤ 0, an amplitude ratio below 1). The answer is
+called converged to the noise when |d₂| is below the tolerance noise. Beside an accepted fit, the direct
+reading: the smallest n from which every finer answer stays within 1 % of the finest one.
 
 A sheet (model "sheet") is refined in both directions: n tiles along L and, for ny > 1, ny = round(n W/L)
 across (square tiles); a sheet of one row (ny = 1) stays one row. Its in-house solver has one method
 (Radau), so the tolerance-noise run repeats it at rtol/10.
 
-A chain without bending stiffness (the rigid chain; the TnT membrane without bending springs) is
-flagged ill-posed in n: every wavelength down to the slice length is unstable under the load, so a
-finer chain adds faster-growing modes and its failure time keeps falling — a falling sequence can
-mimic a slow power law, so no fit is offered. Whether such a sail survives can still be robust in n.
+Every run carries the resolvedness verdict of :mod:`lightsail_mbs.analysis.resolvedness` (the growth-rate
+spectrum at its initial state, at n and 2n). The study is ill-posed in n when the verdict at its largest
+assessed size says so: the fastest-growing wave sits at the grid scale, a finer chain adds faster-growing
+waves and the failure time keeps falling — a falling sequence can mimic a slow power law, so no fit is
+offered. Where no size is assessed (sheets, n above the verdict's limit) a chain or sheet without bending
+stiffness is flagged, as every wavelength down to the slice is then unstable under a compressive load.
+Whether such a sail survives can still be robust in n.
 """
 
 from __future__ import annotations
@@ -42,6 +49,9 @@ from lightsail_mbs.solvers.settings import RunSettings
 
 ONE_PERCENT = 0.01
 DEFAULT_FACTOR = 2.0
+ORDER_MAX = 8.0  # a fitted order above this is absurd for the chain's second- and fourth-order errors
+MONOTONE_SIZES = 4  # the fit's three sizes and the one before must give answers monotone in n
+CONVERGED = ("power law", "converged to the tolerance noise")
 
 
 @dataclass
@@ -71,6 +81,9 @@ class ConvergenceRow:
         A solver failure, recorded.
     ny : int or None
         Tiles across the width (a sheet), None for a chain.
+    resolvedness : dict or None
+        The run's resolvedness verdict (Result.info["resolvedness"]: well_posed, growth_rate,
+        slices_per_wavelength, …).
     """
 
     n: int
@@ -83,6 +96,7 @@ class ConvergenceRow:
     cpu_time: float
     error: str | None = None
     ny: int | None = None
+    resolvedness: dict | None = None
 
     @property
     def size(self) -> str:
@@ -103,8 +117,8 @@ class PowerLawFit:
     n_for_one_percent : float or None
         n at which abs(t(n) − t_∞) = 1 % of abs(t_∞).
     verdict : str
-        "power law", "converged to the tolerance noise", "not converging (…)", "ill-posed in n (…)" or
-        "fewer than three sizes".
+        "power law", "converged to the tolerance noise", "not converging (…)", "not converging: ill-posed in n
+        (…)" or "fewer than three sizes".
     """
 
     limit: float | None
@@ -175,8 +189,10 @@ def _order_equation(p: float, n1: float, n2: float, n3: float) -> float:
     return (n1**-p - n2**-p) / (n2**-p - n3**-p)
 
 
-def power_law_fit(sizes, values, noise: float = 0.0) -> PowerLawFit:
-    """The three-point power-law fit of the module docstring through the last three (n, value)."""
+def power_law_fit(sizes, values, noise: float = 0.0, kind: str = "failure_time") -> PowerLawFit:
+    """The three-point power-law fit of the module docstring through the last three (n, value), refused when
+    the changes do not shrink, the last four values are not monotone, or the fit is unphysical (`kind`: the
+    answer's kind, "failure_time" or "max_amplitude_ratio")."""
     if len(values) < 3 or any(v is None for v in values[-3:]):
         return PowerLawFit(None, None, None, "fewer than three sizes")
     (n1, n2, n3), (t1, t2, t3) = sizes[-3:], values[-3:]
@@ -185,6 +201,11 @@ def power_law_fit(sizes, values, noise: float = 0.0) -> PowerLawFit:
         return PowerLawFit(t3, None, None, "converged to the tolerance noise")
     if d1 * d2 <= 0 or abs(d2) >= abs(d1):
         return PowerLawFit(None, None, None, "not converging (the changes do not shrink)")
+    recent = values[-MONOTONE_SIZES:]
+    steps = [b - a for a, b in zip(recent, recent[1:])]
+    if None in recent or any(step * steps[-1] <= 0 for step in steps):
+        shown = ", ".join(f"{v:.4g}" for v in recent if v is not None)
+        return PowerLawFit(None, None, None, f"not converging (not monotone in n: {shown})")
     ratio = d1 / d2
     lo, hi = 1e-6, 1.0
     if _order_equation(lo, n1, n2, n3) >= ratio:
@@ -202,8 +223,27 @@ def power_law_fit(sizes, values, noise: float = 0.0) -> PowerLawFit:
     p = 0.5 * (lo + hi)
     c = d2 / (n3**-p - n2**-p)
     limit = t3 - c * n3**-p
+    refused = unphysical_fit(limit, p, values[-3:], kind)
+    if refused:
+        return PowerLawFit(None, None, None, f"not converging ({refused})")
     n_one = (abs(c) / (ONE_PERCENT * abs(limit))) ** (1 / p) if limit != 0 else None
     return PowerLawFit(limit, p, n_one, "power law")
+
+
+def unphysical_fit(limit: float, order: float, fitted, kind: str) -> str | None:
+    """Why a fitted limit and order are not to be believed (module docstring), or None."""
+    if order > ORDER_MAX:
+        return f"fitted order p = {order:.3g} is above {ORDER_MAX:g}"
+    if abs(limit - fitted[-1]) > abs(fitted[-1] - fitted[0]):
+        return (
+            f"the fitted limit {limit:.4g} lies further from the finest answer than the fitted answers span "
+            f"(order p = {order:.2g})"
+        )
+    if kind == "failure_time" and limit <= 0:
+        return f"unphysical fit: a failure time of {limit:.4g} s"
+    if kind == "max_amplitude_ratio" and limit < 1:
+        return f"unphysical fit: an amplitude ratio of {limit:.4g} below 1"
+    return None
 
 
 def empirical_n_for_one_percent(sizes, values) -> int | None:
@@ -290,7 +330,7 @@ def converge(
         if previous is not None and previous.value is not None and value is not None and previous.kind == kind:
             change = value - previous.value
         row = ConvergenceRow(n, value, kind, change, tolerance_noise, method, result.info.get("steps", 0), cpu, ny=ny)
-        row.error = result.error
+        row.error, row.resolvedness = result.error, result.info.get("resolvedness")
         rows.append(row)
         if progress is not None:
             progress(row)
@@ -302,20 +342,38 @@ def converge(
             break
     kinds = {r.kind for r in rows[-3:]}
     values = [r.value for r in rows]
-    ill_posed = params.youngs_modulus == 0.0 if is_sheet else params.torsional_stiffness == 0.0
+    ill_posed, why = ill_posed_in_n(params, rows)
     if ill_posed:
         what = "failure time keeps falling" if "failure_time" in kinds else "answer is not a limit"
-        fit = PowerLawFit(
-            None, None, None, f"ill-posed in n (no bending stiffness: every wavelength down to l is unstable; {what})"
-        )
+        fit = PowerLawFit(None, None, None, f"not converging: ill-posed in n ({why}; {what})")
     elif len(kinds) > 1:
         fit = PowerLawFit(None, None, None, "not converging (fails at some n, survives at others)")
     else:
         noises = [r.tolerance_noise for r in rows[-2:] if r.tolerance_noise is not None]
-        fit = power_law_fit([r.n for r in rows], values, max(noises) if noises else 0.0)
-    consistent = len(kinds) == 1 and not ill_posed
-    empirical = empirical_n_for_one_percent([r.n for r in rows], values) if consistent else None
+        fit = power_law_fit([r.n for r in rows], values, max(noises) if noises else 0.0, rows[-1].kind)
+    converged = len(kinds) == 1 and fit.verdict in CONVERGED
+    empirical = empirical_n_for_one_percent([r.n for r in rows], values) if converged else None
     return ConvergenceStudy(params, settings, rows, fit, empirical, ill_posed, notes)
+
+
+def ill_posed_in_n(params: SailParameters, rows: list[ConvergenceRow]) -> tuple[bool, str]:
+    """(ill-posed?, why) from the resolvedness verdict of the largest assessed size (module docstring); without
+    one, from the bending stiffness."""
+    assessed = [r for r in rows if r.resolvedness and r.resolvedness.get("assessed")]
+    if assessed:
+        row = assessed[-1]
+        verdict = row.resolvedness
+        if verdict["well_posed"]:
+            return False, ""
+        return True, (
+            f"at n = {row.size} the fastest-growing wave sits at the grid scale: "
+            f"{verdict['slices_per_wavelength']:.3g} slices per wavelength, growth rate "
+            f"{verdict['growth_rate']:.3g} /s, {verdict['rate_ratio']:.3g}× at 2n"
+        )
+    stiffness = params.youngs_modulus if params.model == "sheet" else params.torsional_stiffness
+    if stiffness == 0.0:
+        return True, "no bending stiffness: every wavelength down to l is unstable"
+    return False, ""
 
 
 def _fmt(value, spec: str = ".6g") -> str:
@@ -326,25 +384,40 @@ def _fmt(value, spec: str = ".6g") -> str:
     return format(value, spec)
 
 
+def wave_text(verdict: dict | None) -> str:
+    """A row's resolvedness verdict in a table cell: the fastest-growing wave and whether it is resolved."""
+    if not verdict or not verdict.get("assessed"):
+        return "not assessed"
+    if not verdict["growth_rate"]:
+        return "none grows"
+    state = "well posed" if verdict["well_posed"] else "grid scale: ill-posed"
+    return f"{verdict['slices_per_wavelength']:.3g} sl., σ = {verdict['growth_rate']:.3g} /s ({state})"
+
+
 def markdown_table(study: ConvergenceStudy) -> str:
     """The rows of a study as a Markdown table, then the fit and the verdict."""
     unit = {"failure_time": "t_f (s)", "max_amplitude_ratio": "max a/a₀"}
     lines = [
-        "| n | answer | value | change vs previous n | tolerance noise | method | steps | CPU (s) |",
-        "|---:|---|---:|---:|---:|---|---:|---:|",
+        "| n | answer | value | change vs previous n | tolerance noise | fastest-growing wave | method | steps "
+        "| CPU (s) |",
+        "|---:|---|---:|---:|---:|---|---|---:|---:|",
     ]
     for r in study.rows:
         lines.append(
             f"| {r.size} | {unit[r.kind]} | {_fmt(r.value)} | {_fmt(r.change, '+.2e')} "
-            f"| {_fmt(r.tolerance_noise, '.1e')} | {r.method} | {r.steps} | {r.cpu_time:.3g} |"
+            f"| {_fmt(r.tolerance_noise, '.1e')} | {wave_text(r.resolvedness)} | {r.method} | {r.steps} "
+            f"| {r.cpu_time:.3g} |"
         )
     fit = study.fit
+    noise = f"largest tolerance noise {_fmt(study.tolerance_noise, '.1e')}."
     lines.append("")
-    lines.append(
-        f"Fit: {fit.verdict}; limit {_fmt(fit.limit)}, order p = {_fmt(fit.order, '.2f')}, "
-        f"n for 1 % (fit) = {_fmt(fit.n_for_one_percent, '.0f')}, "
-        f"n for 1 % (within 1 % of the finest from there on) = {_fmt(study.empirical_n_for_one_percent)}; "
-        f"largest tolerance noise {_fmt(study.tolerance_noise, '.1e')}."
-    )
+    if fit.verdict in CONVERGED:
+        lines.append(
+            f"Fit: {fit.verdict}; limit {_fmt(fit.limit)}, order p = {_fmt(fit.order, '.2f')}, "
+            f"n for 1 % (fit) = {_fmt(fit.n_for_one_percent, '.0f')}, "
+            f"n for 1 % (within 1 % of the finest from there on) = {_fmt(study.empirical_n_for_one_percent)}; " + noise
+        )
+    else:
+        lines.append(f"Fit: {fit.verdict}: no limit and no n for 1 % are given; " + noise)
     lines.extend(f"Note: {note}" for note in study.notes)
     return "\n".join(lines)

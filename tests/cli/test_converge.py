@@ -19,3 +19,14 @@ def test_converge_json_and_markdown(tmp_path, capsys):
 def test_converge_rejects_n(capsys):
     assert main(["converge", "--n", "30"]) == 2
     assert "n is varied" in capsys.readouterr().err
+
+
+def test_converge_says_not_converging_on_the_uniform_beam_starshot_sail(capsys):
+    args = (
+        "converge --model torsion --length 3.2 --width 3.2 --thickness 100e-9 --density 2200 --modulus 70e9 "
+        "--intensity 1e10 --defect-amplitude 1e-6 --sizes 30,60,120,240 --no-noise --quiet"
+    ).split()
+    assert main(args) == 0
+    out = capsys.readouterr().out
+    assert "Fit: not converging: ill-posed in n" in out and "no limit and no n for 1 %" in out
+    assert "n for 1 % (fit)" not in out and "limit " not in out.split("Fit:")[1].split(":")[0]
