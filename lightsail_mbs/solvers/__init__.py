@@ -25,6 +25,7 @@ import importlib
 from typing import TYPE_CHECKING
 
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.solvers import events
 from lightsail_mbs.solvers.settings import RunSettings, paper_settings
 from lightsail_mbs.solvers.skeleton import interrupts_propagate
 
@@ -63,7 +64,11 @@ def solve(
         model "sheet", Exudyn's rigid tiles (solvers.exudyn.sheet) or the in-house tile solver
         (solvers.reduced.sheet).
     settings : RunSettings, optional
-        Duration, output interval and stop rule (default ``RunSettings()``: 6 s, stop at failure).
+        Duration, output interval and stop rule (default ``RunSettings()``: 6 s, stop at failure). An
+        output interval left at None follows the case's fastest time scale, and a failure time found
+        between coarse samples is located by reruns at finer intervals (:mod:`lightsail_mbs.solvers.events`);
+        the Result keeps the settings asked for, and ``info["sampling"]`` the interval and end of the run
+        it reports.
     progress : bool
         Show a progress bar on stderr.
     uncertainty : bool
@@ -82,9 +87,10 @@ def solve(
         raise ParameterError(f"settings={settings!r} is invalid: allowed a RunSettings")
     module = importlib.import_module(f".{solver_module(params, solver)}", __name__)
     with interrupts_propagate():
-        result = module.run(params, settings, progress=progress, **options)
+        result, sampled = events.located_run(module, params, settings, options, progress=progress)
         if uncertainty:
             from lightsail_mbs.solvers import uncertainty as estimate
 
-            result = estimate.assess(module, params, settings, options, result)
+            result = estimate.assess(module, params, sampled, options, result)
+    result.settings = settings  # the run control asked for; info["sampling"] says how it was sampled
     return result

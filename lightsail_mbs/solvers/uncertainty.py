@@ -35,8 +35,13 @@ solver, and the one reported is the most accurate of them:
    is a property of the question, not of the solver: where the chain's unstable short waves grow
    from perturbations this small, the answer is set by whatever perturbation a run starts from.
 
-The uncertainty of the reported q is U = SAFETY · (E_int + S), and the run is **well-conditioned** when
-S ≤ CONDITION_TOL · |q|. When a twin's verdict differs (one fails within the run, the other not), U is
+3. **Sampling** — where the failure falls between the reported run's output samples, E_s = E_loc of
+   :mod:`lightsail_mbs.solvers.events` (which has already refined the sampling until E_loc ≤ 1e-6 t_f where
+   it could), or for a sail that did not fail, how far its largest amplitude may lie above the largest
+   sample (the parabola through the peak sample and its neighbours).
+
+The uncertainty of the reported q is U = SAFETY · (E_int + S) + E_s, and the run is **well-conditioned**
+when S ≤ CONDITION_TOL · |q|. When a twin's verdict differs (one fails within the run, the other not), U is
 infinite and the run ill-conditioned: the sail is at its stability boundary for that run length.
 
 Measured (validation/accuracy.md, 96 seeded random cases of every model; the rule settled on the first
@@ -58,6 +63,7 @@ from __future__ import annotations
 import math
 
 from lightsail_mbs.model.parameters import SailParameters
+from lightsail_mbs.solvers import events
 from lightsail_mbs.solvers.settings import RunSettings
 
 TIGHTEN = 10.0  # the tight twin's tolerances are the base run's / TIGHTEN (adaptive methods)
@@ -68,9 +74,10 @@ PROBE_LEVEL = 1e-12  # the probe twin's roughness amplitude, in units of the def
 SAFETY = 2.0  # U = SAFETY · (E_int + S)
 CONDITION_TOL = 1e-4  # well-conditioned: S ≤ CONDITION_TOL · |q|
 RULE = (
-    f"reported: the run at tolerances/F; U = {SAFETY:g}·(E_int + S); E_int = Σ|q_(k+1) − q_k| over the runs at "
+    f"reported: the run at tolerances/F; U = {SAFETY:g}·(E_int + S) + E_s; E_int = Σ|q_(k+1) − q_k| over the runs at "
     f"tolerances/1, /F: F = {TIGHTEN:g} (DOP853: {WIDE_TIGHTEN:g}; generalized-α: the step /1, /2, /4); "
-    f"S = |q(start + seeded roughness {PROBE_LEVEL:g} a₀) − q|; well-conditioned when S ≤ {CONDITION_TOL:g}·|q|"
+    f"S = |q(start + seeded roughness {PROBE_LEVEL:g} a₀) − q|; E_s: where q falls between output samples; "
+    f"well-conditioned when S ≤ {CONDITION_TOL:g}·|q|"
 )
 
 
@@ -194,8 +201,11 @@ def assess(module, params: SailParameters, settings: RunSettings, options: dict,
     integration = sum(abs(d) for d in steps) if same_verdict else math.inf
     probe, base = records["probe"], records["base"]
     sensitivity = abs(probe["value"] - base["value"]) if probe["failed"] == base["failed"] else math.inf
-    uncertainty = SAFETY * (integration + sensitivity)
+    location = sampling_error(reported, settings, failed)
+    uncertainty = SAFETY * (integration + sensitivity) + location
     well = sensitivity <= CONDITION_TOL * abs(value)
+    if "sampling" in result.info:
+        reported.info["sampling"] = {**result.info["sampling"], "location_error": location if failed else None}
     reported.uncertainty = {
         "estimated": True,
         "quantity": quantity,
@@ -203,11 +213,13 @@ def assess(module, params: SailParameters, settings: RunSettings, options: dict,
         "uncertainty": uncertainty,
         "integration_error": integration,
         "sensitivity": sensitivity,
+        "sampling_error": location,
         "well_conditioned": bool(well),
         "explanation": " ".join(
             part
             for part in (
                 explain(params, quantity, value, integration, sensitivity, well, failed),
+                sampling_note(location, SAFETY * (integration + sensitivity), failed),
                 floor_note(held, result.info),
             )
             if part
@@ -219,6 +231,22 @@ def assess(module, params: SailParameters, settings: RunSettings, options: dict,
     }
     reported.wall_time = total_wall
     return reported
+
+
+def sampling_error(run, settings: RunSettings, failed: bool) -> float:
+    """E_s of the reported run: where its failure falls between output samples (events.location_error), or
+    how far its largest amplitude ratio may lie above the largest sample (events.peak_error)."""
+    if failed:
+        return float(events.location_error(run.time, run.amplitude, settings.failure_ratio) or 0.0)
+    return events.peak_error(run.amplitude)
+
+
+def sampling_note(location: float, numerics: float, failed: bool) -> str:
+    """A sentence for the explanation when the sampling error is the larger part of U; empty otherwise."""
+    if not location > numerics:
+        return ""
+    what = "where the failure falls between output samples" if failed else "the peak between output samples"
+    return f"Most of the uncertainty is {what} ({location:.2g}); a finer output_interval reduces it."
 
 
 def floor_note(held: list[str], info: dict) -> str:
