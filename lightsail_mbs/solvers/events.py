@@ -179,10 +179,10 @@ def refined_settings(result, settings: RunSettings) -> tuple[RunSettings | None,
 
 def located_run(module, params, settings: RunSettings, options: dict, progress: bool = False):
     """(Result, the settings it was made with): module.run on the case's default sampling
-        (default_sampling), repeated at finer output intervals until its failure time is located
-        (refined_settings). info["sampling"] records the interval, the reruns and their wall time (also added to
-    the Result's wall_time), the location error and the notes; a note that limits the location is also a
-    warning."""
+    (default_sampling), repeated at finer output intervals until its failure time is located
+    (refined_settings). info["sampling"] records the interval and end of the run, the reruns and their wall
+    time (also added to the Result's wall_time), the location error and the notes; a note that limits the
+    location is also a warning."""
     settings, note = default_sampling(params, settings)
     result = module.run(params, settings, progress=progress, **options)
     notes = [note] if note else []
