@@ -204,7 +204,7 @@ def test_bad_options_name_themselves():
         solve(p, "exudyn", settings, step_size=-1.0, uncertainty=False)
     with pytest.raises(ParameterError, match="newton_rel_tol"):
         solve(p, "exudyn", settings, newton_rel_tol=float("nan"), uncertainty=False)
-    with pytest.raises(ParameterError, match="options"):
+    with pytest.raises(ParameterError, match="option 'tolerance' is invalid for the exudyn chain solver"):
         solve(p, "exudyn", settings, tolerance=1e-3, uncertainty=False)
 
 
