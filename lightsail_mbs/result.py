@@ -296,7 +296,10 @@ class Result:
         ratio 1.2460 ± 0.0005)', with '(ill-conditioned)' when it is; a ratio of exactly 1 in every run (the
         largest amplitude is the initial one) says so instead of '1 ± 0'."""
         u = self.uncertainty or {}
-        if self.failed:
+        location = (self.info.get("sampling") or {}).get("location_error")
+        if self.failed and self.failure_time_uncertainty is None and location is not None:
+            text = f"FAILED at t = {with_uncertainty(self.failure_time, location)} s (between-sample location only)"
+        elif self.failed:
             text = f"FAILED at t = {with_uncertainty(self.failure_time, self.failure_time_uncertainty)} s"
         elif self.max_amplitude_ratio == 1.0 and not self.max_amplitude_ratio_uncertainty:
             text = "not failed (max amplitude ratio 1: the amplitude never exceeded its initial value)"
@@ -473,7 +476,9 @@ def _with_saved_table(path: Path, parameters: dict, arrays: dict) -> tuple[dict,
 
 def with_uncertainty(value: float | None, uncertainty: float | None, digits: int = 6) -> str:
     """'2.1112 ± 0.0001': the value rounded to the uncertainty's first significant digit (two when it
-    starts with 1); without an uncertainty, `digits` significant digits; '± inf' when infinite."""
+    starts with 1); without an uncertainty, `digits` significant digits; '± inf' when infinite. A value
+    below 1e-3 or from 1e5 on is written in scientific notation with the same rule on its mantissa:
+    '(6.29483 ± 0.00004)e-06'."""
     if value is None:
         return "–"
     if uncertainty is None:
@@ -482,6 +487,9 @@ def with_uncertainty(value: float | None, uncertainty: float | None, digits: int
         return f"{value:.{digits}g} ± inf"
     if uncertainty <= 0:
         return f"{value:.{digits}g} ± 0"
+    if value != 0 and not 1e-3 <= abs(value) < 1e5 and uncertainty < abs(value):
+        power = math.floor(math.log10(abs(value)))
+        return f"({with_uncertainty(value / 10.0**power, uncertainty / 10.0**power)})e{power:+03d}"
     exponent = math.floor(math.log10(uncertainty))
     if f"{uncertainty:.0e}"[0] == "1":
         exponent -= 1

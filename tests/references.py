@@ -355,21 +355,25 @@ REFERENCES = {
     ),
     # ---- beyond the paper: beam profile and optics ------------------------------------------------
     "gaussian_cupping_time_w_1m": Value(
-        6.206502485457975e-4,
-        1.5e-12,
+        6.206551394835781e-4,
+        2e-11,
         "s",
         "solve(paper_case('torsion-stable', beam_waist=1.0), 'reduced', RunSettings(t_final=0.01, "
         "output_interval=1e-5)).failure_time",
-        "equal at rtol and rtol/10 to 1e-16 s; Exudyn 2e-9 relative away (docs/beyond-the-paper.md)",
-        (Quote("docs/beyond-the-paper.md", "cupping at 0.62065 ms", "0.62065", scale=1e3),),
+        "the failure located by event (the 1e-5 s samples refined twice): ± 1.4e-11 s; a run "
+        "sampled at 1e-7 s 4.9e-12 s away (the 2026-11-29 value 6.206502e-4 s was the line between 1e-5 s "
+        "samples, 4.9e-9 s early)",
+        (Quote("docs/beyond-the-paper.md", "cupping at 0.620655 ms", "0.620655", scale=1e3),),
+        "2026-12-01",
     ),
     "gaussian_cupping_times": Value(
-        (1.1250280611316776e-3, 6.206502485457975e-4, 4.243712610841005e-4),
-        1.5e-12,
+        (1.1250390349595253e-3, 6.206551394835781e-4, 4.244001993184991e-4),
+        3e-10,
         "s",
         "as gaussian_cupping_time_w_1m with beam_waist = 2, 1 and 0.5 m",
-        "equal at rtol and rtol/10 to 2e-16 s",
+        "located by event: ± 2.7e-10, 1.4e-11, 1e-10 s; runs sampled at 1e-7 s 1.4e-10, 4.9e-12, 5e-11 s away",
         (Quote("docs/beyond-the-paper.md", "fails at 1.13 / 0.62 / 0.42 ms", "1.13, 0.62, 0.42", scale=1e3),),
+        "2026-12-01",
     ),
     "partial_reflector_failure_time": Value(
         2.2518775,

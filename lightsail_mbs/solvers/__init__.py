@@ -12,35 +12,27 @@ How to run a case:
    ``result.failure_time_uncertainty`` and ``result.well_conditioned`` (twin runs, on by default:
    :mod:`lightsail_mbs.solvers.uncertainty`), ``result.summary()``, ``result.save("run.npz")``.
 
-The chain and the sheet are dispatched by ``params.model`` (``SOLVERS``, ``SHEET_SOLVERS``). Each
-solver is a module exposing
-``run(params, settings, *, progress=False, **options)`` that keeps the contract of
-:mod:`lightsail_mbs.solvers.skeleton` (sampling, stop rule, errors as results). A third solver is a
-new folder here and one line in ``SOLVERS``.
+Each solver is declared once per model family in :mod:`lightsail_mbs.solvers.registry`, under the
+numbered contract of :mod:`lightsail_mbs.solvers.contract` (options schema checked before solving,
+the hooks of the uncertainty estimate, capabilities); ``SOLVERS`` names them. A third solver is a new
+folder here and its registration.
 """
 
 from __future__ import annotations
 
-import importlib
 from typing import TYPE_CHECKING
 
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.solvers import contract, events, registry  # noqa: F401 - registry: the declarations
 from lightsail_mbs.solvers.settings import RunSettings, paper_settings
 from lightsail_mbs.solvers.skeleton import interrupts_propagate
 
 if TYPE_CHECKING:
     from lightsail_mbs.result import Result
 
-SOLVERS = {"exudyn": "exudyn.chain", "reduced": "reduced.solver"}
-# the same solvers for the sheet (model "sheet"): Exudyn's rigid tiles and the in-house tile solver
-SHEET_SOLVERS = {"exudyn": "exudyn.sheet", "reduced": "reduced.sheet"}
+SOLVERS = contract.names()  # the registered solver names
 
-__all__ = ["SHEET_SOLVERS", "SOLVERS", "RunSettings", "paper_settings", "solve", "solver_module"]
-
-
-def solver_module(params: SailParameters, solver: str) -> str:
-    """The module (relative to this package) that runs `solver` for the model family of `params`."""
-    return (SHEET_SOLVERS if params.model == "sheet" else SOLVERS)[solver]
+__all__ = ["SOLVERS", "RunSettings", "paper_settings", "solve"]
 
 
 def solve(
@@ -59,11 +51,15 @@ def solve(
     params : SailParameters
         The physical case.
     solver : {"exudyn", "reduced"}
-        The engine: Exudyn's KinematicTree chain or the in-house reduced-Lagrangian chain; for
-        model "sheet", Exudyn's rigid tiles (solvers.exudyn.sheet) or the in-house tile solver
-        (solvers.reduced.sheet).
+        A registered solver (``SOLVERS``): Exudyn's KinematicTree chain or the in-house reduced-Lagrangian
+        chain; for model "sheet", Exudyn's rigid tiles (solvers.exudyn.sheet) or the in-house tile solver
+        (solvers.reduced.sheet). A solver without the case's model family is refused in one line.
     settings : RunSettings, optional
-        Duration, output interval and stop rule (default ``RunSettings()``: 6 s, stop at failure).
+        Duration, output interval and stop rule (default ``RunSettings()``: 6 s, stop at failure). An
+        output interval left at None follows the case's fastest time scale, and a failure time found
+        between coarse samples is located by reruns at finer intervals (:mod:`lightsail_mbs.solvers.events`);
+        the Result keeps the settings asked for, and ``info["sampling"]`` the interval and end of the run
+        it reports.
     progress : bool
         Show a progress bar on stderr.
     uncertainty : bool
@@ -72,21 +68,22 @@ def solve(
         tightest run's (:mod:`lightsail_mbs.solvers.uncertainty`). Costs about 2–7 more runs. Sweeps
         turn it off.
     **options
-        The solver's own numerical options (see its module); an unknown one raises ParameterError.
+        The solver's own numerical options (its schema in :mod:`lightsail_mbs.solvers.registry`); an
+        unknown option or a value outside its range raises ParameterError before anything is solved.
     """
-    if solver not in SOLVERS:
-        raise ParameterError(f"solver={solver!r} is invalid: allowed one of {', '.join(SOLVERS)}")
+    engine = contract.lookup(solver, params)
     if settings is None:
         settings = RunSettings()
     if not isinstance(settings, RunSettings):
         raise ParameterError(f"settings={settings!r} is invalid: allowed a RunSettings")
-    module = importlib.import_module(f".{solver_module(params, solver)}", __name__)
+    engine.check_options(options)
     with interrupts_propagate():
-        result = module.run(params, settings, progress=progress, **options)
+        result, sampled = events.located_run(engine, params, settings, options, progress=progress)
         if uncertainty:
             from lightsail_mbs.solvers import uncertainty as estimate
 
-            result = estimate.assess(module, params, settings, options, result)
+            result = estimate.assess(engine, params, sampled, options, result)
+    result.settings = settings  # the run control asked for; info["sampling"] says how it was sampled
     from lightsail_mbs.analysis import resolvedness
 
     resolvedness.annotate(params, result)  # the resolvedness-in-n verdict: info and, if ill-posed, a warning

@@ -35,8 +35,13 @@ solver, and the one reported is the most accurate of them:
    is a property of the question, not of the solver: where the chain's unstable short waves grow
    from perturbations this small, the answer is set by whatever perturbation a run starts from.
 
-The uncertainty of the reported q is U = SAFETY · (E_int + S), and the run is **well-conditioned** when
-S ≤ CONDITION_TOL · |q|. When a twin's verdict differs (one fails within the run, the other not), U is
+3. **Sampling** — where the failure falls between the reported run's output samples, E_s = E_loc of
+   :mod:`lightsail_mbs.solvers.events` (which has already refined the sampling until E_loc ≤ 1e-6 t_f where
+   it could), or for a sail that did not fail, how far its largest amplitude may lie above the largest
+   sample (the parabola through the peak sample and its neighbours).
+
+The uncertainty of the reported q is U = SAFETY · (E_int + S) + E_s, and the run is **well-conditioned**
+when S ≤ CONDITION_TOL · |q|. When a twin's verdict differs (one fails within the run, the other not), U is
 infinite and the run ill-conditioned: the sail is at its stability boundary for that run length.
 
 Measured (validation/accuracy.md, 96 seeded random cases of every model; the rule settled on the first
@@ -58,6 +63,7 @@ from __future__ import annotations
 import math
 
 from lightsail_mbs.model.parameters import SailParameters
+from lightsail_mbs.solvers import contract, events
 from lightsail_mbs.solvers.settings import RunSettings
 
 TIGHTEN = 10.0  # the tight twin's tolerances are the base run's / TIGHTEN (adaptive methods)
@@ -68,9 +74,10 @@ PROBE_LEVEL = 1e-12  # the probe twin's roughness amplitude, in units of the def
 SAFETY = 2.0  # U = SAFETY · (E_int + S)
 CONDITION_TOL = 1e-4  # well-conditioned: S ≤ CONDITION_TOL · |q|
 RULE = (
-    f"reported: the run at tolerances/F; U = {SAFETY:g}·(E_int + S); E_int = Σ|q_(k+1) − q_k| over the runs at "
+    f"reported: the run at tolerances/F; U = {SAFETY:g}·(E_int + S) + E_s; E_int = Σ|q_(k+1) − q_k| over the runs at "
     f"tolerances/1, /F: F = {TIGHTEN:g} (DOP853: {WIDE_TIGHTEN:g}; generalized-α: the step /1, /2, /4); "
-    f"S = |q(start + seeded roughness {PROBE_LEVEL:g} a₀) − q|; well-conditioned when S ≤ {CONDITION_TOL:g}·|q|"
+    f"S = |q(start + seeded roughness {PROBE_LEVEL:g} a₀) − q|; E_s: where q falls between output samples; "
+    f"well-conditioned when S ≤ {CONDITION_TOL:g}·|q|"
 )
 
 
@@ -100,42 +107,47 @@ def sequence(info: dict) -> list[tuple[str, float]]:
     return [("tight", tightening(info))]
 
 
-def tightened(options: dict, info: dict, factor: float | None = None) -> dict:
-    """A twin's options: rtol (the one the base run used, from its info) and atol or the Newton tolerances,
-    if given, divided by F (default tightening(info)); a fixed step divided by √F — the given one, or the
-    base run's (info), with its Newton tolerances / F, when the solver has no rtol to derive them from
-    (Exudyn's sheet). A Newton tolerance never goes below the floor the base run reports
+def tightened(options: dict, info: dict, factor: float | None = None, roles: dict | None = None) -> dict:
+    """A twin's options: the relative tolerance (the one the base run used, from its info) and the absolute
+    or Newton tolerances, if given, divided by F (default tightening(info)); a fixed step divided by √F —
+    the given one, or the base run's (info), with its Newton tolerances / F, when the solver has no rtol to
+    derive them from (Exudyn's sheet). `roles`: the solver's option names per role (solvers.contract,
+    rule 8; default: every registered solver's). A tolerance never goes below the floor the base run reports
     (info["<name>_floor"]: Exudyn's sheet, the round-off of its stiff connectors, under which Newton
     does not converge and every step is retried at a smaller step; a 12 × 12 sheet at E = E_m = 4.5e9 Pa
     ran 90× slower with its absolute tolerance at a quarter of the base run's)."""
+    roles = contract.registered_roles() if roles is None else roles
     factor = tightening(info) if factor is None else factor
     tight = dict(options)
-    if "rtol" in info:
-        tight["rtol"] = float(info["rtol"]) / factor
+    relative = [name for name in roles["rtol"] if name in info]
+    for name in relative:
+        tight[name] = float(info[name]) / factor
 
     def divided(name, value):
         floor = float(info.get(f"{name}_floor") or 0.0)
         return max(value / factor, floor)
 
-    for name in ("atol", "newton_rel_tol", "newton_abs_tol"):
+    for name in roles["tolerance"]:
         if options.get(name) is not None:
             value = options[name]
             tight[name] = divided(name, value) if not hasattr(value, "__len__") else [divided(name, v) for v in value]
-    if options.get("step_size") is not None:
-        tight["step_size"] = options["step_size"] / math.sqrt(factor)
-    elif "rtol" not in info and info.get("step_size") is not None:
-        tight["step_size"] = float(info["step_size"]) / math.sqrt(factor)
-        for name in ("newton_rel_tol", "newton_abs_tol"):
-            if options.get(name) is None and info.get(name):
-                tight[name] = divided(name, float(info[name]))
+    for name in roles["step"]:
+        if options.get(name) is not None:
+            tight[name] = options[name] / math.sqrt(factor)
+        elif not relative and info.get(name) is not None:
+            tight[name] = float(info[name]) / math.sqrt(factor)
+            for tolerance in roles["tolerance"]:
+                if options.get(tolerance) is None and info.get(tolerance):
+                    tight[tolerance] = divided(tolerance, float(info[tolerance]))
     return tight
 
 
-def held_at_floor(twin_options: dict, info: dict) -> list[str]:
-    """The Newton tolerances of a twin that its floor (info["<name>_floor"]) kept from tightening."""
+def held_at_floor(twin_options: dict, info: dict, roles: dict | None = None) -> list[str]:
+    """The tolerances of a twin that its floor (info["<name>_floor"]) kept from tightening."""
+    roles = contract.registered_roles() if roles is None else roles
     return [
         name
-        for name in ("newton_rel_tol", "newton_abs_tol")
+        for name in roles["tolerance"]
         if info.get(f"{name}_floor") and twin_options.get(name) == info[f"{name}_floor"]
     ]
 
@@ -153,10 +165,11 @@ def record_of(run, options: dict) -> dict:
     return record
 
 
-def assess(module, params: SailParameters, settings: RunSettings, options: dict, result):
-    """The Result to report for `result` (a run of solver module `module` with `options`), with its
-    uncertainty record (Result.uncertainty): runs the twins (module docstring) and returns the tightest
-    run, or `result` itself when no estimate can be made."""
+def assess(solver, params: SailParameters, settings: RunSettings, options: dict, result):
+    """The Result to report for `result` (a run of `solver`, a registered contract.Solver or any object with
+    its ``run``, with `options`), with its uncertainty record (Result.uncertainty): runs the twins (module
+    docstring; the options they change found by their roles, solvers.contract rule 8) and returns the
+    tightest run, or `result` itself when no estimate can be made."""
     reason = None
     if result.error is not None:
         reason = f"not estimated: the run ended with a solver error ({result.error})"
@@ -164,17 +177,21 @@ def assess(module, params: SailParameters, settings: RunSettings, options: dict,
         reason = "not estimated: supports and tip loads are validations, not sails"
     elif not result.amplitude[0] > 0:
         reason = "not estimated: the sail starts flat (no amplitude ratio to measure)"
+    elif hasattr(solver, "roles") and not solver.roles()["perturbation"]:
+        reason = "not estimated: the solver has no perturbation option for the probe twin (contract rule 8)"
     if reason is not None:
         result.uncertainty = not_estimated(reason)
         return result
     quantity, failed, value = answer(result)
     records = {"base": record_of(result, options)}
     runs = {"base": result}
-    twins = [(name, tightened(options, result.info, factor)) for name, factor in sequence(result.info)]
-    held = sorted({name for _, twin in twins for name in held_at_floor(twin, result.info)})
-    twins.append(("probe", {**options, "perturbation": PROBE_LEVEL * params.displacement_scale}))
+    roles = solver.roles() if hasattr(solver, "roles") else contract.registered_roles()
+    twins = [(name, tightened(options, result.info, factor, roles)) for name, factor in sequence(result.info)]
+    held = sorted({name for _, twin in twins for name in held_at_floor(twin, result.info, roles)})
+    for name in roles["perturbation"][:1]:
+        twins.append(("probe", {**options, name: PROBE_LEVEL * params.displacement_scale}))
     for name, twin_options in twins:
-        runs[name] = module.run(params, settings, progress=False, **twin_options)
+        runs[name] = solver.run(params, settings, progress=False, **twin_options)
         records[name] = record_of(runs[name], twin_options)
     total_wall = sum(record["wall_time"] for record in records.values())
     for name, record in records.items():
@@ -194,8 +211,11 @@ def assess(module, params: SailParameters, settings: RunSettings, options: dict,
     integration = sum(abs(d) for d in steps) if same_verdict else math.inf
     probe, base = records["probe"], records["base"]
     sensitivity = abs(probe["value"] - base["value"]) if probe["failed"] == base["failed"] else math.inf
-    uncertainty = SAFETY * (integration + sensitivity)
+    location = sampling_error(reported, settings, failed)
+    uncertainty = SAFETY * (integration + sensitivity) + location
     well = sensitivity <= CONDITION_TOL * abs(value)
+    if "sampling" in result.info:
+        reported.info["sampling"] = {**result.info["sampling"], "location_error": location if failed else None}
     reported.uncertainty = {
         "estimated": True,
         "quantity": quantity,
@@ -203,11 +223,13 @@ def assess(module, params: SailParameters, settings: RunSettings, options: dict,
         "uncertainty": uncertainty,
         "integration_error": integration,
         "sensitivity": sensitivity,
+        "sampling_error": location,
         "well_conditioned": bool(well),
         "explanation": " ".join(
             part
             for part in (
                 explain(params, quantity, value, integration, sensitivity, well, failed),
+                sampling_note(location, SAFETY * (integration + sensitivity), failed),
                 floor_note(held, result.info),
             )
             if part
@@ -219,6 +241,22 @@ def assess(module, params: SailParameters, settings: RunSettings, options: dict,
     }
     reported.wall_time = total_wall
     return reported
+
+
+def sampling_error(run, settings: RunSettings, failed: bool) -> float:
+    """E_s of the reported run: where its failure falls between output samples (events.location_error), or
+    how far its largest amplitude ratio may lie above the largest sample (events.peak_error)."""
+    if failed:
+        return float(events.location_error(run.time, run.amplitude, settings.failure_ratio) or 0.0)
+    return events.peak_error(run.amplitude)
+
+
+def sampling_note(location: float, numerics: float, failed: bool) -> str:
+    """A sentence for the explanation when the sampling error is the larger part of U; empty otherwise."""
+    if not location > numerics:
+        return ""
+    what = "where the failure falls between output samples" if failed else "the peak between output samples"
+    return f"Most of the uncertainty is {what} ({location:.2g}); a finer output_interval reduces it."
 
 
 def floor_note(held: list[str], info: dict) -> str:

@@ -3,6 +3,7 @@ well posed, flag it where it is not, and the error bar covers the run's own disc
 
 import math
 
+import numpy as np
 import pytest
 
 from lightsail_mbs import RunSettings, SailParameters, paper_case, solve
@@ -132,8 +133,16 @@ class FakeSolver:
 
         t_f = self.failure_time(step_size) + (1e-9 if perturbation else 0.0)
         info = {"method": "generalized-alpha", "step_size": step_size}
+        time, amplitude = np.array([0.0, 0.5 * t_f, t_f]), np.array([1.0, 1.5, 2.0])  # a line: located exactly
         return SimpleNamespace(
-            error=None, amplitude=[1.0], failed=True, failure_time=t_f, info=info, wall_time=1.0, uncertainty=None
+            error=None,
+            time=time,
+            amplitude=amplitude,
+            failed=True,
+            failure_time=t_f,
+            info=info,
+            wall_time=1.0,
+            uncertainty=None,
         )
 
 

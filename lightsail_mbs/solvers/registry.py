@@ -1,0 +1,58 @@
+"""The registered solvers: each engine's declaration for each model family it runs (solvers.contract).
+
+A new engine is a folder under ``lightsail_mbs/solvers/`` with a ``run`` that keeps the contract, and its
+``register(Solver(...))`` here. The declarations import nothing of the engines (Exudyn, numba): the
+modules are imported when a run or a capability first needs them.
+"""
+
+from __future__ import annotations
+
+from lightsail_mbs.solvers.contract import (
+    Option,
+    Solver,
+    fraction,
+    non_negative,
+    one_of,
+    positive,
+    positive_or_per_entry,
+    register,
+    unit_interval,
+    whole_positive,
+)
+
+PERTURBATION = Option("perturbation", non_negative, "a finite value ≥ 0 (m)", "perturbation", "seeded start (m)")
+SHEET_CAPABILITIES = {"statics": "static_centres", "eigenfrequencies": "eigenfrequencies"}
+
+# Exudyn: the chain as one ObjectKinematicTree, the sheet as rigid tiles and connectors
+STEP = Option("step_size", positive, "a finite step > 0 (s)", "step", "a fixed generalized-α step (s)")
+NEWTON = (
+    Option("newton_rel_tol", non_negative, "a finite value ≥ 0", "tolerance", "Newton's relative tolerance"),
+    Option("newton_abs_tol", non_negative, "a finite value ≥ 0", "tolerance", "Newton's absolute tolerance (N)"),
+)
+SPECTRAL_RADIUS = Option("spectral_radius", unit_interval, "0 ≤ ρ∞ ≤ 1", None, "generalized-α's ρ∞")
+EXUDYN_CHAIN_OPTIONS = (
+    Option("method", one_of("auto", "DOPRI5", "generalized-alpha"), "auto, DOPRI5 or generalized-alpha"),
+    Option("rtol", fraction, "0 < rtol < 1", "rtol", "the run's relative accuracy"),
+    STEP,
+    *NEWTON,
+    SPECTRAL_RADIUS,
+    Option("samples_per_check", whole_positive, "a whole number ≥ 1", None, "output samples between checks"),
+    PERTURBATION,
+)
+register(Solver("exudyn", "chain", "exudyn.chain", EXUDYN_CHAIN_OPTIONS))
+register(Solver("exudyn", "sheet", "exudyn.sheet", (STEP, *NEWTON, SPECTRAL_RADIUS, PERTURBATION), SHEET_CAPABILITIES))
+
+# the in-house reduced-Lagrangian solvers: the chain in minimal coordinates, the sheet's tiles
+RTOL = Option("rtol", fraction, "0 < rtol < 1", "rtol", "relative tolerance")
+MAX_STEP = Option("max_step", positive, "a finite value > 0 (s)", None, "largest step (s)")
+CHAIN_METHODS = ("auto", "DOP853", "Radau", "RK45", "BDF", "LSODA")
+REDUCED_CHAIN_OPTIONS = (
+    Option("method", one_of(*CHAIN_METHODS), f"auto or one of {', '.join(CHAIN_METHODS[1:])}", None, "integrator"),
+    RTOL,
+    Option("atol", positive_or_per_entry, "a value > 0 or one per state entry", "tolerance", "absolute tolerance"),
+    MAX_STEP,
+    Option("first_step", positive, "a finite value > 0 (s)", None, "first step (s)"),
+    PERTURBATION,
+)
+register(Solver("reduced", "chain", "reduced.solver", REDUCED_CHAIN_OPTIONS))
+register(Solver("reduced", "sheet", "reduced.sheet", (RTOL, MAX_STEP, PERTURBATION), SHEET_CAPABILITIES))
