@@ -288,7 +288,6 @@ def gaussian_rows(grids, store_dir, workers, progress) -> list[dict]:
     return rows
 
 
-KINDS = ("twin", "unlit", "scan", "modulus", "horizon", "resolution", "tension", "gaussian")
 TITLES = {
     "twin": "Stabilising edge tension T/T_cr,max, unlit-twin rule, 6 s runs, E = 4.5e9 Pa",
     "unlit": "Unlit sheets under edge tension, 6 s",
@@ -424,47 +423,6 @@ def long_horizon(
     from lightsail_mbs.studies.tables import markdown_table
 
     (out / "sheet_long_horizon.md").write_text(f"{title}.\n\n{markdown_table(rows, columns)}\n")
-    return rows
-
-
-def read_rows(out) -> dict:
-    """The rows of a finished run back from its CSV files in `out` (numbers as floats, empty as None)."""
-    import csv
-
-    def number(text):
-        return None if text in ("", None) else float(text)
-
-    rows = {}
-    for kind in KINDS:
-        with open(Path(out) / f"sheet_physics_{kind}.csv", newline="") as handle:
-            rows[kind] = list(csv.DictReader(handle))
-    for r in rows["modulus"] + rows["tension"] + rows["twin"]:
-        r.update({k: number(r[k]) for k in ("ratio", "ratio_low", "ratio_high")})
-        r["runs"] = int(r["runs"])
-    for r in rows["twin"]:
-        r.update(
-            {
-                k: number(r[k])
-                for k in (
-                    "unlit_peak_stable",
-                    "lit_peak_stable",
-                    "departure_stable",
-                    "unlit_peak_failed",
-                    "failure_time_failed",
-                )
-            }
-        )
-    for r in rows["horizon"] + rows["resolution"]:
-        keys = ("mode", "tiles_per_half_wave", "ratio", "t_1_5", "t_2", "growth_rate", "max_ratio", "t_final")
-        r.update({k: number(r[k]) for k in keys})
-        r["grid"] = int(r["grid"])
-    for r in rows["unlit"]:
-        r.update({k: number(r[k]) for k in ("tension_ratio", "max_ratio", "failure_time")})
-    for r in rows["scan"]:
-        r.update({k: number(v) for k, v in r.items()})
-        r["grid"] = int(r["grid"])
-    for r in rows["gaussian"]:
-        r.update(grid=int(r["grid"]), waist_m=float(r["waist_m"]), failure_time_ms=number(r["failure_time_ms"]))
     return rows
 
 

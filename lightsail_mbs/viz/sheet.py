@@ -22,7 +22,6 @@ import numpy as np
 
 from lightsail_mbs import analysis
 from lightsail_mbs.model.parameters import ParameterError
-from lightsail_mbs.model.sheet import rotation_xyz
 from lightsail_mbs.result import Result
 from lightsail_mbs.viz.frames import _prepare, _progress, _write_png, frame_indices, parse_size
 
@@ -47,15 +46,6 @@ def plane_frame(centres: np.ndarray):
     e1 = np.array([1.0, 0.0, 0.0]) - n[0] * n
     e1 /= np.linalg.norm(e1)
     return c, e1, np.cross(n, e1), n
-
-
-def tile_corners(result: Result, index: int) -> np.ndarray:
-    """(N, 4, 3) corners of every tile at sample `index` (counter-clockwise seen from +z)."""
-    p = result.params
-    a, b = p.length / p.n, p.width / p.ny
-    local = np.array([[-a, -b, 0], [a, -b, 0], [a, b, 0], [-a, b, 0]]) * 0.5
-    R = rotation_xyz(result.tile_angles[index])
-    return result.tile_centres[index][:, None, :] + np.einsum("kij,cj->kci", R, local)
 
 
 def auto_exaggeration(result: Result) -> float:

@@ -179,7 +179,7 @@ class SheetSystem:
         self.generic = mbs.AddObject(ObjectGenericODE2(nodeNumbers=self.nodes, forceVector=self.force.tolist()))
         mbs.Assemble()
         self.update_load()
-        mbs.SetPreNewtonResidualUserFunction(lambda mbs_, t, iteration, discontinuous: self.update_load())
+        mbs.SetPreNewtonResidualUserFunction(lambda _mbs, _t, _iteration, _discontinuous: self.update_load())
 
     def force_vector(self, q: np.ndarray) -> np.ndarray:
         """The load's generalised force (6N) at coordinates q: tile forces at the centres, no torques."""
