@@ -21,7 +21,8 @@ import numpy as np
 from numba import njit
 
 from lightsail_mbs.solvers.reduced import tableaus
-from lightsail_mbs.solvers.reduced.dynamics import N, rhs_into, workspace
+from lightsail_mbs.solvers.reduced.chain_constants import N
+from lightsail_mbs.solvers.reduced.dynamics import rhs_into, workspace
 
 STAGES = tableaus.DOP853_STAGES  # 12 stages per step
 A = np.ascontiguousarray(tableaus.DOP853_A)  # (16, 16): 12 step stages + 3 dense-output stages

@@ -32,6 +32,7 @@ import numpy as np
 from numba import njit
 
 from lightsail_mbs.solvers.reduced import tableaus
+from lightsail_mbs.solvers.reduced.chain_constants import C_S, C_T, EXTENSIBLE, K_S, K_T, N
 from lightsail_mbs.solvers.reduced.dop853 import (
     FINISHED,
     NOT_FINITE,
@@ -41,7 +42,7 @@ from lightsail_mbs.solvers.reduced.dop853 import (
     initial_step,
     scaled_rms,
 )
-from lightsail_mbs.solvers.reduced.dynamics import C_S, C_T, EXTENSIBLE, K_S, K_T, N, rhs_into, workspace
+from lightsail_mbs.solvers.reduced.dynamics import rhs_into, workspace
 from lightsail_mbs.solvers.reduced.newton import compliances, factor, geometry_into, newton_solve
 
 C = np.ascontiguousarray(tableaus.RADAU_C)
