@@ -112,7 +112,7 @@ def stability_map_figure(
     run time. Returns the rows (one per thickness and mode, with boundary_2t and ratio_2t where
     rechecked). sweep_options (options, case_function) go to boundary_map.
     """
-    from lightsail_mbs.studies.maps import SWEPT, boundary_map
+    from lightsail_mbs.studies.maps import boundary_map
 
     out = Path(out)
     store = Path(store or out / "store") / name
@@ -155,6 +155,14 @@ def stability_map_figure(
             for v, s in r.points
         ],
     )
+    _draw_map(out / f"{name}.png", number, base, thicknesses, modes, settings, found, longer)
+    return rows
+
+
+def _draw_map(path, number: int, base, thicknesses, modes, settings, found, longer) -> None:
+    """The stability map's figure: each mode's evaluated points, bracket and analytic line, the boundaries
+    bisected again at 2 × t_final (`longer`), and a note where a boundary was not bracketed."""
+    from lightsail_mbs.studies.maps import SWEPT
 
     swept, critical = SWEPT[base.model]
     label = {"youngs_modulus": "Young's modulus E (Pa)", "tension": "boundary tension T (N)"}[swept]
@@ -209,5 +217,4 @@ def stability_map_figure(
     handles, labels = ax[0, 0].get_legend_handles_labels()
     unique = dict(zip(labels, handles))
     ax[0, 0].legend(unique.values(), unique.keys(), fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    save_figure(fig, out / f"{name}.png")
-    return rows
+    save_figure(fig, path)

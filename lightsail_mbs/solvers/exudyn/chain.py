@@ -63,6 +63,7 @@ state is recorded in Result.error with the samples up to there.
 
 from __future__ import annotations
 
+import functools
 import math
 import time as _time
 
@@ -72,7 +73,7 @@ from lightsail_mbs import analysis
 from lightsail_mbs.model import shapes
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
 from lightsail_mbs.result import Result
-from lightsail_mbs.solvers.exudyn.console import silenced
+from lightsail_mbs.solvers.exudyn.console import solve_steps
 from lightsail_mbs.solvers.exudyn.sampler import Sampler
 from lightsail_mbs.solvers.exudyn.supports import add_supports
 from lightsail_mbs.solvers.exudyn.tree import ChainLayout, generalized_force, tree_arguments
@@ -271,41 +272,12 @@ def run(
     (generalized-α, or fixed-step DOPRI5), overriding rtol's; perturbation: amplitude (m) of the seeded
     roughness shapes.initial_state adds to the start (the conditioning probe of solvers.uncertainty).
     """
-    import exudyn as exu
-
     if options:
         raise ParameterError(f"options={sorted(options)} are invalid: the exudyn solver accepts {', '.join(OPTIONS)}")
     p = params
-    dt = settings.sample_interval
-    if method not in METHODS:
-        raise ParameterError(f"method={method!r} is invalid: allowed one of {', '.join(METHODS)}")
     rtol = DEFAULT_RTOL if rtol is None else rtol
-    if not (isinstance(rtol, (int, float)) and 0 < rtol < 1):
-        raise ParameterError(f"rtol={rtol!r} is invalid: allowed 0 < rtol < 1")
-    if step_size is not None and not (step_size > 0 and math.isfinite(step_size)):
-        raise ParameterError(f"step_size={step_size!r} is invalid: allowed a finite step > 0 (s)")
-    if not 0 <= spectral_radius <= 1:
-        raise ParameterError(f"spectral_radius={spectral_radius!r} is invalid: allowed 0 ≤ ρ∞ ≤ 1")
-    if not (perturbation >= 0 and math.isfinite(perturbation)):
-        raise ParameterError(f"perturbation={perturbation!r} is invalid: allowed a finite value ≥ 0 (m)")
-    chosen, reason = choose_method(p)
-    implicit_only = [
-        name
-        for name, v in (
-            ("step_size", step_size),
-            ("newton_rel_tol", newton_rel_tol),
-            ("newton_abs_tol", newton_abs_tol),
-        )
-        if v is not None
-    ]
-    if method == "auto":
-        method = "generalized-alpha" if implicit_only else chosen
-        if implicit_only:
-            reason = f"generalized-α options given ({', '.join(implicit_only)})"
-    else:
-        reason = "asked for"
-    if method == "DOPRI5" and (p.boundary != "free" or p.tip_load):
-        raise ParameterError("method='DOPRI5' is invalid with supports or a tip load: allowed 'generalized-alpha'")
+    _check_options(method, rtol, step_size, spectral_radius, perturbation)
+    method, reason = _method(p, method, step_size, newton_rel_tol, newton_abs_tol)
     newton_scale = (rtol / DEFAULT_RTOL) ** 2  # the Newton tolerances ∝ rtol², the step ∝ √rtol (docstring)
     rel_tol = NEWTON_REL_TOL * newton_scale if newton_rel_tol is None else float(newton_rel_tol)
     abs_tol = default_abs_tol(p) * newton_scale if newton_abs_tol is None else float(newton_abs_tol)
@@ -319,49 +291,23 @@ def run(
     SC, mbs, layout, _, _ = build(p, initial)
     info = {"method": method, "method_reason": reason, "rtol": rtol, "top_frequency": top_frequency(p)}
     if method == "generalized-alpha":
-        h = step_in_grid(default_step_size(p, settings, rtol) if step_size is None else float(step_size), dt)
+        h = step_in_grid(
+            default_step_size(p, settings, rtol) if step_size is None else float(step_size), settings.sample_interval
+        )
         s = simulation_settings(settings.t_final, h, rel_tol, abs_tol, spectral_radius)
-        solver = exu.MainSolverImplicitSecondOrder()
         info.update(step_size=h, newton_rel_tol=rel_tol, newton_abs_tol=abs_tol, spectral_radius=spectral_radius)
     else:
         atol = explicit_abs_tol(p, rtol)
         h0 = default_step_size(p, settings, rtol)
         s = explicit_settings(settings.t_final, atol, h0, None if step_size is None else float(step_size))
-        solver = exu.MainSolverExplicit()
         info.update(atol=atol, step_size=None if step_size is None else float(step_size))
     if perturbation:
         info["perturbation"] = perturbation
     bar = Progress(settings.t_final, progress, label=f"exudyn {p.model} n={p.n}")
-    error = None
-    sampler = None
-    try:
-        with silenced():
-            solver.InitializeSolver(mbs, s)
-            sampler = Sampler(mbs, settings.sample_times(), layout, monitor, samples_per_check, bar)
-            mbs.SetPostStepUserFunction(sampler)
-            ok = solver.SolveSteps(mbs, s)
-            if not ok and sampler.failed_at is None:
-                error = f"{method} failed at t = {solver.it.currentTime:.9g} s (exudyn: {solver.GetErrorString()})"
-            elif not np.all(np.isfinite(mbs.systemData.GetODE2Coordinates())):
-                error = f"non-finite state at t = {solver.it.currentTime:.9g} s"
-            solver.FinalizeSolver(mbs, s)
-    except exu.ExudynError as exc:  # solver failures are results, not crashes
-        error = f"exudyn: {exc}".strip()
-    finally:
-        bar.update(solver.it.currentTime)
-        bar.close()
+    sample = functools.partial(Sampler, mbs, settings.sample_times(), layout, monitor, samples_per_check, bar)
+    solver, sampler, error = _solve(mbs, s, method, sample, bar)
     wall = _time.perf_counter() - start
-    if sampler is None:  # failed before the first step
-        time = np.zeros(1)
-        q = layout.coordinates(initial)[None, :]
-        q_t = np.zeros_like(q)
-    else:
-        sampler.check()
-        time, q, q_t = sampler.arrays()
-        if error is not None:  # keep the samples with a finite state
-            finite = np.all(np.isfinite(q), axis=1) & np.all(np.isfinite(q_t), axis=1)
-            keep = int(np.argmin(finite)) if not finite.all() else finite.size
-            time, q, q_t = time[: max(keep, 1)], q[: max(keep, 1)], q_t[: max(keep, 1)]
+    time, q, q_t = _samples(sampler, error, layout.coordinates(initial))
     x, y, theta, z = layout.positions(q)
     vx, vy, omega, z_rate = layout.velocities(q, q_t)
     info.update(
@@ -389,3 +335,79 @@ def run(
         info=info,
         settings=settings,
     )
+
+
+def _check_options(method, rtol, step_size, spectral_radius, perturbation) -> None:
+    """ParameterError for a method or option value out of its range."""
+    if method not in METHODS:
+        raise ParameterError(f"method={method!r} is invalid: allowed one of {', '.join(METHODS)}")
+    if not (isinstance(rtol, (int, float)) and 0 < rtol < 1):
+        raise ParameterError(f"rtol={rtol!r} is invalid: allowed 0 < rtol < 1")
+    if step_size is not None and not (step_size > 0 and math.isfinite(step_size)):
+        raise ParameterError(f"step_size={step_size!r} is invalid: allowed a finite step > 0 (s)")
+    if not 0 <= spectral_radius <= 1:
+        raise ParameterError(f"spectral_radius={spectral_radius!r} is invalid: allowed 0 ≤ ρ∞ ≤ 1")
+    if not (perturbation >= 0 and math.isfinite(perturbation)):
+        raise ParameterError(f"perturbation={perturbation!r} is invalid: allowed a finite value ≥ 0 (m)")
+
+
+def _method(p: SailParameters, method: str, step_size, newton_rel_tol, newton_abs_tol) -> tuple[str, str]:
+    """(method, reason) of a run: choose_method's for "auto" unless generalized-α options are given."""
+    chosen, reason = choose_method(p)
+    implicit_only = [
+        name
+        for name, v in (
+            ("step_size", step_size),
+            ("newton_rel_tol", newton_rel_tol),
+            ("newton_abs_tol", newton_abs_tol),
+        )
+        if v is not None
+    ]
+    if method == "auto":
+        method = "generalized-alpha" if implicit_only else chosen
+        if implicit_only:
+            reason = f"generalized-α options given ({', '.join(implicit_only)})"
+    else:
+        reason = "asked for"
+    if method == "DOPRI5" and (p.boundary != "free" or p.tip_load):
+        raise ParameterError("method='DOPRI5' is invalid with supports or a tip load: allowed 'generalized-alpha'")
+    return method, reason
+
+
+def _solve(mbs, s, method: str, sample, bar):
+    """Run Exudyn's solver of `method` with the post-step sampler that sample() makes once the solver is
+    initialised (it reads the initial accelerations): (solver, sampler or None if the run failed before
+    it, error or None)."""
+    import exudyn as exu
+
+    solver = exu.MainSolverImplicitSecondOrder() if method == "generalized-alpha" else exu.MainSolverExplicit()
+    made = []
+
+    def start_sampling():
+        made.append(sample())
+        mbs.SetPostStepUserFunction(made[0])
+
+    error = solve_steps(
+        solver,
+        mbs,
+        s,
+        bar,
+        failure=f"{method} failed",
+        stopped=lambda: made[0].failed_at is not None,
+        initialised=start_sampling,
+    )
+    return solver, (made[0] if made else None), error
+
+
+def _samples(sampler: Sampler | None, error: str | None, q0: np.ndarray):
+    """(time, q, q̇) of the run's samples; after an error only those with a finite state; the initial
+    coordinates q0 at rest when the run failed before its first step (no sampler)."""
+    if sampler is None:
+        return np.zeros(1), q0[None, :], np.zeros_like(q0[None, :])
+    sampler.check()
+    time, q, q_t = sampler.arrays()
+    if error is not None:  # keep the samples with a finite state
+        finite = np.all(np.isfinite(q), axis=1) & np.all(np.isfinite(q_t), axis=1)
+        keep = int(np.argmin(finite)) if not finite.all() else finite.size
+        time, q, q_t = time[: max(keep, 1)], q[: max(keep, 1)], q_t[: max(keep, 1)]
+    return time, q, q_t
