@@ -314,7 +314,7 @@ def run(
         steps=int(sampler.steps if sampler else 0),
         rejected_steps=int(getattr(solver.it, "rejectedAutomaticStepSizeSteps", 0)),
         newton_iterations=int(solver.it.newtonStepsCount),
-        jacobian_evaluations=int(solver.it.newtonJacobiCount),
+        njev=int(solver.it.newtonJacobiCount),
         coordinates=layout.size,
         formulation="ObjectKinematicTree (minimal coordinates), net slice load compiled",
     )

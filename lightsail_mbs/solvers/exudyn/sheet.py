@@ -281,7 +281,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         "perturbation": float(options.get("perturbation") or 0.0),
         "steps": recorder.steps,
         "newton_iterations": int(solver.it.newtonStepsCount),
-        "jacobian_evaluations": int(solver.it.newtonJacobiCount),
+        "njev": int(solver.it.newtonJacobiCount),
         "load_calls": system.load_calls,
         "load_time": system.load_time,
         "coordinates": 6 * system.tiles.count,
