@@ -40,11 +40,13 @@ Run: lightsail-mbs reproduce --scenario sheet_physics, or python scenarios/sheet
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from lightsail_mbs import RunSettings, SailParameters
+from lightsail_mbs.paper.common import store_folder
 from lightsail_mbs.paper.sheet_physics_report import plot, summary_markdown
 from lightsail_mbs.studies import sheet as sheet_study
 from lightsail_mbs.studies.sweep import run_cases
@@ -74,6 +76,13 @@ GAUSSIAN = RunSettings(t_final=3e-3, output_interval=1e-5)
 
 def base(grid: int, **changes) -> SailParameters:
     return SailParameters(**{"model": "sheet", "n": grid, "ny": grid, "youngs_modulus": SOFT, **changes})
+
+
+def in_house(params, store_dir, settings, label: str, *, workers, progress, options=None) -> list:
+    """(record, Result) of every case of `params`, run by the in-house solver through the store."""
+    return run_cases(
+        params, store_dir, settings, solver="reduced", workers=workers, label=label, progress=progress, options=options
+    )
 
 
 def modulus_cases(grids) -> dict:
@@ -134,15 +143,8 @@ def horizon_rows(grids, ratios, settings, store_dir, workers, progress, mode=1.5
         for g in grids
         for k in ratios
     ]
-    done = run_cases(
-        [c[2] for c in cases],
-        store_dir,
-        settings,
-        solver="reduced",
-        workers=workers,
-        label="sheet horizon",
-        progress=progress,
-        options=options,
+    done = in_house(
+        [c[2] for c in cases], store_dir, settings, "sheet horizon", workers=workers, progress=progress, options=options
     )
     rows = []
     for (g, k, _), (record, result) in zip(cases, done):
@@ -242,7 +244,7 @@ def unlit_rows(grid, tension, run, store_dir, workers, progress) -> list[dict]:
         ("strip, initial_equilibrium", base(grid, ny=1, initial_equilibrium=True)),
     ]
     params = [sheet_study.with_ratio(p, "edge_tension", tension).replace(intensity=0.0) for _, p in cases]
-    done = run_cases(params, store_dir, run, solver="reduced", workers=workers, label="sheet unlit", progress=progress)
+    done = in_house(params, store_dir, run, "sheet unlit", workers=workers, progress=progress)
     rows = []
     for (label, p), (record, result) in zip(cases, done):
         rows.append(
@@ -265,15 +267,7 @@ def gaussian_rows(grids, store_dir, workers, progress) -> list[dict]:
         for w in WAISTS
         for label in ("strip", "sheet")
     ]
-    done = run_cases(
-        [c[3] for c in cases],
-        store_dir,
-        GAUSSIAN,
-        solver="reduced",
-        workers=workers,
-        label="sheet gaussian",
-        progress=progress,
-    )
+    done = in_house([c[3] for c in cases], store_dir, GAUSSIAN, "sheet gaussian", workers=workers, progress=progress)
     rows = []
     for (g, w, label, _), (record, _) in zip(cases, done):
         rows.append(
@@ -300,24 +294,39 @@ TITLES = {
 }
 
 
-def compute(
-    *,
-    grids=GRIDS,
-    fine_grids=FINE_GRIDS,
-    horizon_grids=HORIZON_GRIDS,
-    tension_grids=TENSION_GRIDS,
-    factor=FACTOR,
-    fine_factor=FINE_FACTOR,
-    run=RUN,
-    horizon=HORIZON,
-    resolution=RESOLUTION,
-    scan_tensions=SCAN_TENSIONS,
-    store_dir,
-    workers=None,
-    progress=True,
-    out=None,
-) -> dict:
-    """Every study (module docstring); with `out`, each one's CSV is written as soon as it is done."""
+@dataclass(frozen=True)
+class Plan:
+    """The grids, bisection factors and run lengths of the studies (module docstring)."""
+
+    grids: tuple = GRIDS
+    fine_grids: tuple = FINE_GRIDS
+    horizon_grids: tuple = HORIZON_GRIDS
+    tension_grids: tuple = TENSION_GRIDS
+    factor: float = FACTOR
+    fine_factor: float = FINE_FACTOR
+    run: RunSettings = RUN
+    horizon: RunSettings = HORIZON
+    resolution: dict = field(default_factory=lambda: dict(RESOLUTION))
+    scan_tensions: tuple = SCAN_TENSIONS
+
+
+# the smoke test: 6 × 6 grids, 1 s runs, factor 3
+QUICK = Plan(
+    grids=(6,),
+    fine_grids=(8,),
+    horizon_grids=(6,),
+    tension_grids=(6,),
+    factor=3.0,
+    fine_factor=3.0,
+    run=RunSettings(t_final=1.0),
+    horizon=RunSettings(t_final=1.0),
+    resolution={1.5: (6,)},
+    scan_tensions=(8.0,),
+)
+
+
+def compute(plan: Plan = Plan(), *, store_dir, workers=None, progress=True, out=None) -> dict:
+    """Every study of `plan` (module docstring); with `out`, each one's CSV is written as soon as it is done."""
     store_dir = Path(store_dir)
     rows = {}
 
@@ -327,22 +336,23 @@ def compute(
             write_csv(Path(out) / f"sheet_physics_{kind}.csv", data)
             print_table(TITLES[kind], data)
 
-    common = dict(settings=run, factor=factor, workers=workers, progress=progress)
-    done("twin", twin_rows(tension_grids, factor, run, store_dir, progress))
+    run, horizon, grids, tension_grids = plan.run, plan.horizon, plan.grids, plan.tension_grids
+    common = dict(settings=run, factor=plan.factor, workers=workers, progress=progress)
+    done("twin", twin_rows(tension_grids, plan.factor, run, store_dir, progress))
     done("unlit", unlit_rows(tension_grids[0], UNLIT_TENSION, run, store_dir, workers, progress))
-    done("scan", scan_rows(tension_grids, scan_tensions, run, store_dir))
+    done("scan", scan_rows(tension_grids, plan.scan_tensions, run, store_dir))
     modulus = sheet_study.stability_boundaries(modulus_cases(grids), "modulus", store_dir, lo=2.0, hi=16.0, **common)
-    fine = {(FINE, g): p for (label, g), p in modulus_cases(fine_grids).items() if label == DOUBLY}
+    fine = {(FINE, g): p for (label, g), p in modulus_cases(plan.fine_grids).items() if label == DOUBLY}
     lo, hi = FINE_BRACKET
-    fine_common = {**common, "factor": fine_factor}
+    fine_common = {**common, "factor": plan.fine_factor}
     modulus.update(sheet_study.stability_boundaries(fine, "modulus", store_dir, lo=lo, hi=hi, **fine_common))
     done("modulus", boundary_rows(modulus, "E/E_cr,max"))
-    done("horizon", horizon_rows(horizon_grids, HORIZON_RATIOS, horizon, store_dir, workers, progress))
+    done("horizon", horizon_rows(plan.horizon_grids, HORIZON_RATIOS, horizon, store_dir, workers, progress))
     done(
         "resolution",
         [
             row
-            for mode, mode_grids in resolution.items()
+            for mode, mode_grids in plan.resolution.items()
             for row in horizon_rows(mode_grids, (RESOLUTION_RATIO,), horizon, store_dir, workers, progress, mode)
         ],
     )
@@ -356,22 +366,8 @@ def compute(
 
 def run(out, *, solver="reduced", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
     out = Path(out)
-    options = {}
-    if quick:
-        options = dict(
-            grids=(6,),
-            fine_grids=(8,),
-            horizon_grids=(6,),
-            tension_grids=(6,),
-            factor=3.0,
-            fine_factor=3.0,
-            run=RunSettings(t_final=1.0),
-            horizon=RunSettings(t_final=1.0),
-            resolution={1.5: (6,)},
-            scan_tensions=(8.0,),
-        )
-    store_dir = Path(store or out / "store") / NAME
-    rows = compute(store_dir=store_dir, workers=workers, progress=progress, out=out, **options)
+    plan = QUICK if quick else Plan()
+    rows = compute(plan, store_dir=store_folder(out, store, NAME), workers=workers, progress=progress, out=out)
     (out / "sheet_physics.md").write_text(summary_markdown(rows))
     plot(out / "sheet_physics.png", rows, run_length=RUN.t_final)
     failure_frame(out / "sheet_physics_failure.png", quick)
@@ -398,7 +394,7 @@ def long_horizon(
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    store_dir = Path(store or out / "store") / NAME
+    store_dir = store_folder(out, store, NAME)
     rows = horizon_rows(grids, ratios, settings, store_dir, workers, progress)
     tight = horizon_rows(grids, ratios, settings, store_dir, workers, progress, options={"rtol": DEFAULT_RTOL / 10})
     for row, twin in zip(rows, tight, strict=True):
