@@ -23,7 +23,7 @@ import numpy as np
 from lightsail_mbs import analysis
 from lightsail_mbs.model.parameters import ParameterError
 from lightsail_mbs.result import Result
-from lightsail_mbs.viz.frames import _prepare, _progress, _write_png, frame_indices, parse_size
+from lightsail_mbs.viz.frames import _prepare, _write_png, frame_indices, parse_size, write_frames
 
 COLOR_SCALES = ("run", "frame")
 VIEW_FRACTION = 0.1  # the automatic exaggeration draws the run's largest offset at this fraction of max(L, W)
@@ -165,16 +165,8 @@ def render_sheet_frames(
         vmax = float(np.max(np.abs(result.deflection()[picks]))) / (float(result.amplitude[0]) or 1.0)
     e = auto_exaggeration(result) if exaggeration is None else exaggeration
     out = _prepare(out_dir)
-    report, done = _progress(progress, len(picks))
-    paths = []
-    try:
-        for k, i in enumerate(picks):
-            image = frame_image(draw_frame(result, int(i), size, e, vmax))
-            paths.append(_write_png(image, out / f"frame_{k:04d}.png"))
-            report(k + 1)
-    finally:
-        done()
-    return paths
+    images = (frame_image(draw_frame(result, int(i), size, e, vmax)) for i in picks)
+    return write_frames(out, images, len(picks), progress)
 
 
 def save_frame(result: Result, index: int, path, size=(1000, 450), exaggeration: float | None = None) -> Path:
