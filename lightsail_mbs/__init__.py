@@ -37,10 +37,11 @@ KERNEL_SOURCES = (
     "solvers/exudyn/tree.py",
     "solvers/reduced/dop853.py",
     "solvers/reduced/dynamics.py",
+    "solvers/reduced/joints.py",
     "solvers/reduced/newton.py",
     "solvers/reduced/radau.py",
     "solvers/reduced/sampling.py",
-    "solvers/reduced/sheet.py",
+    "solvers/reduced/sheet_kernels.py",
 )
 
 

@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import Result, paper_case, paper_settings, solve
+from lightsail_mbs.paper.common import store_folder
 from lightsail_mbs.result import ARRAYS
 
 NAME = "animations"
@@ -72,7 +73,7 @@ def run(
     from lightsail_mbs.viz.frames import make_movie, render_frames
 
     out = Path(out)
-    runs = Path(store or out / "store") / NAME
+    runs = store_folder(out, store, NAME)
     runs.mkdir(parents=True, exist_ok=True)
     frames = frames or (QUICK_FRAMES if quick else FRAMES)
     size = size or (QUICK_SIZE if quick else SIZE)

@@ -24,6 +24,7 @@ import numpy as np
 
 from lightsail_mbs import paper_case, paper_settings
 from lightsail_mbs.model import loads, shapes
+from lightsail_mbs.paper.common import sweep_options
 from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.studies.sweep import run_cases
 from lightsail_mbs.studies.tables import print_table, write_csv
@@ -120,16 +121,10 @@ def compute(*, solver="reduced", quick=False, store_dir, workers=None, scheduler
     return rows
 
 
-def run(out, *, solver="reduced", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
+def run(out, *, solver="reduced", quick=False, **options) -> dict:
+    """The study into `out`; options: workers, scheduler, store, progress (paper package docstring)."""
     out = Path(out)
-    rows = compute(
-        solver=solver,
-        quick=quick,
-        store_dir=Path(store or out / "store") / NAME,
-        workers=workers,
-        scheduler=scheduler,
-        progress=progress,
-    )
+    rows = compute(solver=solver, quick=quick, **sweep_options(out, NAME, **options))
     for kind, title in (
         ("profile", f"Beam profile and optics, torsion sail ({solver})"),
         ("tilt", "Off-centre beam (w = 1 m) on a flat sail: time to turn 1°"),

@@ -9,8 +9,29 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs.studies.sweep import run_cases
-from lightsail_mbs.studies.tables import series_csv, write_csv
+from lightsail_mbs.studies.tables import print_table, series_csv, write_csv
 from lightsail_mbs.viz.plots import MICRO, angle_slices, new_figure, plot_angles, plot_map, save_figure
+
+
+def store_folder(out, store, name: str) -> Path:
+    """The sweep store of the pipeline `name`: STORE/<name>, or OUT/store/<name> without a store."""
+    return Path(store or Path(out) / "store") / name
+
+
+def publish(out, name: str, rows: list[dict], title: str, draw) -> dict:
+    """A study's rows as OUT/<name>.csv, printed under `title` and drawn by draw(path, rows) into
+    OUT/<name>.png; returns {"rows": rows}, a pipeline's answer."""
+    out = Path(out)
+    write_csv(out / f"{name}.csv", rows)
+    print_table(title, rows)
+    draw(out / f"{name}.png", rows)
+    return {"rows": rows}
+
+
+def sweep_options(out, name: str, *, workers=None, scheduler=None, store=None, progress=True) -> dict:
+    """The sweep keywords of a pipeline's runs (store_dir, workers, scheduler, progress) from the options
+    of its run (paper package docstring)."""
+    return dict(store_dir=store_folder(out, store, name), workers=workers, scheduler=scheduler, progress=progress)
 
 
 # ---- the angle-history figures of a stable and a soft case (Figs 6–8, 10–11) ------------------
@@ -22,6 +43,8 @@ def angle_history_figures(
     describe,
     *,
     settings,
+    columns,
+    title: str,
     solver="exudyn",
     workers=None,
     scheduler=None,
@@ -31,7 +54,8 @@ def angle_history_figures(
     """Run the labelled cases ({label: SailParameters}) with the same RunSettings, then per (figure
     number, label, t_max) draw θ_i(t) of a few slices into OUT/fig<number>.png. Writes
     OUT/<name>_summary.csv (failure, frequency of the stable runs by frequencies.angle_frequency) and
-    OUT/<name>_angles_<label>.csv; returns the rows.
+    OUT/<name>_angles_<label>.csv; returns the rows, each with the columns(params) of its case (a dict: the
+    swept parameter against its critical value), and prints them under `title`.
     describe(params) -> the case's title text (e.g. its E and E_cr,max).
     """
     from lightsail_mbs.analysis.frequencies import angle_frequency
@@ -42,7 +66,7 @@ def angle_history_figures(
             cases,
             run_cases(
                 list(cases.values()),
-                Path(store or out / "store") / name,
+                store_folder(out, store, name),
                 settings,
                 solver=solver,
                 workers=workers,
@@ -81,6 +105,9 @@ def angle_history_figures(
         zoom = f", first {t_max * 1e3:g} ms" if t_max else ""
         plot_angles(ax[0, 0], result, t_max=t_max, title=f"Fig. {number}: {describe(result.params)}{zoom}")
         save_figure(fig, out / f"fig{number}.png")
+    for row, p in zip(rows, cases.values()):
+        row.update(columns(p))
+    print_table(title, rows)
     return rows
 
 
@@ -112,10 +139,10 @@ def stability_map_figure(
     run time. Returns the rows (one per thickness and mode, with boundary_2t and ratio_2t where
     rechecked). sweep_options (options, case_function) go to boundary_map.
     """
-    from lightsail_mbs.studies.maps import SWEPT, boundary_map
+    from lightsail_mbs.studies.maps import boundary_map
 
     out = Path(out)
-    store = Path(store or out / "store") / name
+    store = store_folder(out, store, name)
     pairs = [(float(h), float(nu)) for h in thicknesses for nu in modes]
     kwargs = dict(
         store_dir=store,
@@ -155,6 +182,14 @@ def stability_map_figure(
             for v, s in r.points
         ],
     )
+    _draw_map(out / f"{name}.png", number, base, thicknesses, modes, settings, found, longer)
+    return rows
+
+
+def _draw_map(path, number: int, base, thicknesses, modes, settings, found, longer) -> None:
+    """The stability map's figure: each mode's evaluated points, bracket and analytic line, the boundaries
+    bisected again at 2 × t_final (`longer`), and a note where a boundary was not bracketed."""
+    from lightsail_mbs.studies.maps import SWEPT
 
     swept, critical = SWEPT[base.model]
     label = {"youngs_modulus": "Young's modulus E (Pa)", "tension": "boundary tension T (N)"}[swept]
@@ -209,5 +244,4 @@ def stability_map_figure(
     handles, labels = ax[0, 0].get_legend_handles_labels()
     unique = dict(zip(labels, handles))
     ax[0, 0].legend(unique.values(), unique.keys(), fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    save_figure(fig, out / f"{name}.png")
-    return rows
+    save_figure(fig, path)

@@ -13,6 +13,7 @@ python scenarios/montecarlo.py [--seeds N].
 
 from __future__ import annotations
 
+import functools
 from dataclasses import asdict
 from pathlib import Path
 
@@ -20,8 +21,8 @@ import numpy as np
 
 from lightsail_mbs import RunSettings, SailParameters
 from lightsail_mbs.model import theory
+from lightsail_mbs.paper.common import publish, sweep_options
 from lightsail_mbs.studies import montecarlo
-from lightsail_mbs.studies.tables import print_table, write_csv
 from lightsail_mbs.viz.plots import new_figure, save_figure
 
 NAME = "montecarlo"
@@ -57,28 +58,15 @@ def compute(
     ]
 
 
-def run(
-    out, *, solver="reduced", workers=None, scheduler=None, quick=False, store=None, progress=True, seeds: int = SEEDS
-) -> dict:
+def run(out, *, solver="reduced", quick=False, seeds: int = SEEDS, **options) -> dict:
+    """The study into `out`; options: workers, scheduler, store, progress (paper package docstring)."""
     out = Path(out)
-    rows = compute(
-        seeds=seeds,
-        solver=solver,
-        quick=quick,
-        store_dir=Path(store or out / "store") / NAME,
-        workers=workers,
-        scheduler=scheduler,
-        progress=progress,
-    )
+    rows = compute(seeds=seeds, solver=solver, quick=quick, **sweep_options(out, NAME, **options))
     base, settings = base_case(quick)
-    write_csv(out / "montecarlo.csv", rows)
-    print_table(
-        f"Monte Carlo: {seeds} random multi-mode defects per E, torsion n = {base.n}, "
-        f"{settings.t_final:g} s ({solver})",
-        rows,
+    title = (
+        f"Monte Carlo: {seeds} random multi-mode defects per E, torsion n = {base.n}, {settings.t_final:g} s ({solver})"
     )
-    plot(out / "montecarlo.png", rows, seeds)
-    return {"rows": rows}
+    return publish(out, "montecarlo", rows, f"{title} ({solver})", functools.partial(plot, seeds=seeds))
 
 
 def plot(path, rows, seeds) -> Path:

@@ -16,6 +16,7 @@ python scenarios/dissipation.py [--beta S].
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 import numpy as np
@@ -23,8 +24,8 @@ import numpy as np
 from lightsail_mbs import paper_case, paper_settings
 from lightsail_mbs.analysis.frequencies import angle_frequency
 from lightsail_mbs.model import theory
+from lightsail_mbs.paper.common import publish, sweep_options
 from lightsail_mbs.studies.sweep import run_cases
-from lightsail_mbs.studies.tables import print_table, write_csv
 from lightsail_mbs.viz.plots import new_figure, save_figure
 
 NAME = "dissipation"
@@ -85,27 +86,15 @@ def compute(
     return [row(p, record, result) for p, (record, result) in zip(params, done)]
 
 
-def run(
-    out, *, solver="reduced", workers=None, scheduler=None, quick=False, store=None, progress=True, beta: float = BETA
-) -> dict:
+def run(out, *, solver="reduced", quick=False, beta: float = BETA, **options) -> dict:
+    """The study into `out`; options: workers, scheduler, store, progress (paper package docstring)."""
     out = Path(out)
-    rows = compute(
-        beta=beta,
-        solver=solver,
-        quick=quick,
-        store_dir=Path(store or out / "store") / NAME,
-        workers=workers,
-        scheduler=scheduler,
-        progress=progress,
-    )
-    write_csv(out / "dissipation.csv", rows)
-    print_table(
+    rows = compute(beta=beta, solver=solver, quick=quick, **sweep_options(out, NAME, **options))
+    title = (
         f"Material damping β = {beta:g} s in the TnT sail (bending on), {settings(quick).t_final:g} s "
-        f"({solver}); absorbed reference: α = {REFERENCE_ABSORPTIVITY:g}",
-        rows,
+        f"({solver}); absorbed reference: α = {REFERENCE_ABSORPTIVITY:g}"
     )
-    plot(out / "dissipation.png", rows, beta)
-    return {"rows": rows}
+    return publish(out, "dissipation", rows, title, functools.partial(plot, beta=beta))
 
 
 def plot(path, rows, beta) -> Path:

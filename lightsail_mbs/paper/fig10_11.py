@@ -15,7 +15,6 @@ from __future__ import annotations
 from lightsail_mbs import RunSettings, paper_case
 from lightsail_mbs.model import theory
 from lightsail_mbs.paper.common import angle_history_figures
-from lightsail_mbs.studies.tables import print_table
 
 FIGURES = (10, 11)
 
@@ -27,7 +26,8 @@ def describe(p) -> str:
     )
 
 
-def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
+def run(out, *, solver="exudyn", quick=False, **options) -> dict:
+    """The figures into `out`; options: workers, scheduler, store, progress (paper package docstring)."""
     changes = dict(n=10) if quick else {}
     settings = RunSettings(t_final=1.0 if quick else 6.0)
     cases = {
@@ -42,12 +42,8 @@ def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, stor
         describe,
         settings=settings,
         solver=solver,
-        workers=workers,
-        scheduler=scheduler,
-        store=store,
-        progress=progress,
+        columns=lambda p: dict(T_N=p.tension, T_cr_max_N=theory.critical_tension_max(p)),
+        title=f"Figs 10–11 — TnT sail, h = 1 µm, ν = 3/2, {settings.t_final:g} s",
+        **options,
     )
-    for row, p in zip(rows, cases.values()):
-        row.update(T_N=p.tension, T_cr_max_N=theory.critical_tension_max(p))
-    print_table(f"Figs 10–11 — TnT sail, h = 1 µm, ν = 3/2, {settings.t_final:g} s", rows)
     return {"rows": rows}

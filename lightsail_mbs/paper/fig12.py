@@ -19,7 +19,8 @@ THICKNESSES = np.logspace(-8, -5, 7)  # m: 0.01 … 10 µm, half decades
 MODES = (1.0, 1.5, 2.0)
 
 
-def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
+def run(out, *, solver="exudyn", quick=False, **options) -> dict:
+    """The figures into `out`; options: workers, scheduler, store, progress (paper package docstring)."""
     base = paper_case("tnt-stable", n=30, axial_springs=False)
     settings = RunSettings(t_final=6.0)
     thicknesses = THICKNESSES
@@ -34,11 +35,8 @@ def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, stor
         MODES,
         settings=settings,
         solver=solver,
-        workers=workers,
-        scheduler=scheduler,
-        store=store,
-        progress=progress,
         recheck_all=True,
+        **options,
     )
     print_table(
         f"Fig. 12 — TnT map, {settings.t_final:g} s: boundary T vs T_cr,max (Eq. 10)",

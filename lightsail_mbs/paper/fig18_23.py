@@ -21,6 +21,7 @@ import numpy as np
 
 from lightsail_mbs import RunSettings, paper_case
 from lightsail_mbs.analysis.frequencies import angle_frequency
+from lightsail_mbs.paper.common import store_folder
 from lightsail_mbs.studies.sweep import run_cases
 from lightsail_mbs.studies.tables import print_table, write_csv
 from lightsail_mbs.viz.plots import new_figure, save_figure
@@ -57,7 +58,7 @@ def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, stor
             params,
             run_cases(
                 list(params.values()),
-                Path(store or out / "store") / "fig18_23",
+                store_folder(out, store, "fig18_23"),
                 settings,
                 solver=solver,
                 workers=workers,

@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import analysis, paper_case, paper_settings
+from lightsail_mbs.paper.common import store_folder
 from lightsail_mbs.studies.sweep import run_cases
 from lightsail_mbs.studies.tables import print_table, write_csv
 from lightsail_mbs.viz.plots import new_figure, plot_shape, save_figure
@@ -27,7 +28,7 @@ def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, stor
     params = [paper_case("rigid", defect_mode=nu) for nu in modes]
     runs = run_cases(
         params,
-        Path(store or out / "store") / "fig5",
+        store_folder(out, store, "fig5"),
         paper_settings("rigid"),
         solver=solver,
         workers=workers,

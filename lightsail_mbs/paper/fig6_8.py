@@ -11,7 +11,6 @@ from __future__ import annotations
 from lightsail_mbs import RunSettings, paper_case
 from lightsail_mbs.model import theory
 from lightsail_mbs.paper.common import angle_history_figures
-from lightsail_mbs.studies.tables import print_table
 
 FIGURES = (6, 7, 8)
 
@@ -23,7 +22,8 @@ def describe(p) -> str:
     )
 
 
-def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
+def run(out, *, solver="exudyn", quick=False, **options) -> dict:
+    """The figures into `out`; options: workers, scheduler, store, progress (paper package docstring)."""
     changes = dict(n=10) if quick else {}
     settings = RunSettings(t_final=1.0 if quick else 6.0)
     cases = {"stable": paper_case("torsion-stable", **changes), "soft": paper_case("torsion-soft", **changes)}
@@ -35,12 +35,8 @@ def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, stor
         describe,
         settings=settings,
         solver=solver,
-        workers=workers,
-        scheduler=scheduler,
-        store=store,
-        progress=progress,
+        columns=lambda p: dict(E_Pa=p.youngs_modulus, E_cr_max_Pa=theory.critical_modulus_max(p)),
+        title=f"Figs 6–8 — torsion sail, h = 1 µm, ν = 3/2, {settings.t_final:g} s",
+        **options,
     )
-    for row, p in zip(rows, cases.values()):
-        row.update(E_Pa=p.youngs_modulus, E_cr_max_Pa=theory.critical_modulus_max(p))
-    print_table(f"Figs 6–8 — torsion sail, h = 1 µm, ν = 3/2, {settings.t_final:g} s", rows)
     return {"rows": rows}

@@ -17,7 +17,8 @@ FIGURES = (9,)
 THICKNESSES = np.logspace(-8, -5, 7)  # m: 0.01 … 10 µm, half decades
 
 
-def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
+def run(out, *, solver="exudyn", quick=False, **options) -> dict:
+    """The figures into `out`; options: workers, scheduler, store, progress (paper package docstring)."""
     base = SailParameters(model="torsion", defect_mode=1.5, n=30)
     settings = RunSettings(t_final=6.0)
     thicknesses = THICKNESSES
@@ -32,11 +33,8 @@ def run(out, *, solver="exudyn", workers=None, scheduler=None, quick=False, stor
         [1.5],
         settings=settings,
         solver=solver,
-        workers=workers,
-        scheduler=scheduler,
-        store=store,
-        progress=progress,
         recheck_all=True,
+        **options,
     )
     print_table(
         f"Fig. 9 — torsion map, ν = 3/2, {settings.t_final:g} s: boundary E vs E_cr,max (Eq. 8)",

@@ -40,15 +40,17 @@ Run: lightsail-mbs reproduce --scenario sheet_physics, or python scenarios/sheet
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from lightsail_mbs import RunSettings, SailParameters
+from lightsail_mbs.paper.common import store_folder
+from lightsail_mbs.paper.sheet_physics_report import plot, summary_markdown
 from lightsail_mbs.studies import sheet as sheet_study
 from lightsail_mbs.studies.sweep import run_cases
 from lightsail_mbs.studies.tables import print_table, write_csv
-from lightsail_mbs.viz.plots import new_figure, save_figure
 
 NAME = "sheet_physics"
 DOUBLY = "sheet ν_y = 1.5, E_m = E"
@@ -74,6 +76,13 @@ GAUSSIAN = RunSettings(t_final=3e-3, output_interval=1e-5)
 
 def base(grid: int, **changes) -> SailParameters:
     return SailParameters(**{"model": "sheet", "n": grid, "ny": grid, "youngs_modulus": SOFT, **changes})
+
+
+def in_house(params, store_dir, settings, label: str, *, workers, progress, options=None) -> list:
+    """(record, Result) of every case of `params`, run by the in-house solver through the store."""
+    return run_cases(
+        params, store_dir, settings, solver="reduced", workers=workers, label=label, progress=progress, options=options
+    )
 
 
 def modulus_cases(grids) -> dict:
@@ -134,15 +143,8 @@ def horizon_rows(grids, ratios, settings, store_dir, workers, progress, mode=1.5
         for g in grids
         for k in ratios
     ]
-    done = run_cases(
-        [c[2] for c in cases],
-        store_dir,
-        settings,
-        solver="reduced",
-        workers=workers,
-        label="sheet horizon",
-        progress=progress,
-        options=options,
+    done = in_house(
+        [c[2] for c in cases], store_dir, settings, "sheet horizon", workers=workers, progress=progress, options=options
     )
     rows = []
     for (g, k, _), (record, result) in zip(cases, done):
@@ -242,7 +244,7 @@ def unlit_rows(grid, tension, run, store_dir, workers, progress) -> list[dict]:
         ("strip, initial_equilibrium", base(grid, ny=1, initial_equilibrium=True)),
     ]
     params = [sheet_study.with_ratio(p, "edge_tension", tension).replace(intensity=0.0) for _, p in cases]
-    done = run_cases(params, store_dir, run, solver="reduced", workers=workers, label="sheet unlit", progress=progress)
+    done = in_house(params, store_dir, run, "sheet unlit", workers=workers, progress=progress)
     rows = []
     for (label, p), (record, result) in zip(cases, done):
         rows.append(
@@ -265,15 +267,7 @@ def gaussian_rows(grids, store_dir, workers, progress) -> list[dict]:
         for w in WAISTS
         for label in ("strip", "sheet")
     ]
-    done = run_cases(
-        [c[3] for c in cases],
-        store_dir,
-        GAUSSIAN,
-        solver="reduced",
-        workers=workers,
-        label="sheet gaussian",
-        progress=progress,
-    )
+    done = in_house([c[3] for c in cases], store_dir, GAUSSIAN, "sheet gaussian", workers=workers, progress=progress)
     rows = []
     for (g, w, label, _), (record, _) in zip(cases, done):
         rows.append(
@@ -288,7 +282,6 @@ def gaussian_rows(grids, store_dir, workers, progress) -> list[dict]:
     return rows
 
 
-KINDS = ("twin", "unlit", "scan", "modulus", "horizon", "resolution", "tension", "gaussian")
 TITLES = {
     "twin": "Stabilising edge tension T/T_cr,max, unlit-twin rule, 6 s runs, E = 4.5e9 Pa",
     "unlit": "Unlit sheets under edge tension, 6 s",
@@ -301,24 +294,39 @@ TITLES = {
 }
 
 
-def compute(
-    *,
-    grids=GRIDS,
-    fine_grids=FINE_GRIDS,
-    horizon_grids=HORIZON_GRIDS,
-    tension_grids=TENSION_GRIDS,
-    factor=FACTOR,
-    fine_factor=FINE_FACTOR,
-    run=RUN,
-    horizon=HORIZON,
-    resolution=RESOLUTION,
-    scan_tensions=SCAN_TENSIONS,
-    store_dir,
-    workers=None,
-    progress=True,
-    out=None,
-) -> dict:
-    """Every study (module docstring); with `out`, each one's CSV is written as soon as it is done."""
+@dataclass(frozen=True)
+class Plan:
+    """The grids, bisection factors and run lengths of the studies (module docstring)."""
+
+    grids: tuple = GRIDS
+    fine_grids: tuple = FINE_GRIDS
+    horizon_grids: tuple = HORIZON_GRIDS
+    tension_grids: tuple = TENSION_GRIDS
+    factor: float = FACTOR
+    fine_factor: float = FINE_FACTOR
+    run: RunSettings = RUN
+    horizon: RunSettings = HORIZON
+    resolution: dict = field(default_factory=lambda: dict(RESOLUTION))
+    scan_tensions: tuple = SCAN_TENSIONS
+
+
+# the smoke test: 6 × 6 grids, 1 s runs, factor 3
+QUICK = Plan(
+    grids=(6,),
+    fine_grids=(8,),
+    horizon_grids=(6,),
+    tension_grids=(6,),
+    factor=3.0,
+    fine_factor=3.0,
+    run=RunSettings(t_final=1.0),
+    horizon=RunSettings(t_final=1.0),
+    resolution={1.5: (6,)},
+    scan_tensions=(8.0,),
+)
+
+
+def compute(plan: Plan = Plan(), *, store_dir, workers=None, progress=True, out=None) -> dict:
+    """Every study of `plan` (module docstring); with `out`, each one's CSV is written as soon as it is done."""
     store_dir = Path(store_dir)
     rows = {}
 
@@ -328,22 +336,23 @@ def compute(
             write_csv(Path(out) / f"sheet_physics_{kind}.csv", data)
             print_table(TITLES[kind], data)
 
-    common = dict(settings=run, factor=factor, workers=workers, progress=progress)
-    done("twin", twin_rows(tension_grids, factor, run, store_dir, progress))
+    run, horizon, grids, tension_grids = plan.run, plan.horizon, plan.grids, plan.tension_grids
+    common = dict(settings=run, factor=plan.factor, workers=workers, progress=progress)
+    done("twin", twin_rows(tension_grids, plan.factor, run, store_dir, progress))
     done("unlit", unlit_rows(tension_grids[0], UNLIT_TENSION, run, store_dir, workers, progress))
-    done("scan", scan_rows(tension_grids, scan_tensions, run, store_dir))
+    done("scan", scan_rows(tension_grids, plan.scan_tensions, run, store_dir))
     modulus = sheet_study.stability_boundaries(modulus_cases(grids), "modulus", store_dir, lo=2.0, hi=16.0, **common)
-    fine = {(FINE, g): p for (label, g), p in modulus_cases(fine_grids).items() if label == DOUBLY}
+    fine = {(FINE, g): p for (label, g), p in modulus_cases(plan.fine_grids).items() if label == DOUBLY}
     lo, hi = FINE_BRACKET
-    fine_common = {**common, "factor": fine_factor}
+    fine_common = {**common, "factor": plan.fine_factor}
     modulus.update(sheet_study.stability_boundaries(fine, "modulus", store_dir, lo=lo, hi=hi, **fine_common))
     done("modulus", boundary_rows(modulus, "E/E_cr,max"))
-    done("horizon", horizon_rows(horizon_grids, HORIZON_RATIOS, horizon, store_dir, workers, progress))
+    done("horizon", horizon_rows(plan.horizon_grids, HORIZON_RATIOS, horizon, store_dir, workers, progress))
     done(
         "resolution",
         [
             row
-            for mode, mode_grids in resolution.items()
+            for mode, mode_grids in plan.resolution.items()
             for row in horizon_rows(mode_grids, (RESOLUTION_RATIO,), horizon, store_dir, workers, progress, mode)
         ],
     )
@@ -357,24 +366,10 @@ def compute(
 
 def run(out, *, solver="reduced", workers=None, scheduler=None, quick=False, store=None, progress=True) -> dict:
     out = Path(out)
-    options = {}
-    if quick:
-        options = dict(
-            grids=(6,),
-            fine_grids=(8,),
-            horizon_grids=(6,),
-            tension_grids=(6,),
-            factor=3.0,
-            fine_factor=3.0,
-            run=RunSettings(t_final=1.0),
-            horizon=RunSettings(t_final=1.0),
-            resolution={1.5: (6,)},
-            scan_tensions=(8.0,),
-        )
-    store_dir = Path(store or out / "store") / NAME
-    rows = compute(store_dir=store_dir, workers=workers, progress=progress, out=out, **options)
+    plan = QUICK if quick else Plan()
+    rows = compute(plan, store_dir=store_folder(out, store, NAME), workers=workers, progress=progress, out=out)
     (out / "sheet_physics.md").write_text(summary_markdown(rows))
-    plot(out / "sheet_physics.png", rows)
+    plot(out / "sheet_physics.png", rows, run_length=RUN.t_final)
     failure_frame(out / "sheet_physics_failure.png", quick)
     return rows
 
@@ -399,7 +394,7 @@ def long_horizon(
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    store_dir = Path(store or out / "store") / NAME
+    store_dir = store_folder(out, store, NAME)
     rows = horizon_rows(grids, ratios, settings, store_dir, workers, progress)
     tight = horizon_rows(grids, ratios, settings, store_dir, workers, progress, options={"rtol": DEFAULT_RTOL / 10})
     for row, twin in zip(rows, tight, strict=True):
@@ -425,222 +420,6 @@ def long_horizon(
 
     (out / "sheet_long_horizon.md").write_text(f"{title}.\n\n{markdown_table(rows, columns)}\n")
     return rows
-
-
-def read_rows(out) -> dict:
-    """The rows of a finished run back from its CSV files in `out` (numbers as floats, empty as None)."""
-    import csv
-
-    def number(text):
-        return None if text in ("", None) else float(text)
-
-    rows = {}
-    for kind in KINDS:
-        with open(Path(out) / f"sheet_physics_{kind}.csv", newline="") as handle:
-            rows[kind] = list(csv.DictReader(handle))
-    for r in rows["modulus"] + rows["tension"] + rows["twin"]:
-        r.update({k: number(r[k]) for k in ("ratio", "ratio_low", "ratio_high")})
-        r["runs"] = int(r["runs"])
-    for r in rows["twin"]:
-        r.update(
-            {
-                k: number(r[k])
-                for k in (
-                    "unlit_peak_stable",
-                    "lit_peak_stable",
-                    "departure_stable",
-                    "unlit_peak_failed",
-                    "failure_time_failed",
-                )
-            }
-        )
-    for r in rows["horizon"] + rows["resolution"]:
-        keys = ("mode", "tiles_per_half_wave", "ratio", "t_1_5", "t_2", "growth_rate", "max_ratio", "t_final")
-        r.update({k: number(r[k]) for k in keys})
-        r["grid"] = int(r["grid"])
-    for r in rows["unlit"]:
-        r.update({k: number(r[k]) for k in ("tension_ratio", "max_ratio", "failure_time")})
-    for r in rows["scan"]:
-        r.update({k: number(v) for k, v in r.items()})
-        r["grid"] = int(r["grid"])
-    for r in rows["gaussian"]:
-        r.update(grid=int(r["grid"]), waist_m=float(r["waist_m"]), failure_time_ms=number(r["failure_time_ms"]))
-    return rows
-
-
-def _bracket(lo, hi) -> str:
-    """A bisected boundary as its geometric middle × or ÷ its half-width factor, and the bracket."""
-    if lo is None or hi is None:
-        return "not bracketed"
-    mid, half = math.sqrt(lo * hi), math.sqrt(hi / lo)
-    return f"{mid:.3g} (×÷{half:.3f}; {lo:.3g} – {hi:.3g})"
-
-
-def _number(value, digits=3) -> str:
-    return "–" if value is None else f"{value:.{digits}g}"
-
-
-def _boundary_table(data, quantity, extra=None) -> list[str]:
-    """Rows of bisected boundaries: bracket, against the strip of the same grid, runs (and extra columns)."""
-    extra = extra or {}
-    head = f"| case | grid | {quantity}: middle (×÷ half-width; bracket) | sheet / strip (range) | runs |"
-    lines = [head + "".join(f" {name} |" for name in extra), "|---|---|---|---|---|" + "---|" * len(extra)]
-    for r in data:
-        grid = r["grid"].split("×")[0]
-        strip = next((q for q in data if q["case"] == "strip" and q["grid"].split("×")[0] == grid), None)
-        versus = "–"
-        if r["case"] != "strip" and strip and None not in (r["ratio_low"], r["ratio_high"], strip["ratio_low"]):
-            lo, hi = r["ratio_low"] / strip["ratio_high"], r["ratio_high"] / strip["ratio_low"]
-            versus = f"{math.sqrt(lo * hi):.3g} ({lo:.3g} – {hi:.3g})"
-        cells = "".join(f" {f(r)} |" for f in extra.values())
-        lines.append(
-            f"| {r['case']} | {r['grid']} | {_bracket(r['ratio_low'], r['ratio_high'])} | {versus} | "
-            f"{r['runs']} |{cells}"
-        )
-    return lines + [""]
-
-
-def summary_markdown(rows) -> str:
-    """The studies as Markdown tables: each boundary with its bisection bracket, each sheet's boundary
-    against the strip's of the same grid (ratio range from the two brackets), the failure times against E,
-    the unlit runs, and the Gaussian failure times of sheet and strip with their ratio."""
-    lines = ["# The sheet against the strip", ""]
-    lines += ["## Critical modulus: E_stable / E_cr,max", ""]
-    lines += _boundary_table(rows["modulus"], "E_stable / E_cr,max")
-    lines += [
-        "## Doubly sinusoidal sheet, E_m = E: failure time against E "
-        f"({_number(rows['horizon'][0]['t_final'])} s runs)",
-        "",
-        "| grid | E / E_cr,max | t(1.5 a₀) (s) | t(2 a₀) (s) | growth rate between (1/s) | largest a / a₀ |",
-        "|---|---|---|---|---|---|",
-    ]
-    for r in rows["horizon"]:
-        lines.append(
-            f"| {r['grid']}×{r['grid']} | {r['ratio']:g} | {_number(r['t_1_5'], 4)} | {_number(r['t_2'], 4)} | "
-            f"{_number(r['growth_rate'])} | {_number(r['max_ratio'], 4)} |"
-        )
-    lines += [
-        "",
-        f"## Doubly sinusoidal sheets, E_m = E, E = {_number(rows['resolution'][0]['ratio'])} E_cr,max: "
-        "failure time against the tiles per half wavelength",
-        "",
-        "| ν_x = ν_y | grid | tiles per half wave | t(1.5 a₀) (s) | t(2 a₀) (s) | growth rate between (1/s) |",
-        "|---|---|---|---|---|---|",
-    ]
-    for r in rows["resolution"]:
-        lines.append(
-            f"| {r['mode']:g} | {r['grid']}×{r['grid']} | {r['tiles_per_half_wave']:.3g} | {_number(r['t_1_5'], 4)} | "
-            f"{_number(r['t_2'], 4)} | {_number(r['growth_rate'])} |"
-        )
-    lines += ["", "## Stabilising edge tension, unlit-twin rule: T_stable / T_cr,max", ""]
-    lines += _boundary_table(
-        rows["twin"],
-        "T_stable / T_cr,max",
-        {
-            "twin's peak / a₀ at the stable end": lambda r: _number(r["unlit_peak_stable"], 4),
-            "lit peak / a₀ there": lambda r: _number(r["lit_peak_stable"], 4),
-            "largest z_lit − z_twin / a₀ there": lambda r: _number(r["departure_stable"], 3),
-            "twin's peak / a₀ at the failing end": lambda r: _number(r["unlit_peak_failed"], 4),
-            "failure time there (s)": lambda r: _number(r["failure_time_failed"], 4),
-        },
-    )
-    lines += [
-        f"## Unlit sheets at {_number(rows['unlit'][0]['tension_ratio'])} T_cr,max, 6 s",
-        "",
-        "| case | grid | largest a / a₀ | reached 2 a₀ at (s) |",
-        "|---|---|---|---|",
-    ]
-    for r in rows["unlit"]:
-        lines.append(f"| {r['case']} | {r['grid']} | {_number(r['max_ratio'], 4)} | {_number(r['failure_time'], 4)} |")
-    lines += [
-        "",
-        "## Doubly sinusoidal sheet above its tension boundary: lit run and unlit twin, 6 s",
-        "",
-        "| grid | T / T_cr,max | lit peak / a₀ | twin's peak / a₀ | lit / twin | twin rule: fails at (s) | "
-        "paper's rule: fails at (s) |",
-        "|---|---|---|---|---|---|---|",
-    ]
-    for r in rows["scan"]:
-        lines.append(
-            f"| {r['grid']}×{r['grid']} | {r['tension_ratio']:g} | {_number(r['lit_peak'], 4)} | "
-            f"{_number(r['twin_peak'], 4)} | {_number(r['peak_ratio'], 4)} | "
-            f"{_number(r['twin_rule_failure_time'], 4)} | "
-            f"{_number(r['papers_rule_failure_time'], 4)} |"
-        )
-    lines += ["", "## Stabilising edge tension, paper's rule: T_stable / T_cr,max", ""]
-    lines += _boundary_table(rows["tension"], "T_stable / T_cr,max")
-    lines += [
-        "## Centred Gaussian beam, 1-D sine, E = 4.5e9 Pa: failure time",
-        "",
-        "| grid | waist w (m) | strip (ms) | sheet (ms) | sheet / strip |",
-        "|---|---|---|---|---|",
-    ]
-    g = rows["gaussian"]
-    for grid in sorted({r["grid"] for r in g}):
-        for w in sorted({r["waist_m"] for r in g}, reverse=True):
-            pick = {r["case"]: r["failure_time_ms"] for r in g if r["grid"] == grid and r["waist_m"] == w}
-            strip, sheet = pick.get("strip"), pick.get("sheet")
-            ratio = f"{sheet / strip:.3f}" if strip and sheet else "–"
-            lines.append(
-                f"| {grid}×{grid} | {w:g} | {'–' if strip is None else f'{strip:.4f}'} | "
-                f"{'–' if sheet is None else f'{sheet:.4f}'} | {ratio} |"
-            )
-    lines.append("")
-    return "\n".join(lines)
-
-
-def _boundary_panel(ax, data, xlabel) -> None:
-    """Bisection brackets per case (rows) and grid (offset markers), log axis when any is bracketed."""
-    labels = list(dict.fromkeys(r["case"] for r in data))
-    grids = list(dict.fromkeys(r["grid"].split("×")[0] for r in data))
-    for j, g in enumerate(grids):
-        mine = [(i, r) for i, c in enumerate(labels) for r in data if r["case"] == c and r["grid"].split("×")[0] == g]
-        if not mine:
-            continue
-        y = np.array([i for i, _ in mine]) + 0.6 * (j / max(1, len(grids) - 1) - 0.5)
-        mid = np.array([r["ratio"] or np.nan for _, r in mine])
-        lo = np.array([r["ratio_low"] or np.nan for _, r in mine])
-        hi = np.array([r["ratio_high"] or np.nan for _, r in mine])
-        ax.errorbar(mid, y, xerr=[mid - lo, hi - mid], fmt="o", capsize=3, label=f"{g} tiles along L")
-    ax.set_yticks(np.arange(len(labels)), labels, fontsize=7)
-    if any(r["ratio"] for r in data):
-        ax.set_xscale("log")
-    ax.set_xlabel(xlabel)
-    ax.legend(fontsize=7)
-
-
-def plot(path, rows) -> Path:
-    """Top: critical moduli, failure time against E (doubly sinusoidal, E_m = E); bottom: edge tension
-    (paper's rule and unlit-twin rule, brackets), Gaussian failure times."""
-    fig, ax = new_figure(2, 2, size=(13.0, 8.4))
-    _boundary_panel(ax[0, 0], rows["modulus"], "E_stable / E_cr,max (6 s)")
-    for grid in sorted({r["grid"] for r in rows["horizon"]}):
-        mine = [r for r in rows["horizon"] if r["grid"] == grid]
-        ax[0, 1].plot([r["ratio"] for r in mine], [r["t_2"] or np.nan for r in mine], "o-", label=f"{grid}×{grid}")
-    ax[0, 1].axhline(RUN.t_final, color="0.6", lw=0.8, ls="--")
-    if any(r["t_2"] for r in rows["horizon"]):  # a log axis needs a point
-        ax[0, 1].set_xscale("log")
-    ax[0, 1].set_xlabel("E / E_cr,max (doubly sinusoidal, E_m = E)")
-    ax[0, 1].set_ylabel("time to 2 a₀ (s)")
-    ax[0, 1].legend(fontsize=7)
-    tension = [dict(r, case=f"{r['case']} (paper's rule)") for r in rows["tension"]]
-    tension += [dict(r, case=f"{r['case']} (twin rule)") for r in rows["twin"]]
-    _boundary_panel(ax[1, 0], tension, "T_stable / T_cr,max (6 s)")
-    g = rows["gaussian"]
-    for grid in sorted({r["grid"] for r in g}):
-        for label, style in (("strip", "s--"), ("sheet", "o-")):
-            mine = [r for r in g if r["grid"] == grid and r["case"] == label]
-            ax[1, 1].plot(
-                [r["waist_m"] for r in mine],
-                [r["failure_time_ms"] or np.nan for r in mine],
-                style,
-                label=f"{label}, {grid} tiles along L",
-            )
-    ax[1, 1].set_xlabel("beam waist w (m)")
-    ax[1, 1].set_ylabel("failure time (ms)")
-    ax[1, 1].legend(fontsize=7)
-    fig.suptitle("The sheet against the strip (in-house solver; brackets: bisection)", fontsize=10)
-    return save_figure(fig, path)
 
 
 def failure_frame(path, quick: bool = False) -> Path:

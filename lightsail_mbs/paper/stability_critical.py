@@ -31,6 +31,7 @@ import numpy as np
 from lightsail_mbs import RunSettings, SailParameters
 from lightsail_mbs.analysis import finite_amplitude as cr
 from lightsail_mbs.model import theory
+from lightsail_mbs.paper.common import sweep_options
 from lightsail_mbs.studies.bisection import BoundaryProblem, bisect_boundaries
 from lightsail_mbs.studies.tables import print_table, write_csv
 from lightsail_mbs.viz.plots import new_figure, save_figure
@@ -264,30 +265,13 @@ def compute(
 
 
 # ---- pipeline --------------------------------------------------------------------------------
-def run(
-    out,
-    *,
-    solver="reduced",
-    workers=None,
-    scheduler=None,
-    quick=False,
-    store=None,
-    progress=True,
-    fig9=None,
-    fig12=None,
-) -> dict:
+def run(out, *, solver="reduced", quick=False, fig9=None, fig12=None, **options) -> dict:
     """fig9, fig12: fig9_boundaries.csv / fig12_boundaries.csv of `lightsail-mbs reproduce --figure 9/12`,
-    whose boundaries are set next to the predicted ones (columns map_6s, map_12s)."""
+    whose boundaries are set next to the predicted ones (columns map_6s, map_12s); options: workers,
+    scheduler, store, progress (paper package docstring)."""
     out = Path(out)
-    found = compute(
-        quick=quick,
-        solver=solver,
-        store_dir=Path(store or out / "store") / NAME,
-        workers=workers,
-        scheduler=scheduler,
-        progress=progress,
-        map_csvs={"torsion": fig9, "tnt": fig12},
-    )
+    map_csvs = {"torsion": fig9, "tnt": fig12}
+    found = compute(quick=quick, solver=solver, map_csvs=map_csvs, **sweep_options(out, NAME, **options))
     write_csv(out / "stability_critical_amplitude.csv", found["table"])
     write_csv(out / "stability_critical_fits.csv", found["fits"])
     if found["maps"]:

@@ -230,7 +230,7 @@ def twin_runs(lit: SailParameters, store_dir, settings: RunSettings, *, progress
         progress=progress,
         label="unlit twin",
     )
-    (rec_lit, res_lit), (rec_unlit, res_unlit) = done
+    (_, res_lit), (_, res_unlit) = done
     for record, result in done:
         if result is None or record.get("error"):
             raise RuntimeError(f"twin run failed: {record.get('error')}")

@@ -91,7 +91,14 @@ class Sweep:
     store comes back from the next ``wait`` without running; every other finished case is written to
     the store (Result first if ``save_result``, then its record, atomically) before ``wait`` returns
     it. A case submitted again while it runs is run once and returned once per submission.
-    Arguments: see :func:`run_sweep`.
+
+    workers: local processes (default: all cores; 1 runs in this process). Ignored with a scheduler.
+    scheduler: a Dask scheduler address ("tcp://host:8786") or a ``distributed.Client``.
+    progress: a progress bar on stderr.
+    case_function: a module-level (picklable) function of a Case returning a Result or a summary
+        dict; default :func:`solve_case`.
+    retry_errors: also rerun cases recorded with status "error" (e.g. after fixing a solver).
+    label: the progress bar's name.
     """
 
     def __init__(
@@ -190,38 +197,17 @@ class Sweep:
         return finished
 
 
-def run_sweep(
-    cases,
-    store_dir,
-    *,
-    workers: int | None = None,
-    scheduler=None,
-    progress: bool = True,
-    case_function: Callable = solve_case,
-    retry_errors: bool = False,
-    label: str = "sweep",
-) -> list[dict]:
+def run_sweep(cases, store_dir, *, workers: int | None = None, **options) -> list[dict]:
     """Run every case not yet in the store at ``store_dir``; return the records in the order of ``cases``.
 
-    workers: local processes (default: all cores; 1 runs in this process). Ignored with a scheduler.
-    scheduler: a Dask scheduler address ("tcp://host:8786") or a ``distributed.Client``.
-    case_function: a module-level (picklable) function of a Case returning a Result or a summary
-        dict; default :func:`solve_case`.
-    retry_errors: also rerun cases recorded with status "error" (e.g. after fixing a solver).
+    workers: local processes (default: all cores, at most one per case; 1 runs in this process); options:
+    those of :class:`Sweep` (scheduler, progress, case_function, retry_errors, label).
     Each record is the case's summary (``Result.summary()``) plus ``key``, ``status`` ("ok" |
     "error"), ``error``, ``options``, ``case_wall_time`` and, if saved, ``result_path``.
     """
     cases = list(cases)
     unique = {getattr(case, "key", id(case)): case for case in cases}
-    with Sweep(
-        store_dir,
-        workers=_fewer(workers, len(unique)),
-        scheduler=scheduler,
-        progress=progress,
-        case_function=case_function,
-        retry_errors=retry_errors,
-        label=label,
-    ) as sweep:
+    with Sweep(store_dir, workers=_fewer(workers, len(unique)), **options) as sweep:
         sweep.set_total(len(unique))
         for case in unique.values():
             sweep.submit(case)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -125,94 +126,92 @@ def _write_png(image: np.ndarray, path: Path) -> Path:
     return path
 
 
-def render_frames(
-    result: Result,
-    out_dir,
-    frames: int | None = None,
-    every_seconds: float | None = None,
-    size=(800, 400),
-    exaggeration: float | None = None,
-    renderer: str = "auto",
-    color_by: str | None = "curvature",
-    color_scale: str = "frame",
-    arrows: bool = True,
-    label: str | None = None,
-    progress=None,
-) -> list[Path]:
-    """Write out_dir/frame_0000.png, ... of `result` sampled by frame_indices; returns the paths.
+@dataclass(frozen=True)
+class FrameOptions:
+    """How the frames of a chain run are picked and drawn (the keywords of render_frames and
+    render_comparison).
 
+    frames, every_seconds: how many frames, or one every Δt of simulated time (frame_indices);
     exaggeration: the factor E on the deflection (None: automatic, render_scene.auto_exaggeration, lowered
     frame by frame after failure where the sail would leave its band: frame_exaggeration);
-    color_by: 'curvature' (Δθ/l), 'moment' (k_T Δθ) or None; color_scale: 'frame' (each frame its own range,
-    shows where it concentrates) or 'run' (one range, shows growth); arrows: radiation load and boundary tension;
-    progress: True for a bar on stderr, or a callable called with the number of frames written so far.
+    renderer: one of RENDERERS; color_by: 'curvature' (Δθ/l), 'moment' (k_T Δθ) or None; color_scale:
+    'frame' (each frame its own range, shows where it concentrates) or 'run' (one range, shows growth);
+    arrows: radiation load and boundary tension; progress: True for a bar on stderr, or a callable called
+    with the number of frames written so far.
     """
+
+    frames: int | None = None
+    every_seconds: float | None = None
+    exaggeration: float | None = None
+    renderer: str = "auto"
+    color_by: str | None = "curvature"
+    color_scale: str = "frame"
+    arrows: bool = True
+    progress: object = None
+
+
+def render_frames(result: Result, out_dir, size=(800, 400), label: str | None = None, **options) -> list[Path]:
+    """Write out_dir/frame_0000.png, ... of `result` sampled by frame_indices; returns the paths.
+    options: those of FrameOptions."""
+    o = FrameOptions(**options)
     width, height = parse_size(size)
-    picks = frame_indices(result.time, frames, every_seconds, result.failure_time)
+    picks = frame_indices(result.time, o.frames, o.every_seconds, result.failure_time)
     layout = Layout(width, height)
-    style = make_style([result], [picks], layout, exaggeration, color_by, arrows, color_scale)
+    style = make_style([result], [picks], layout, o.exaggeration, o.color_by, o.arrows, o.color_scale)
     out = _prepare(out_dir)
-    canvas = open_canvas(renderer, width, height)
-    report, done = _progress(progress, len(picks))
-    try:
-        paths = []
-        for k, i in enumerate(picks):
-            image = canvas.draw(build_scene(result, int(i), style, label))
-            paths.append(_write_png(image, out / f"frame_{k:04d}.png"))
-            report(k + 1)
-    finally:
-        canvas.close()
-        done()
-    return paths
+    canvas = open_canvas(o.renderer, width, height)
+    images = (canvas.draw(build_scene(result, int(i), style, label)) for i in picks)
+    return write_frames(out, images, len(picks), o.progress, canvas.close)
 
 
 def render_comparison(
-    first: Result,
-    second: Result,
-    out_dir,
-    labels=("run 1", "run 2"),
-    frames: int | None = None,
-    every_seconds: float | None = None,
-    size=(800, 800),
-    exaggeration: float | None = None,
-    renderer: str = "auto",
-    color_by: str | None = "curvature",
-    color_scale: str = "frame",
-    arrows: bool = True,
-    progress=None,
+    first: Result, second: Result, out_dir, labels=("run 1", "run 2"), size=(800, 800), **options
 ) -> list[Path]:
     """Frames of two runs at the same simulated times, `first` above `second` (each half the height),
     with one exaggeration per frame for both and one colour scale. A run that ended earlier (e.g. stopped at failure)
-    keeps showing its last state."""
+    keeps showing its last state. options: those of FrameOptions."""
+    o = FrameOptions(**options)
     width, height = parse_size(size)
     panel = Layout(width, height // 2)
     if panel.height < MIN_HEIGHT:
         raise ParameterError(f"size={size!r} is invalid: allowed a height ≥ {2 * MIN_HEIGHT} pixels for two panels")
     longer = first if first.time[-1] >= second.time[-1] else second
-    picks = frame_indices(longer.time, frames, every_seconds)
+    picks = frame_indices(longer.time, o.frames, o.every_seconds)
     times = longer.time[picks]
     runs = (first, second)
     per_run = [np.unique(_nearest(r.time, np.minimum(times, r.time[-1]))) for r in runs]
-    style = make_style(runs, per_run, panel, exaggeration, color_by, arrows, color_scale)
+    style = make_style(runs, per_run, panel, o.exaggeration, o.color_by, o.arrows, o.color_scale)
     out = _prepare(out_dir)
-    canvas = open_canvas(renderer, width, panel.height)
-    report, done = _progress(progress, len(times))
-    try:
-        paths = []
-        for k, t in enumerate(times):
+    canvas = open_canvas(o.renderer, width, panel.height)
+
+    def stacked():
+        for t in times:
             states = [(r, int(_nearest(r.time, np.array([min(t, r.time[-1])]))[0])) for r in runs]
             e = frame_exaggeration(style, states)  # one factor for both panels
             images = [
                 canvas.draw(build_scene(r, i, style, name, exaggeration=e)) for (r, i), name in zip(states, labels)
             ]
-            stacked = np.concatenate(
+            image = np.concatenate(
                 [images[0], np.full((height - 2 * panel.height, width, 3), 255, np.uint8), images[1]]
             )
-            stacked[panel.height - 1 : panel.height + 1] = 120  # a grey rule between the panels
-            paths.append(_write_png(stacked, out / f"frame_{k:04d}.png"))
+            image[panel.height - 1 : panel.height + 1] = 120  # a grey rule between the panels
+            yield image
+
+    return write_frames(out, stacked(), len(times), o.progress, canvas.close)
+
+
+def write_frames(out: Path, images, count: int, progress, close=None) -> list[Path]:
+    """Write the `count` RGB arrays of the iterable `images` as out/frame_0000.png, ... as they come,
+    reporting progress (_progress); close(), if given, at the end, also after an error. Returns the paths."""
+    report, done = _progress(progress, count)
+    paths = []
+    try:
+        for k, image in enumerate(images):
+            paths.append(_write_png(image, out / f"frame_{k:04d}.png"))
             report(k + 1)
     finally:
-        canvas.close()
+        if close is not None:
+            close()
         done()
     return paths
 

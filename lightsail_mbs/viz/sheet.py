@@ -22,9 +22,8 @@ import numpy as np
 
 from lightsail_mbs import analysis
 from lightsail_mbs.model.parameters import ParameterError
-from lightsail_mbs.model.sheet import rotation_xyz
 from lightsail_mbs.result import Result
-from lightsail_mbs.viz.frames import _prepare, _progress, _write_png, frame_indices, parse_size
+from lightsail_mbs.viz.frames import _prepare, _write_png, frame_indices, parse_size, write_frames
 
 COLOR_SCALES = ("run", "frame")
 VIEW_FRACTION = 0.1  # the automatic exaggeration draws the run's largest offset at this fraction of max(L, W)
@@ -47,15 +46,6 @@ def plane_frame(centres: np.ndarray):
     e1 = np.array([1.0, 0.0, 0.0]) - n[0] * n
     e1 /= np.linalg.norm(e1)
     return c, e1, np.cross(n, e1), n
-
-
-def tile_corners(result: Result, index: int) -> np.ndarray:
-    """(N, 4, 3) corners of every tile at sample `index` (counter-clockwise seen from +z)."""
-    p = result.params
-    a, b = p.length / p.n, p.width / p.ny
-    local = np.array([[-a, -b, 0], [a, -b, 0], [a, b, 0], [-a, b, 0]]) * 0.5
-    R = rotation_xyz(result.tile_angles[index])
-    return result.tile_centres[index][:, None, :] + np.einsum("kij,cj->kci", R, local)
 
 
 def auto_exaggeration(result: Result) -> float:
@@ -175,16 +165,8 @@ def render_sheet_frames(
         vmax = float(np.max(np.abs(result.deflection()[picks]))) / (float(result.amplitude[0]) or 1.0)
     e = auto_exaggeration(result) if exaggeration is None else exaggeration
     out = _prepare(out_dir)
-    report, done = _progress(progress, len(picks))
-    paths = []
-    try:
-        for k, i in enumerate(picks):
-            image = frame_image(draw_frame(result, int(i), size, e, vmax))
-            paths.append(_write_png(image, out / f"frame_{k:04d}.png"))
-            report(k + 1)
-    finally:
-        done()
-    return paths
+    images = (frame_image(draw_frame(result, int(i), size, e, vmax)) for i in picks)
+    return write_frames(out, images, len(picks), progress)
 
 
 def save_frame(result: Result, index: int, path, size=(1000, 450), exaggeration: float | None = None) -> Path:

@@ -48,20 +48,22 @@ Integrators, chosen per case (``method="auto"``, the choice and its reason in Re
    The whole run is one ``SolveSteps`` call: restarting it in chunks would perturb the generalized-α
    state at every restart.
 
-Sampling and the stop rule (the run skeleton's, solvers.skeleton): a post-step function keeps q, q̇,
-q̈ after every step and interpolates the output samples t_k = k·Δt that the steps passed by the quintic
-Hermite polynomial of the two ends of each one's step (exact at a step end; the generalized-α steps
-divide the output interval when shorter than it). Every SAMPLES_PER_CHECK samples — sooner when the
-amplitude's growth since the last check predicts failure before the next one, so that no time is spent
-integrating the crumpling sail past failure — or after STEPS_PER_CHECK steps (an explosively crumpling
-chain shrinks the explicit steps faster than any prediction from the samples), and at the end, it asks
-the skeleton's FailureMonitor for the first sample at or above the limit; the run stops there and keeps that sample.
+Sampling and the stop rule (the run skeleton's, solvers.skeleton): a post-step function
+(solvers.exudyn.sampler) keeps q, q̇, q̈ after every step and interpolates the output samples t_k = k·Δt
+that the steps passed by the quintic Hermite polynomial of the two ends of each one's step (exact at a
+step end; the generalized-α steps divide the output interval when shorter than it). Every
+SAMPLES_PER_CHECK samples — sooner when the amplitude's growth since the last check predicts failure
+before the next one, so that no time is spent integrating the crumpling sail past failure — or after
+sampler.STEPS_PER_CHECK steps (an explosively crumpling chain shrinks the explicit steps faster than any
+prediction from the samples), and at the end, it asks the skeleton's FailureMonitor for the first sample
+at or above the limit; the run stops there and keeps that sample.
 stop_at_failure=False runs on. A Newton failure, a too small step, an Exudyn error or a non-finite
 state is recorded in Result.error with the samples up to there.
 """
 
 from __future__ import annotations
 
+import functools
 import math
 import time as _time
 
@@ -71,7 +73,8 @@ from lightsail_mbs import analysis
 from lightsail_mbs.model import shapes
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
 from lightsail_mbs.result import Result
-from lightsail_mbs.solvers.exudyn.console import silenced
+from lightsail_mbs.solvers.exudyn.console import solve_steps
+from lightsail_mbs.solvers.exudyn.sampler import Sampler
 from lightsail_mbs.solvers.exudyn.supports import add_supports
 from lightsail_mbs.solvers.exudyn.tree import ChainLayout, generalized_force, tree_arguments
 from lightsail_mbs.solvers.progress import Progress
@@ -92,7 +95,6 @@ GA_STEPS_PER_TC = 500
 NEWTON_REL_TOL = 1e-8  # residual reduction per step at the default rtol (Exudyn's default), ∝ rtol²
 SPECTRAL_RADIUS = 0.9  # generalized-α numerical damping of the highest frequencies
 SAMPLES_PER_CHECK = 50  # failure check (and progress) after this many output samples
-STEPS_PER_CHECK = 100  # ... or after this many steps: a crumpling sail (steps shrinking) stops soon after failure
 OPTIONS = ("method", "rtol", "step_size", "newton_rel_tol", "newton_abs_tol", "spectral_radius")
 OPTIONS += ("samples_per_check", "perturbation")
 
@@ -248,129 +250,6 @@ def explicit_settings(t_final: float, abs_tol: float, initial_step: float, fixed
     return s
 
 
-class Sampler:
-    """The post-step function of a run: samples the output grid from the steps and applies the stop rule.
-
-    After every step it keeps t, q, q̇, q̈; every ``check_every`` output samples (and at the end) it
-    interpolates the samples the new steps passed, by the quintic Hermite polynomial through both ends
-    of the step that holds each (exact at a step end), and asks the monitor for the first sample at or
-    above the limit; it keeps the samples up to and including that one and returns False (stop).
-    """
-
-    def __init__(self, mbs, times: np.ndarray, layout: ChainLayout, monitor: FailureMonitor, check_every: int, bar):
-        self.times, self.layout, self.monitor, self.bar = times, layout, monitor, bar
-        self.check_every = max(1, int(check_every))
-        data = mbs.systemData
-        q0 = np.array(data.GetODE2Coordinates())
-        self.steps_t = [0.0]
-        self.steps_q = [q0]
-        self.steps_v = [np.array(data.GetODE2Coordinates_t())]
-        self.steps_a = [np.array(data.GetODE2Coordinates_tt())]
-        self.q, self.v = [q0], [self.steps_v[0]]  # samples (rows)
-        self.failed_at = None  # index of the first sample at or above the limit
-        self.steps = 0
-        self._next_check = min(self.check_every, times.size - 1)
-        x, y, _, _ = layout.positions(q0)
-        self._last = (0.0, analysis.amplitude(x, y))  # time and amplitude of the last checked sample
-
-    def __call__(self, mbs, t) -> bool:
-        self.steps += 1
-        data = mbs.systemData
-        self.steps_t.append(float(t))
-        self.steps_q.append(np.array(data.GetODE2Coordinates()))
-        self.steps_v.append(np.array(data.GetODE2Coordinates_t()))
-        self.steps_a.append(np.array(data.GetODE2Coordinates_tt()))
-        if self.steps_t[-1] >= self.times[self._next_check] * (1 - 1e-13) or len(self.steps_t) > STEPS_PER_CHECK:
-            self.bar.update(self.steps_t[-1])
-            return not self.check()
-        return True
-
-    def _sample(self) -> None:
-        """Interpolate the output times passed by the kept steps (then forget all but the last step)."""
-        t = np.asarray(self.steps_t)
-        k0 = len(self.q)
-        k1 = int(np.searchsorted(self.times, t[-1] * (1 + 1e-13) + 1e-300, side="right"))
-        if k1 > k0:
-            times = self.times[k0:k1]
-            step = np.clip(np.searchsorted(t, times * (1 - 1e-13), side="left"), 1, t.size - 1)
-            q, v = hermite(
-                (t[step - 1], *(np.asarray(a)[step - 1] for a in (self.steps_q, self.steps_v, self.steps_a))),
-                (t[step], *(np.asarray(a)[step] for a in (self.steps_q, self.steps_v, self.steps_a))),
-                times,
-            )
-            self.q.extend(q)
-            self.v.extend(v)
-        for kept in (self.steps_t, self.steps_q, self.steps_v, self.steps_a):
-            del kept[:-1]
-
-    def check(self) -> bool:
-        """Sample, then check the new samples; True (and the samples cut after it) at the first one at or
-        above the limit."""
-        if self.failed_at is not None:
-            return True
-        checked = len(self.q)
-        self._sample()
-        every = self.check_every
-        if self.monitor.active and len(self.q) > checked:
-            x, y, _, _ = self.layout.positions(np.asarray(self.q[checked:]))
-            amplitude = np.atleast_1d(analysis.amplitude(x, y))
-            over = self.monitor.first_failure(amplitude)
-            if over is not None:
-                self.failed_at = checked + over
-                del self.q[self.failed_at + 1 :]
-                del self.v[self.failed_at + 1 :]
-                return True
-            every = self._samples_to_next_check(self.times[len(self.q) - 1], float(amplitude[-1]))
-        self._next_check = min(len(self.q) - 1 + every, self.times.size - 1)
-        return False
-
-    def _samples_to_next_check(self, t: float, amplitude: float) -> int:
-        """check_every, or fewer when the amplitude, growing exponentially at the rate measured since the
-        last check, would reach the limit within twice that many samples: then half the predicted time to
-        the limit (at least one sample), so the run stops within a few steps of failure instead of
-        integrating the crumpling sail past it."""
-        t_last, a_last = self._last
-        self._last = (t, amplitude)
-        if not (amplitude > a_last > 0 and t > t_last):
-            return self.check_every
-        rate = math.log(amplitude / a_last) / (t - t_last)
-        to_limit = math.log(self.monitor.limit / amplitude) / rate
-        dt = self.times[1] - self.times[0] if self.times.size > 1 else to_limit
-        return int(max(1, min(self.check_every, math.floor(0.5 * to_limit / dt))))
-
-    def arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(time, q, q̇) of the samples taken."""
-        rows = len(self.q)
-        return self.times[:rows], np.asarray(self.q), np.asarray(self.v)
-
-
-def hermite(start, end, times) -> tuple[np.ndarray, np.ndarray]:
-    """q and q̇ at `times` within the step [t₀, t₁] from (t, q, q̇, q̈) at both ends: the quintic Hermite
-    polynomial and its derivative (error O(h⁶) in q, O(h⁵) in q̇)."""
-    t0, q0, v0, a0 = start
-    t1, q1, v1, a1 = end
-    h = np.asarray(t1 - t0, float).reshape(-1, 1)
-    s = np.clip((np.asarray(times) - np.asarray(t0).reshape(-1)) / h[:, 0], 0.0, 1.0)[:, None]
-    s2, s3 = s * s, s * s * s
-    s4, s5 = s3 * s, s3 * s2
-    q = (
-        (1 - 10 * s3 + 15 * s4 - 6 * s5) * q0
-        + (s - 6 * s3 + 8 * s4 - 3 * s5) * (h * v0)
-        + 0.5 * (s2 - 3 * s3 + 3 * s4 - s5) * (h * h * a0)
-        + (10 * s3 - 15 * s4 + 6 * s5) * q1
-        + (-4 * s3 + 7 * s4 - 3 * s5) * (h * v1)
-        + 0.5 * (s3 - 2 * s4 + s5) * (h * h * a1)
-    )
-    v = (
-        (-30 * s2 + 60 * s3 - 30 * s4) * ((q0 - q1) / h)
-        + (1 - 18 * s2 + 32 * s3 - 15 * s4) * v0
-        + 0.5 * (2 * s - 9 * s2 + 12 * s3 - 5 * s4) * (h * a0)
-        + (-12 * s2 + 28 * s3 - 15 * s4) * v1
-        + 0.5 * (3 * s2 - 8 * s3 + 5 * s4) * (h * a1)
-    )
-    return list(q), list(v)
-
-
 def run(
     params: SailParameters,
     settings: RunSettings,
@@ -393,41 +272,12 @@ def run(
     (generalized-α, or fixed-step DOPRI5), overriding rtol's; perturbation: amplitude (m) of the seeded
     roughness shapes.initial_state adds to the start (the conditioning probe of solvers.uncertainty).
     """
-    import exudyn as exu
-
     if options:
         raise ParameterError(f"options={sorted(options)} are invalid: the exudyn solver accepts {', '.join(OPTIONS)}")
     p = params
-    dt = settings.sample_interval
-    if method not in METHODS:
-        raise ParameterError(f"method={method!r} is invalid: allowed one of {', '.join(METHODS)}")
     rtol = DEFAULT_RTOL if rtol is None else rtol
-    if not (isinstance(rtol, (int, float)) and 0 < rtol < 1):
-        raise ParameterError(f"rtol={rtol!r} is invalid: allowed 0 < rtol < 1")
-    if step_size is not None and not (step_size > 0 and math.isfinite(step_size)):
-        raise ParameterError(f"step_size={step_size!r} is invalid: allowed a finite step > 0 (s)")
-    if not 0 <= spectral_radius <= 1:
-        raise ParameterError(f"spectral_radius={spectral_radius!r} is invalid: allowed 0 ≤ ρ∞ ≤ 1")
-    if not (perturbation >= 0 and math.isfinite(perturbation)):
-        raise ParameterError(f"perturbation={perturbation!r} is invalid: allowed a finite value ≥ 0 (m)")
-    chosen, reason = choose_method(p)
-    implicit_only = [
-        name
-        for name, v in (
-            ("step_size", step_size),
-            ("newton_rel_tol", newton_rel_tol),
-            ("newton_abs_tol", newton_abs_tol),
-        )
-        if v is not None
-    ]
-    if method == "auto":
-        method = "generalized-alpha" if implicit_only else chosen
-        if implicit_only:
-            reason = f"generalized-α options given ({', '.join(implicit_only)})"
-    else:
-        reason = "asked for"
-    if method == "DOPRI5" and (p.boundary != "free" or p.tip_load):
-        raise ParameterError("method='DOPRI5' is invalid with supports or a tip load: allowed 'generalized-alpha'")
+    _check_options(method, rtol, step_size, spectral_radius, perturbation)
+    method, reason = _method(p, method, step_size, newton_rel_tol, newton_abs_tol)
     newton_scale = (rtol / DEFAULT_RTOL) ** 2  # the Newton tolerances ∝ rtol², the step ∝ √rtol (docstring)
     rel_tol = NEWTON_REL_TOL * newton_scale if newton_rel_tol is None else float(newton_rel_tol)
     abs_tol = default_abs_tol(p) * newton_scale if newton_abs_tol is None else float(newton_abs_tol)
@@ -441,56 +291,30 @@ def run(
     SC, mbs, layout, _, _ = build(p, initial)
     info = {"method": method, "method_reason": reason, "rtol": rtol, "top_frequency": top_frequency(p)}
     if method == "generalized-alpha":
-        h = step_in_grid(default_step_size(p, settings, rtol) if step_size is None else float(step_size), dt)
+        h = step_in_grid(
+            default_step_size(p, settings, rtol) if step_size is None else float(step_size), settings.sample_interval
+        )
         s = simulation_settings(settings.t_final, h, rel_tol, abs_tol, spectral_radius)
-        solver = exu.MainSolverImplicitSecondOrder()
         info.update(step_size=h, newton_rel_tol=rel_tol, newton_abs_tol=abs_tol, spectral_radius=spectral_radius)
     else:
         atol = explicit_abs_tol(p, rtol)
         h0 = default_step_size(p, settings, rtol)
         s = explicit_settings(settings.t_final, atol, h0, None if step_size is None else float(step_size))
-        solver = exu.MainSolverExplicit()
         info.update(atol=atol, step_size=None if step_size is None else float(step_size))
     if perturbation:
         info["perturbation"] = perturbation
     bar = Progress(settings.t_final, progress, label=f"exudyn {p.model} n={p.n}")
-    error = None
-    sampler = None
-    try:
-        with silenced():
-            solver.InitializeSolver(mbs, s)
-            sampler = Sampler(mbs, settings.sample_times(), layout, monitor, samples_per_check, bar)
-            mbs.SetPostStepUserFunction(sampler)
-            ok = solver.SolveSteps(mbs, s)
-            if not ok and sampler.failed_at is None:
-                error = f"{method} failed at t = {solver.it.currentTime:.9g} s (exudyn: {solver.GetErrorString()})"
-            elif not np.all(np.isfinite(mbs.systemData.GetODE2Coordinates())):
-                error = f"non-finite state at t = {solver.it.currentTime:.9g} s"
-            solver.FinalizeSolver(mbs, s)
-    except exu.ExudynError as exc:  # solver failures are results, not crashes
-        error = f"exudyn: {exc}".strip()
-    finally:
-        bar.update(solver.it.currentTime)
-        bar.close()
+    sample = functools.partial(Sampler, mbs, settings.sample_times(), layout, monitor, samples_per_check, bar)
+    solver, sampler, error = _solve(mbs, s, method, sample, bar)
     wall = _time.perf_counter() - start
-    if sampler is None:  # failed before the first step
-        time = np.zeros(1)
-        q = layout.coordinates(initial)[None, :]
-        q_t = np.zeros_like(q)
-    else:
-        sampler.check()
-        time, q, q_t = sampler.arrays()
-        if error is not None:  # keep the samples with a finite state
-            finite = np.all(np.isfinite(q), axis=1) & np.all(np.isfinite(q_t), axis=1)
-            keep = int(np.argmin(finite)) if not finite.all() else finite.size
-            time, q, q_t = time[: max(keep, 1)], q[: max(keep, 1)], q_t[: max(keep, 1)]
+    time, q, q_t = _samples(sampler, error, layout.coordinates(initial))
     x, y, theta, z = layout.positions(q)
     vx, vy, omega, z_rate = layout.velocities(q, q_t)
     info.update(
         steps=int(sampler.steps if sampler else 0),
         rejected_steps=int(getattr(solver.it, "rejectedAutomaticStepSizeSteps", 0)),
         newton_iterations=int(solver.it.newtonStepsCount),
-        jacobian_evaluations=int(solver.it.newtonJacobiCount),
+        njev=int(solver.it.newtonJacobiCount),
         coordinates=layout.size,
         formulation="ObjectKinematicTree (minimal coordinates), net slice load compiled",
     )
@@ -511,3 +335,79 @@ def run(
         info=info,
         settings=settings,
     )
+
+
+def _check_options(method, rtol, step_size, spectral_radius, perturbation) -> None:
+    """ParameterError for a method or option value out of its range."""
+    if method not in METHODS:
+        raise ParameterError(f"method={method!r} is invalid: allowed one of {', '.join(METHODS)}")
+    if not (isinstance(rtol, (int, float)) and 0 < rtol < 1):
+        raise ParameterError(f"rtol={rtol!r} is invalid: allowed 0 < rtol < 1")
+    if step_size is not None and not (step_size > 0 and math.isfinite(step_size)):
+        raise ParameterError(f"step_size={step_size!r} is invalid: allowed a finite step > 0 (s)")
+    if not 0 <= spectral_radius <= 1:
+        raise ParameterError(f"spectral_radius={spectral_radius!r} is invalid: allowed 0 ≤ ρ∞ ≤ 1")
+    if not (perturbation >= 0 and math.isfinite(perturbation)):
+        raise ParameterError(f"perturbation={perturbation!r} is invalid: allowed a finite value ≥ 0 (m)")
+
+
+def _method(p: SailParameters, method: str, step_size, newton_rel_tol, newton_abs_tol) -> tuple[str, str]:
+    """(method, reason) of a run: choose_method's for "auto" unless generalized-α options are given."""
+    chosen, reason = choose_method(p)
+    implicit_only = [
+        name
+        for name, v in (
+            ("step_size", step_size),
+            ("newton_rel_tol", newton_rel_tol),
+            ("newton_abs_tol", newton_abs_tol),
+        )
+        if v is not None
+    ]
+    if method == "auto":
+        method = "generalized-alpha" if implicit_only else chosen
+        if implicit_only:
+            reason = f"generalized-α options given ({', '.join(implicit_only)})"
+    else:
+        reason = "asked for"
+    if method == "DOPRI5" and (p.boundary != "free" or p.tip_load):
+        raise ParameterError("method='DOPRI5' is invalid with supports or a tip load: allowed 'generalized-alpha'")
+    return method, reason
+
+
+def _solve(mbs, s, method: str, sample, bar):
+    """Run Exudyn's solver of `method` with the post-step sampler that sample() makes once the solver is
+    initialised (it reads the initial accelerations): (solver, sampler or None if the run failed before
+    it, error or None)."""
+    import exudyn as exu
+
+    solver = exu.MainSolverImplicitSecondOrder() if method == "generalized-alpha" else exu.MainSolverExplicit()
+    made = []
+
+    def start_sampling():
+        made.append(sample())
+        mbs.SetPostStepUserFunction(made[0])
+
+    error = solve_steps(
+        solver,
+        mbs,
+        s,
+        bar,
+        failure=f"{method} failed",
+        stopped=lambda: made[0].failed_at is not None,
+        initialised=start_sampling,
+    )
+    return solver, (made[0] if made else None), error
+
+
+def _samples(sampler: Sampler | None, error: str | None, q0: np.ndarray):
+    """(time, q, q̇) of the run's samples; after an error only those with a finite state; the initial
+    coordinates q0 at rest when the run failed before its first step (no sampler)."""
+    if sampler is None:
+        return np.zeros(1), q0[None, :], np.zeros_like(q0[None, :])
+    sampler.check()
+    time, q, q_t = sampler.arrays()
+    if error is not None:  # keep the samples with a finite state
+        finite = np.all(np.isfinite(q), axis=1) & np.all(np.isfinite(q_t), axis=1)
+        keep = int(np.argmin(finite)) if not finite.all() else finite.size
+        time, q, q_t = time[: max(keep, 1)], q[: max(keep, 1)], q_t[: max(keep, 1)]
+    return time, q, q_t

@@ -1,8 +1,12 @@
-"""Exudyn prints to stdout by default; the commands print JSON there. One switch for every Exudyn call."""
+"""Exudyn prints to stdout by default; the commands print JSON there. One switch for every Exudyn call, and
+the one way a run drives Exudyn's solver silently with its failures recorded, not raised."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from contextlib import contextmanager
+
+import numpy as np
 
 
 @contextmanager
@@ -16,3 +20,34 @@ def silenced():
         yield
     finally:
         exu.config.printToConsole = printing
+
+
+def solve_steps(
+    solver, mbs, settings, bar, *, failure: str, stopped: Callable[[], bool], initialised: Callable | None = None
+) -> str | None:
+    """Initialise, run and finalise Exudyn's `solver` on `mbs`, silenced; returns the run's error or None.
+
+    initialised(): called once the solver is initialised, before the first step. A solve that fails
+    when not stopped() (the post-step function's stop rule) is the error "<failure> at t = … s (exudyn:
+    …)"; a non-finite state and an Exudyn exception are errors too. The progress bar ends at the time
+    reached."""
+    import exudyn as exu
+
+    error = None
+    try:
+        with silenced():
+            solver.InitializeSolver(mbs, settings)
+            if initialised is not None:
+                initialised()
+            ok = solver.SolveSteps(mbs, settings)
+            if not ok and not stopped():
+                error = f"{failure} at t = {solver.it.currentTime:.9g} s (exudyn: {solver.GetErrorString()})"
+            elif not np.all(np.isfinite(mbs.systemData.GetODE2Coordinates())):
+                error = f"non-finite state at t = {solver.it.currentTime:.9g} s"
+            solver.FinalizeSolver(mbs, settings)
+    except exu.ExudynError as exc:  # solver failures are results, not crashes
+        error = f"exudyn: {exc}".strip()
+    finally:
+        bar.update(float(solver.it.currentTime))
+        bar.close()
+    return error

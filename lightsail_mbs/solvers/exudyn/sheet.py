@@ -47,7 +47,7 @@ from lightsail_mbs import analysis
 from lightsail_mbs.model import sheet
 from lightsail_mbs.model.parameters import ParameterError, SailParameters
 from lightsail_mbs.result import Result
-from lightsail_mbs.solvers.exudyn.console import silenced
+from lightsail_mbs.solvers.exudyn.console import silenced, solve_steps
 from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.solvers.skeleton import FailureMonitor
@@ -179,7 +179,7 @@ class SheetSystem:
         self.generic = mbs.AddObject(ObjectGenericODE2(nodeNumbers=self.nodes, forceVector=self.force.tolist()))
         mbs.Assemble()
         self.update_load()
-        mbs.SetPreNewtonResidualUserFunction(lambda mbs_, t, iteration, discontinuous: self.update_load())
+        mbs.SetPreNewtonResidualUserFunction(lambda _mbs, _t, _iteration, _discontinuous: self.update_load())
 
     def force_vector(self, q: np.ndarray) -> np.ndarray:
         """The load's generalised force (6N) at coordinates q: tile forces at the centres, no torques."""
@@ -258,56 +258,17 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     mbs = system.mbs
     s = simulation_settings(settings.t_final, h, rel_tol, abs_tol, spectral_radius)
     monitor = FailureMonitor(analysis.plane_amplitude(system.centres(mbs.systemData.GetODE2Coordinates())), settings)
-    rows_q = [np.array(mbs.systemData.GetODE2Coordinates())]
-    rows_v = [np.array(mbs.systemData.GetODE2Coordinates_t())]
-    times = [0.0]
-    watch = {"steps": 0, "failed": False, "next_sample": dt}
     bar = Progress(settings.t_final, progress, label=f"exudyn sheet {p.n}x{p.ny}")
-
-    def after_step(mbs_, t) -> bool:
-        if t < 0.5 * h:  # Exudyn also calls this once at initialisation
-            return True
-        watch["steps"] += 1
-        if t < watch["next_sample"] - 0.25 * h:  # by time: Exudyn may redo a step that Newton failed
-            return True
-        watch["next_sample"] += dt
-        rows_q.append(np.array(mbs_.systemData.GetODE2Coordinates()))
-        rows_v.append(np.array(mbs_.systemData.GetODE2Coordinates_t()))
-        times.append(t)
-        if (len(times) - 1) % SAMPLES_PER_CHECK == 0:
-            bar.update(t)
-            if monitor.active:
-                centres = system.centres(np.array(rows_q[-SAMPLES_PER_CHECK:]))
-                if monitor.first_failure(analysis.plane_amplitude(centres)) is not None:
-                    watch["failed"] = True
-                    return False
-        return True
-
-    mbs.SetPostStepUserFunction(after_step)
+    recorder = Recorder(mbs, system, monitor, h, dt, bar)
+    mbs.SetPostStepUserFunction(recorder)
     solver = exu.MainSolverImplicitSecondOrder()
-    error = None
-    try:
-        with silenced():
-            solver.InitializeSolver(mbs, s)
-            ok = solver.SolveSteps(mbs, s)
-            if not ok and not watch["failed"]:
-                error = (
-                    f"Newton did not converge at t = {solver.it.currentTime:.9g} s (exudyn: {solver.GetErrorString()})"
-                )
-            elif not np.all(np.isfinite(mbs.systemData.GetODE2Coordinates())):
-                error = f"non-finite state at t = {solver.it.currentTime:.9g} s"
-            solver.FinalizeSolver(mbs, s)
-    except exu.ExudynError as exc:
-        error = f"exudyn: {exc}".strip()
-    finally:
-        bar.update(float(solver.it.currentTime))
-        bar.close()
+    error = solve_steps(solver, mbs, s, bar, failure="Newton did not converge", stopped=lambda: recorder.failed)
     wall = _time.perf_counter() - start
-    centres, angles, velocities, omega = system.state(np.array(rows_q), np.array(rows_v))
-    stop = monitor.first_failure(analysis.plane_amplitude(centres))
+    state = system.state(np.array(recorder.rows_q), np.array(recorder.rows_v))
+    times = recorder.times
+    stop = monitor.first_failure(analysis.plane_amplitude(state[0]))
     if stop is not None:  # end at the first sample past failure
-        centres, angles, velocities, omega = (a[: stop + 1] for a in (centres, angles, velocities, omega))
-        times = times[: stop + 1]
+        state, times = tuple(a[: stop + 1] for a in state), times[: stop + 1]
     info = {
         "formulation": "rigid tiles (NodeRigidBodyRxyz) and ObjectConnectorRigidBodySpringDamper edges, "
         "generalized-alpha, modified Newton, sparse LU",
@@ -318,9 +279,9 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         "newton_abs_tol_floor": ROUND_OFF_FACTOR * round_off_floor(p, system.conn),
         "spectral_radius": spectral_radius,
         "perturbation": float(options.get("perturbation") or 0.0),
-        "steps": watch["steps"],
+        "steps": recorder.steps,
         "newton_iterations": int(solver.it.newtonStepsCount),
-        "jacobian_evaluations": int(solver.it.newtonJacobiCount),
+        "njev": int(solver.it.newtonJacobiCount),
         "load_calls": system.load_calls,
         "load_time": system.load_time,
         "coordinates": 6 * system.tiles.count,
@@ -329,23 +290,44 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         "membrane_damping": system.tiles.membrane_damping,
         "cpu_time": _time.process_time() - cpu,
     }
-    result = Result.from_tiles(
-        p,
-        "exudyn",
-        times,
-        centres,
-        angles,
-        velocities,
-        omega,
-        wall_time=wall,
-        error=error,
-        info=info,
-        settings=settings,
-    )
+    result = Result.from_tiles(p, "exudyn", times, *state, wall_time=wall, error=error, info=info, settings=settings)
     note = round_off_warning(p, system.conn)
     if note:
         result.warnings.append(note)
     return result
+
+
+class Recorder:
+    """The post-step function of a sheet run: the state at every output sample (every step that reaches
+    the next sample time; Exudyn may redo a step that Newton failed, so by time, not by count), and the stop
+    rule every SAMPLES_PER_CHECK samples. Attributes: rows_q, rows_v and times of the samples, steps, failed
+    (the stop rule fired)."""
+
+    def __init__(self, mbs, system: SheetSystem, monitor: FailureMonitor, h: float, dt: float, bar):
+        self.system, self.monitor, self.h, self.dt, self.bar = system, monitor, h, dt, bar
+        self.rows_q = [np.array(mbs.systemData.GetODE2Coordinates())]
+        self.rows_v = [np.array(mbs.systemData.GetODE2Coordinates_t())]
+        self.times = [0.0]
+        self.steps, self.failed, self.next_sample = 0, False, dt
+
+    def __call__(self, mbs, t) -> bool:
+        if t < 0.5 * self.h:  # Exudyn also calls this once at initialisation
+            return True
+        self.steps += 1
+        if t < self.next_sample - 0.25 * self.h:  # by time: Exudyn may redo a step that Newton failed
+            return True
+        self.next_sample += self.dt
+        self.rows_q.append(np.array(mbs.systemData.GetODE2Coordinates()))
+        self.rows_v.append(np.array(mbs.systemData.GetODE2Coordinates_t()))
+        self.times.append(t)
+        if (len(self.times) - 1) % SAMPLES_PER_CHECK == 0:
+            self.bar.update(t)
+            if self.monitor.active:
+                centres = self.system.centres(np.array(self.rows_q[-SAMPLES_PER_CHECK:]))
+                if self.monitor.first_failure(analysis.plane_amplitude(centres)) is not None:
+                    self.failed = True
+                    return False
+        return True
 
 
 def static_centres(p: SailParameters, rel_tol: float = 1e-10) -> np.ndarray:

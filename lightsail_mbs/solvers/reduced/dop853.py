@@ -21,7 +21,8 @@ import numpy as np
 from numba import njit
 
 from lightsail_mbs.solvers.reduced import tableaus
-from lightsail_mbs.solvers.reduced.dynamics import N, rhs_into, workspace
+from lightsail_mbs.solvers.reduced.chain_constants import N
+from lightsail_mbs.solvers.reduced.dynamics import rhs_into, workspace
 
 STAGES = tableaus.DOP853_STAGES  # 12 stages per step
 A = np.ascontiguousarray(tableaus.DOP853_A)  # (16, 16): 12 step stages + 3 dense-output stages
@@ -215,10 +216,15 @@ def advance(k, state, y, f, interp, y_old, t_bound, rtol, atol, max_step, sample
     return OK, written
 
 
-class Dop853:
-    """The compiled DOP853 for one chain (constants k) from y0 at t = 0 up to t_bound."""
+class CompiledIntegrator:
+    """What the compiled step loops share: the state from y0 at t = 0 up to t_bound, the statistics read
+    from the loop's state vector (at the indices t_at, steps_at, nfev_at, njev_at, nlu_at; None: not
+    counted) and advance(), which calls the loop `kernel` with the arrays of work() between f and y_old."""
 
-    def __init__(self, k, y0, t_bound, rtol, atol, max_step=np.inf, first_step=None):
+    kernel = None  # staticmethod(the compiled step loop)
+    t_at = steps_at = nfev_at = njev_at = nlu_at = None  # indices in the state vector
+
+    def __init__(self, k, y0, t_bound, rtol, atol, max_step, first_step):
         self.k = k
         self.y = np.array(y0, float)
         self.f = np.empty_like(self.y)  # f(y₀) and the initial step: at the first advance (compiled)
@@ -226,26 +232,33 @@ class Dop853:
         self.rtol = float(rtol)
         self.atol = np.broadcast_to(np.asarray(atol, float), self.y.shape).copy()
         self.max_step = float(max_step)
-        h0 = 0.0 if first_step is None else float(first_step)
-        self.state = np.array([0.0, h0, 0.0, 0.0, 0.0, 1.0])
-        self.interp = np.zeros((7, self.y.size))
+        self.first_step = 0.0 if first_step is None else float(first_step)
         self.y_old = self.y.copy()
         self.status = OK
 
-    t = property(lambda self: float(self.state[0]))
-    steps = property(lambda self: int(self.state[2]))
-    nfev = property(lambda self: int(self.state[3]))
-    njev = property(lambda self: 0)
-    nlu = property(lambda self: 0)
+    def _count(self, index) -> int:
+        return 0 if index is None else int(self.state[index])
+
+    t = property(lambda self: float(self.state[self.t_at]))
+    steps = property(lambda self: self._count(self.steps_at))
+    nfev = property(lambda self: self._count(self.nfev_at))
+    njev = property(lambda self: self._count(self.njev_at))
+    nlu = property(lambda self: self._count(self.nlu_at))
+
+    def work(self) -> tuple:
+        """The loop's own arrays, passed between f and y_old."""
+        return ()
 
     def advance(self, samples: np.ndarray) -> np.ndarray:
+        """Integrate past the sample times (increasing); returns the states there as columns
+        (fewer if the run ended early: self.status is then FINISHED or an error code)."""
         out = np.empty((samples.size, self.y.size))
-        self.status, written = advance(
+        self.status, written = self.kernel(
             self.k,
             self.state,
             self.y,
             self.f,
-            self.interp,
+            *self.work(),
             self.y_old,
             self.t_bound,
             self.rtol,
@@ -255,3 +268,18 @@ class Dop853:
             out,
         )
         return out[:written].T
+
+
+class Dop853(CompiledIntegrator):
+    """The compiled DOP853 for one chain (constants k) from y0 at t = 0 up to t_bound."""
+
+    kernel = staticmethod(advance)
+    t_at, steps_at, nfev_at = 0, 2, 3
+
+    def __init__(self, k, y0, t_bound, rtol, atol, max_step=np.inf, first_step=None):
+        super().__init__(k, y0, t_bound, rtol, atol, max_step, first_step)
+        self.state = np.array([0.0, self.first_step, 0.0, 0.0, 0.0, 1.0])
+        self.interp = np.zeros((7, self.y.size))
+
+    def work(self) -> tuple:
+        return (self.interp,)

@@ -102,7 +102,8 @@ import math
 import numpy as np
 from numba import njit
 
-from lightsail_mbs.solvers.reduced.dynamics import C_S, C_T, EXTENSIBLE, HALF, INERTIA, K_S, K_T, MASS, N, joint_forces
+from lightsail_mbs.solvers.reduced.chain_constants import C_S, C_T, EXTENSIBLE, HALF, INERTIA, K_S, K_T, MASS, N
+from lightsail_mbs.solvers.reduced.dynamics import joint_forces
 
 
 @njit(cache=True)

@@ -32,16 +32,18 @@ import numpy as np
 from numba import njit
 
 from lightsail_mbs.solvers.reduced import tableaus
+from lightsail_mbs.solvers.reduced.chain_constants import C_S, C_T, EXTENSIBLE, K_S, K_T, N
 from lightsail_mbs.solvers.reduced.dop853 import (
     FINISHED,
     NOT_FINITE,
     OK,
     STEP_TOO_SMALL,
+    CompiledIntegrator,
     finite,
     initial_step,
     scaled_rms,
 )
-from lightsail_mbs.solvers.reduced.dynamics import C_S, C_T, EXTENSIBLE, K_S, K_T, N, rhs_into, workspace
+from lightsail_mbs.solvers.reduced.dynamics import rhs_into, workspace
 from lightsail_mbs.solvers.reduced.newton import compliances, factor, geometry_into, newton_solve
 
 C = np.ascontiguousarray(tableaus.RADAU_C)
@@ -353,56 +355,29 @@ def _dense(Z, y_old, x, out):
         out[i] = acc
 
 
-class Radau:
+class Radau(CompiledIntegrator):
     """Radau IIA with the O(n) Newton matrix for one chain (constants k) from y0 at t = 0 to t_bound."""
 
+    kernel = staticmethod(advance)
+    t_at, steps_at, nfev_at, njev_at, nlu_at = T_NOW, STEPS, NFEV, NJEV, NLU
+
     def __init__(self, k, y0, t_bound, rtol, atol, max_step=np.inf, first_step=None, geometric=True):
-        self.k = k
+        super().__init__(k, y0, t_bound, rtol, atol, max_step, first_step)
         self.geometric = bool(geometric)
-        self.y = np.array(y0, float)
-        size = self.y.size
         n = int(k[N])
-        self.f = np.empty(size)  # f(y₀), the initial step and J̃'s first state: at the first advance (compiled)
-        self.t_bound = float(t_bound)
-        self.rtol = float(rtol)
-        self.atol = np.broadcast_to(np.asarray(atol, float), self.y.shape).copy()
-        self.max_step = float(max_step)
-        h0 = 0.0 if first_step is None else float(first_step)
         self.geo = np.zeros((4, n))  # cos θ, sin θ, arms, geometric stiffness of J̃'s state
         self.real_fac = tuple(np.zeros((n - 1, 3, 3)) for _ in range(3)) + (np.zeros(n),)
         self.cplx_fac = tuple(np.zeros((n - 1, 3, 3), np.complex128) for _ in range(3)) + (np.zeros(n, np.complex128),)
-        self.Z = np.zeros((3, size))
-        self.y_old = self.y.copy()
+        self.Z = np.zeros((3, self.y.size))
         self.state = np.zeros(STATE_SIZE)
-        self.state[[H_ABS, H_ABS_OLD, ERROR_OLD, CURRENT_JAC, H_OLD, H_FACTORED]] = [h0, -1.0, -1.0, 1.0, 1.0, -1.0]
-        self.status = OK
+        self.state[[H_ABS, H_ABS_OLD, ERROR_OLD, CURRENT_JAC, H_OLD, H_FACTORED]] = [
+            self.first_step,
+            -1.0,
+            -1.0,
+            1.0,
+            1.0,
+            -1.0,
+        ]
 
-    t = property(lambda self: float(self.state[T_NOW]))
-    steps = property(lambda self: int(self.state[STEPS]))
-    nfev = property(lambda self: int(self.state[NFEV]))
-    njev = property(lambda self: int(self.state[NJEV]))
-    nlu = property(lambda self: int(self.state[NLU]))
-
-    def advance(self, samples: np.ndarray) -> np.ndarray:
-        """Integrate past the sample times (increasing); returns the states there as columns
-        (fewer if the run ended early: self.status is then FINISHED or an error code)."""
-        out = np.empty((samples.size, self.y.size))
-        self.status, written = advance(
-            self.k,
-            self.state,
-            self.y,
-            self.f,
-            self.geo,
-            self.real_fac,
-            self.cplx_fac,
-            self.geometric,
-            self.Z,
-            self.y_old,
-            self.t_bound,
-            self.rtol,
-            self.atol,
-            self.max_step,
-            np.ascontiguousarray(samples, float),
-            out,
-        )
-        return out[:written].T
+    def work(self) -> tuple:
+        return (self.geo, self.real_fac, self.cplx_fac, self.geometric, self.Z)

@@ -185,21 +185,12 @@ def dynamics_of(p: SailParameters):
     return BoundedChainDynamics(model, model.pack(start.x[0], start.y[0], start.theta, start.z)), model
 
 
-def run(
-    params: SailParameters,
-    settings: RunSettings,
-    *,
-    progress: bool = False,
-    rtol: float | None = None,
-    atol=None,
-    method: str | None = None,
-    **options,
-) -> Result:
-    """Integrate a chain with supports or a tip load (module docstring) and return its Result.
+def run(params: SailParameters, settings: RunSettings, *, progress: bool, rtol, atol, method, **options) -> Result:
+    """Integrate a chain with supports or a tip load (module docstring) and return its Result; called by
+    solver.run with its arguments.
 
-    rtol: relative tolerance (default 1e-6); atol: absolute tolerance, scalar or per state entry
-    (default rtol × state_scales(model, 1)); method: Radau (default), BDF or LSODA; options: max_step,
-    first_step.
+    rtol: relative tolerance (None: 1e-6); atol: absolute tolerance, scalar or per state entry (None:
+    rtol × state_scales(model, 1)); method: Radau (None), BDF or LSODA; options: max_step, first_step.
     """
     unknown = sorted(set(options) - set(OPTIONS))
     if unknown:
