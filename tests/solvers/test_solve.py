@@ -14,9 +14,9 @@ from tests.strategies import EXAMPLES, accepted_cases, check_property, short_run
 @pytest.mark.parametrize("solver", ["reduced", "exudyn"])
 def test_any_accepted_case_runs_briefly_to_finite_output_or_a_recorded_error(solver, examples):
     """Property: for any accepted case and a short run (a few samples over a fraction of √(L/g₀)), solve
-    returns a Result — never raises — on the sample grid it reports (the requested one, or the finer one that
-located its failure), with finite arrays; a failure of the
-    method is a non-empty Result.error, and the samples before it stay finite."""
+        returns a Result — never raises — on the sample grid it reports (the requested one, or the finer one that
+    located its failure), with finite arrays; a failure of the
+        method is a non-empty Result.error, and the samples before it stay finite."""
 
     @given(st.data())
     def runs(data):
