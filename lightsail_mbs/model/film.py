@@ -108,11 +108,14 @@ class Film:
         near = u <= 1.0
         theta = np.arctan(np.where(near, u, 0.0))[..., None] * 0.5 * (1.0 + _NODES)  # ∫₀^θ cos^(2H−1)
         head = k * 0.5 * np.arctan(np.where(near, u, 0.0)) * (np.cos(theta) ** (2 * h - 1) @ _WEIGHTS)
-        # ∫₀^φ₀ sin^(2H−1)φ dφ with φ = φ₀ t^(1/2H): φ₀^(2H)/(2H) ∫₀¹ (sin φ / φ)^(2H−1) dt, a smooth integrand
+        # ∫₀^φ₀ sin^(2H−1)φ dφ = ∫₀^φ₀ φ^(2H−1) s(φ) dφ, s = (sin φ/φ)^(2H−1) = 1 + c φ² + O(φ⁴), c = (1 − 2H)/6:
+        # the first two terms exactly, the rest with φ = φ₀ t^(1/2H), an integrand ~ t^(2/H) by quadrature
         with np.errstate(divide="ignore"):
             phi0 = np.arctan(1.0 / np.where(near, 2.0, u))
+        c = (1.0 - 2.0 * h) / 6.0
         phi = phi0[..., None] * (0.5 * (1.0 + _NODES)) ** (0.5 / h)
-        tail = k * phi0 ** (2 * h) / (2 * h) * 0.5 * ((np.sinc(phi / np.pi)) ** (2 * h - 1) @ _WEIGHTS)
+        rest = (np.sinc(phi / np.pi) ** (2 * h - 1) - 1.0 - c * phi**2) @ _WEIGHTS * 0.5 / (2 * h)
+        tail = k * phi0 ** (2 * h) * (1.0 / (2 * h) + c * phi0**2 / (2 * h + 2) + rest)
         return np.where(near, head, np.nan), np.where(near, np.nan, tail)
 
 
