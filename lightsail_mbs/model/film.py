@@ -102,7 +102,7 @@ class Film:
         """(F(q) where qξ ≤ 1 else NaN, 1 − F(q) where qξ > 1 else NaN), each by quadrature without cancellation."""
         q = np.asarray(q, float)
         if np.any(q < 0) or np.any(np.isnan(q)):
-            raise ParameterError(f"q={q!r} is invalid: allowed wavenumbers ≥ 0 (rad/m)")
+            raise ParameterError("q is invalid: allowed wavenumbers ≥ 0 (rad/m), no NaN")
         h, k = self.hurst, self._k()
         u = q * self.correlation_length
         near = u <= 1.0
@@ -153,6 +153,11 @@ def _seed(seed) -> int:
     return int(seed)
 
 
+def _blocks(size: int, block: int = 2048):
+    """Slices of at most `block` points: the mode sums' memory bounded whatever the grid."""
+    return [slice(i, min(i + block, size)) for i in range(0, size, block)]
+
+
 def _mix(z: np.ndarray) -> np.ndarray:
     """SplitMix64's finaliser on uint64 words (a bijection with full avalanche)."""
     z = (z ^ (z >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
@@ -200,9 +205,11 @@ class FilmProfile:
 
     def _sum(self, x, a, b):
         x = np.asarray(x, float)
-        phase = np.multiply.outer(x.reshape(-1), self.wavenumber)
-        out = (np.cos(phase) @ a + np.sin(phase) @ b).reshape(x.shape)
-        return out if out.ndim else float(out)
+        xs, out = x.reshape(-1), np.empty(x.size)
+        for block in _blocks(xs.size):
+            phase = np.multiply.outer(xs[block], self.wavenumber)
+            out[block] = np.cos(phase) @ a + np.sin(phase) @ b
+        return out.reshape(x.shape) if x.ndim else float(out[0])
 
     def __call__(self, x):
         return self._sum(x, self.cosine, self.sine)
@@ -226,13 +233,13 @@ class ChainFilm:
     hinge_x: np.ndarray  # (n+1,) x_k = k l
     hinge_heights: np.ndarray  # (n+1,) h(x_k)
     centre_x: np.ndarray  # (n,) (k + ½) l
-    centre_heights: np.ndarray  # (n,) h at the slice centres (the chord midpoints lie l²h''/8 lower)
+    centre_heights: np.ndarray  # (n,) h at the slice centres (the chords' midpoints differ by l²h''/8)
     angles: np.ndarray  # (n,) θ_k = atan((h_{k+1} − h_k)/l): the chord from hinge k to hinge k+1
 
 
 def profile(film: Film, length: float, n: int, seed: int) -> ChainFilm:
     """The film at a chain's hinges and slice centres, and its slices' angles (hinges at x = k l: their chords
-    exceed l by l θ²/2, ~1e-19 m for nm films; shapes' exact-chord construction takes film_profile instead)."""
+    exceed l by l θ²/2, ~1e-17 m for nm films; shapes' exact-chord construction takes film_profile instead)."""
     h = film_profile(film, length, n, seed)
     l = float(length) / n
     xk, xc = np.arange(n + 1) * l, (np.arange(n) + 0.5) * l
@@ -252,12 +259,12 @@ def mode_seed(film: Film, length: float, wavelength: float) -> float:
 # ---- the sheet: an isotropic surface ------------------------------------------------------------------------
 
 
-def _bin_variance_2d(film: Film, qx, qy, dqx: float, dqy: float) -> np.ndarray:
-    """2 ∫ C₂ d²q over the bins of size dqx × dqy centred on (qx, qy) (both signs of the wavevector)."""
-    ox = np.asarray(qx, float)[..., None, None] + 0.5 * dqx * _NODES_2D[:, None]
-    oy = np.asarray(qy, float)[..., None, None] + 0.5 * dqy * _NODES_2D[None, :]
+def _bin_variance_2d(film: Film, qx: np.ndarray, qy: np.ndarray, dqx: float, dqy: float) -> np.ndarray:
+    """(Jy, Jx): 2 ∫ C₂ d²q over the bins of size dqx × dqy centred on (qx_i, qy_j) (both signs of the wavevector)."""
+    ox = np.asarray(qx, float)[:, None, None] + 0.5 * dqx * _NODES_2D[:, None]  # (Jx, 8, 1)
     w = np.multiply.outer(_WEIGHTS_2D, _WEIGHTS_2D) * 0.25 * dqx * dqy
-    return 2.0 * np.sum(film.psd_2d(np.hypot(ox, oy)) * w, axis=(-2, -1))
+    rows = [np.sum(film.psd_2d(np.hypot(ox, row + 0.5 * dqy * _NODES_2D)) * w, axis=(-2, -1)) for row in qy]
+    return 2.0 * np.array(rows)  # (Jy, Jx), one row of wavevectors at a time
 
 
 def sheet_modes(film: Film, length: float, width: float, nx: int, ny: int):
@@ -268,7 +275,7 @@ def sheet_modes(film: Film, length: float, width: float, nx: int, ny: int):
     nx, ny = _count("nx", nx, 2), _count("ny", ny, 1)
     jx, jy = np.arange(nx + 1), np.arange(-ny, ny + 1)
     qx, qy = jx * np.pi / L, jy * np.pi / W
-    v = _bin_variance_2d(film, qx[None, :], qy[:, None], np.pi / L, np.pi / W)
+    v = _bin_variance_2d(film, qx, qy, np.pi / L, np.pi / W)
     upper = (jx[None, :] > 0) | ((jx[None, :] == 0) & (jy[:, None] > 0))
     return qx, qy, np.where(upper, v, 0.0)
 
@@ -288,10 +295,21 @@ class FilmSurface:
 
     def _sum(self, x, y, c):
         x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
-        xs, ys = x.reshape(-1), y.reshape(-1)  # 2-D products: a stacked matmul is far slower
-        ex, ey = np.exp(1j * np.multiply.outer(xs, self.qx)), np.exp(1j * np.multiply.outer(ys, self.qy))
-        out = np.real(np.sum((ey @ c) * ex, axis=-1)).reshape(x.shape)
-        return out if out.ndim else float(out)
+        xs, ys, out = x.reshape(-1), y.reshape(-1), np.empty(x.size)  # 2-D products: a stacked matmul is far slower
+        for block in _blocks(xs.size):
+            ex, ey = (
+                np.exp(1j * np.multiply.outer(xs[block], self.qx)),
+                np.exp(1j * np.multiply.outer(ys[block], self.qy)),
+            )
+            out[block] = np.real(np.sum((ey @ c) * ex, axis=-1))
+        return out.reshape(x.shape) if x.ndim else float(out[0])
+
+    def on_grid(self, x, y) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(h, ∂h/∂x, ∂h/∂y) on the grid of the coordinates x (nx,) and y (ny,), arrays (ny, nx)."""
+        ex = np.exp(1j * np.multiply.outer(np.asarray(x, float), self.qx))
+        ey = np.exp(1j * np.multiply.outer(np.asarray(y, float), self.qy))
+        c = self.coefficients
+        return tuple(np.real(ey @ m @ ex.T) for m in (c, 1j * self.qx[None, :] * c, 1j * self.qy[:, None] * c))
 
     def __call__(self, x, y):
         return self._sum(x, y, self.coefficients)
@@ -329,8 +347,7 @@ def surface(film: Film, length: float, width: float, nx: int, ny: int, seed: int
     """Heights and slopes of the film at the tile centres of a sheet of nx × ny tiles."""
     s = film_surface(film, length, width, nx, ny, seed)
     x, y = (np.arange(nx) + 0.5) * float(length) / nx, (np.arange(ny) + 0.5) * float(width) / ny
-    gx, gy = np.meshgrid(x, y)
-    return SheetFilm(x, y, s(gx, gy), s.slope_x(gx, gy), s.slope_y(gx, gy))
+    return SheetFilm(x, y, *s.on_grid(x, y))
 
 
 # ---- the seed of a mode -------------------------------------------------------------------------------------
