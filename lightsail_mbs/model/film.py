@@ -14,7 +14,8 @@ A line scan of it (the chain's profile h(x)) has the two-sided 1-D PSD C₁(q) =
 
 Flat (white) for q ≪ 1/ξ, self-affine C₁ ∝ q^(−1−2H) for q ≫ 1/ξ. The variance at |q| ≤ Q is σ² F(Q) with
 F(Q) = k ∫₀^atan(Qξ) cos^(2H−1)θ dθ, k = 2HΓ(H + ½)/(√π Γ(H + 1)) (F = (2/π) atan(Qξ) for H = ½), evaluated
-here by Gauss–Legendre quadrature (the integrable end point at θ = π/2, H < ½, by a change of variable).
+here by Gauss–Legendre quadrature: up to qξ = 1 directly, beyond it as the tail 1 − F (the integrable end point
+θ = π/2 of H < ½ by its leading terms in closed form), so that F and 1 − F both hold to round-off.
 
 **The fields.** On a sail of length L (and width W) the film is a Fourier series of period Λ = 2L (Λ_y = 2W):
 wavenumbers q_j = 2πj/Λ = πj/L, the wavelengths 2L/j of the chain's half-integer modes ν = j/2. Mode j has
@@ -28,7 +29,7 @@ The sheet's surface is the same in 2-D: modes (j_x, j_y) over the half-plane, |j
 with the 2-D PSD integrated over its bin (8 × 8-point Gauss–Legendre) for both signs of the wavevector.
 
 **The reference film** (REFERENCE_FILM, docs/film.md): σ = 1 nm, ξ = 0.1 m, H = 0.5. The RMS lies within the
-0.2–2 nm that AFM reports for free-standing and thin films on µm scans; H = 0.5 is graphene's measured
+0.1–2 nm that AFM reports for free-standing and thin films on µm scans; H = 0.5 is graphene's measured
 height–height exponent 2H = 1, near the q^(−3.15) 2-D spectrum of suspended graphene (H ≈ 0.6). No cited
 measurement covers the centimetre-to-metre waves a sail carries: ξ = 0.1 m is a stated assumption that puts
 most of the 1 nm in the band of a 1 m sail (0.91 nm RMS at n = 30).
@@ -249,8 +250,9 @@ def profile(film: Film, length: float, n: int, seed: int) -> ChainFilm:
 
 def mode_seed(film: Film, length: float, wavelength: float) -> float:
     """The RMS amplitude (m) the film puts into a sine of the given wavelength on a sail of length L: √(2 v) with
-    v the film's variance over the bin of width π/L at q = 2π/λ (the mode of a chain, and the least-squares
-    amplitude of the film along sin(qx + φ) on 0 ≤ x ≤ L for a spectrum smooth over π/L)."""
+    v the film's variance over the bin of width π/L at q = 2π/λ (a chain's mode j = 2L/λ). An estimate without a
+    grid: the least-squares amplitude along sin(qx + φ) on 0 ≤ x ≤ L (projected_seed) also picks up the neighbouring
+    wavenumbers, 0.76–1.19 times this for the reference film (docs/film.md)."""
     L, lam = _length("length", length), _length("wavelength", wavelength)
     q, dq = 2 * np.pi / lam, np.pi / L
     return float(np.sqrt(2.0 * film.band_variance(max(q - 0.5 * dq, 0.0), q + 0.5 * dq)))
