@@ -12,23 +12,27 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING
 
+from lightsail_mbs.base.constants import VERSION
+
 # public name -> module that defines it
 _PUBLIC = {
-    "ParameterError": "lightsail_mbs.model.parameters",
+    "ParameterError": "lightsail_mbs.base.validation",
     "SailParameters": "lightsail_mbs.model.parameters",
     "paper_case": "lightsail_mbs.model.parameters",
-    "RunSettings": "lightsail_mbs.solvers.settings",
+    "RunSettings": "lightsail_mbs.base.settings",
     "paper_settings": "lightsail_mbs.solvers.settings",
     "Result": "lightsail_mbs.result",
     "solve": "lightsail_mbs.solvers",
 }
-_SUBMODULES = ("analysis", "model", "paper", "result", "solvers", "studies", "viz", "cli")
+_SUBMODULES = ("analysis", "base", "model", "paper", "result", "solvers", "studies", "viz", "cli")
 
 if TYPE_CHECKING:
-    from lightsail_mbs.model.parameters import ParameterError, SailParameters, paper_case
+    from lightsail_mbs.base.settings import RunSettings
+    from lightsail_mbs.base.validation import ParameterError
+    from lightsail_mbs.model.parameters import SailParameters, paper_case
     from lightsail_mbs.result import Result
     from lightsail_mbs.solvers import solve
-    from lightsail_mbs.solvers.settings import RunSettings, paper_settings
+    from lightsail_mbs.solvers.settings import paper_settings
 
 # the package's files that hold numba kernels compiled with cache=True (tests/test_package.py checks the list)
 KERNEL_SOURCES = (
@@ -94,7 +98,7 @@ def _drop_stale_kernels() -> None:
 _drop_stale_kernels()
 
 __all__ = ["ParameterError", "SailParameters", "RunSettings", "paper_case", "paper_settings", "Result", "solve"]
-__version__ = "0.1.0"
+__version__ = VERSION
 
 
 def __getattr__(name: str):

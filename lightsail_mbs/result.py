@@ -33,9 +33,11 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import analysis
+from lightsail_mbs.base.constants import VERSION
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import shapes
-from lightsail_mbs.model.parameters import RUN_FIELDS, ParameterError, SailParameters
-from lightsail_mbs.solvers.settings import RunSettings
+from lightsail_mbs.model.parameters import RUN_FIELDS, SailParameters
 
 ARRAYS = ("time", "x", "y", "theta", "z", "vx", "vy", "omega", "z_rate", "amplitude")
 # the sheet's tile arrays (T, N, 3): saved and loaded only when a Result has them
@@ -88,11 +90,9 @@ def _library_version(name: str) -> str | None:
 
 @functools.cache
 def _static_provenance() -> dict:
-    from lightsail_mbs import __version__
-
     return {
         "package": "lightsail-mbs",
-        "version": __version__,
+        "version": VERSION,
         "code_version": code_version(),
         **_git(),
         **{name: _library_version(name) for name in LIBRARIES},

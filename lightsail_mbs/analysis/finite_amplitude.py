@@ -39,8 +39,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from lightsail_mbs import analysis
+from lightsail_mbs.base.validation import ParameterError, check, finite
 from lightsail_mbs.model import shapes, theory
-from lightsail_mbs.model.parameters import ParameterError, SailParameters, check, finite
+from lightsail_mbs.model.parameters import SailParameters
 
 MIN_FACTOR, MAX_FACTOR = 1.001, 10.0  # allowed final bracket widths hi/lo of critical_ratio
 BLOWUP_RATIO = 10.0  # scaled runs past failure end here (the sail has crumpled; slopes no longer small)

@@ -47,8 +47,9 @@ import numpy as np
 import scipy.linalg as sl
 from scipy.linalg import null_space
 
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import shapes
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.model.parameters import SailParameters
 
 # modes without restoring force by support: a free sail translates in x, y and rotates
 RIGID_MODES = {"free": 3, "cantilever": 0, "pinned": 0}

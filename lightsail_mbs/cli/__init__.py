@@ -17,7 +17,7 @@ import tempfile
 import traceback
 from datetime import datetime
 
-from lightsail_mbs.model.parameters import ParameterError
+from lightsail_mbs.base.validation import ParameterError
 
 # subcommand modules of this package; each defines register(subparsers) and sets `func`. Registering
 # imports no more than the options need (numpy, the parameter classes): each command imports the

@@ -7,8 +7,9 @@ import argparse
 import tempfile
 from pathlib import Path
 
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
-from lightsail_mbs.solvers.settings import RunSettings
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model.parameters import SailParameters
 
 # option name -> (SailParameters field, type, help)
 CASE_OPTIONS = {

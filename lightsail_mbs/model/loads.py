@@ -57,7 +57,8 @@ import math
 import numpy as np
 from numba import njit
 
-from lightsail_mbs.model.parameters import SPEED_OF_LIGHT, SailParameters
+from lightsail_mbs.base.constants import SPEED_OF_LIGHT
+from lightsail_mbs.model.parameters import SailParameters
 
 
 def intensity(p: SailParameters, x: np.ndarray) -> np.ndarray:

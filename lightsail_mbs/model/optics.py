@@ -77,9 +77,11 @@ from pathlib import Path
 import numpy as np
 from numba import njit
 
+from lightsail_mbs.base.constants import SPEED_OF_LIGHT
+from lightsail_mbs.base.validation import ParameterError, check, finite
 from lightsail_mbs.model import rcwa
 from lightsail_mbs.model.loads import intensity
-from lightsail_mbs.model.parameters import SPEED_OF_LIGHT, ParameterError, SailParameters, check, finite
+from lightsail_mbs.model.parameters import SailParameters
 
 FORMAT = "lightsail-mbs optical table"
 FORMAT_VERSION = 1

@@ -22,7 +22,9 @@ import math
 import numbers
 from dataclasses import dataclass
 
-SPEED_OF_LIGHT = 299_792_458.0  # m/s
+from lightsail_mbs.base.constants import SPEED_OF_LIGHT
+from lightsail_mbs.base.validation import ParameterError, check, finite
+
 MODELS = ("rigid", "torsion", "tnt", "sheet")
 CHAIN_MODELS = ("rigid", "torsion", "tnt")
 # Supports of the chain's ends (validations, paper Appendices A–B): "free" (the sail, both ends free),
@@ -74,27 +76,6 @@ LEGACY_NAMES = {"amplitude": "defect_amplitude", "mode": "defect_mode", "defect_
 MIN_DEFECT_FRACTION = 1e-100
 # Run control that saved runs of that format kept with the case (now solvers.settings.RunSettings).
 RUN_FIELDS = ("t_final", "output_interval", "stop_at_failure", "failure_ratio")
-
-
-class ParameterError(ValueError):
-    """A parameter is outside its allowed range; the message names it, its value and the range."""
-
-
-def check(name: str, value, ok: bool, allowed: str) -> None:
-    if not ok:
-        raise ParameterError(f"{name}={value!r} is invalid: allowed {allowed}")
-
-
-def finite(name: str, value) -> float:
-    """value as a float; ParameterError unless it is a real number (not a bool or a string), finite."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ParameterError(f"{name}={value!r} is invalid: allowed a finite real number")
-    try:
-        v = float(value)
-    except (TypeError, ValueError, OverflowError):
-        raise ParameterError(f"{name}={value!r} is invalid: allowed a finite real number") from None
-    check(name, value, math.isfinite(v), "a finite real number (no NaN or inf)")
-    return v
 
 
 def _as_float(value) -> float:

@@ -50,7 +50,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from lightsail_mbs.model.parameters import ParameterError, check, finite
+from lightsail_mbs.base.validation import ParameterError, check, finite
 
 BACKENDS = ("meent", "grcwa")
 POLARIZATIONS = ("TE", "TM")

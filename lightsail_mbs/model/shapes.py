@@ -29,7 +29,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model.parameters import SailParameters
 
 
 @dataclass(frozen=True)

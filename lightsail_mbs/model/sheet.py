@@ -119,8 +119,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import loads, shapes
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.model.parameters import SailParameters
 
 SHEAR_CORRECTION = 5.0 / 6.0  # Mindlin's κ on the transverse-shear penalty
 PERTURBATION_SEED = 20240917  # the seeded tile offsets of a perturbed start (solvers' perturbation option)

@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from lightsail_mbs.model.parameters import SPEED_OF_LIGHT, SailParameters
+from lightsail_mbs.base.constants import SPEED_OF_LIGHT
+from lightsail_mbs.model.parameters import SailParameters
 
 
 def radiation_pressure(p: SailParameters) -> float:

@@ -24,8 +24,10 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING
 
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
-from lightsail_mbs.solvers.settings import RunSettings, paper_settings
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model.parameters import SailParameters
+from lightsail_mbs.solvers.settings import paper_settings
 from lightsail_mbs.solvers.skeleton import interrupts_propagate
 
 if TYPE_CHECKING:

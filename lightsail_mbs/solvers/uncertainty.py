@@ -57,8 +57,8 @@ from __future__ import annotations
 
 import math
 
+from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.model.parameters import SailParameters
-from lightsail_mbs.solvers.settings import RunSettings
 
 TIGHTEN = 10.0  # the tight twin's tolerances are the base run's / TIGHTEN (adaptive methods)
 WIDE_TIGHTEN = 100.0  # the reduced solver's DOP853: rtol / 100

@@ -23,10 +23,12 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import analysis
-from lightsail_mbs.model.parameters import ParameterError, SailParameters, paper_case
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model.parameters import SailParameters, paper_case
 from lightsail_mbs.result import with_uncertainty
 from lightsail_mbs.solvers import solve
-from lightsail_mbs.solvers.settings import RunSettings, paper_settings
+from lightsail_mbs.solvers.settings import paper_settings
 from lightsail_mbs.studies.tables import fmt
 
 WINDOW_RATIO = 1.5  # compare angles while both amplitudes are < 1.5 × initial

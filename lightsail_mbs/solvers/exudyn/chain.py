@@ -68,14 +68,15 @@ import time as _time
 import numpy as np
 
 from lightsail_mbs import analysis
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import shapes
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.exudyn.console import silenced
 from lightsail_mbs.solvers.exudyn.supports import add_supports
 from lightsail_mbs.solvers.exudyn.tree import ChainLayout, generalized_force, tree_arguments
 from lightsail_mbs.solvers.progress import Progress
-from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.solvers.skeleton import FailureMonitor
 
 METHODS = ("auto", "DOPRI5", "generalized-alpha")

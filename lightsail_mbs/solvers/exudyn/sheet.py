@@ -44,12 +44,14 @@ import time as _time
 import numpy as np
 
 from lightsail_mbs import analysis
+from lightsail_mbs.base.constants import SPEED_OF_LIGHT
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import sheet
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.exudyn.console import silenced
 from lightsail_mbs.solvers.progress import Progress
-from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.solvers.skeleton import FailureMonitor
 
 STEP_FACTOR = 0.026  # h = STEP_FACTOR · sqrt(L/g₀), as the chain's
@@ -86,7 +88,7 @@ def default_abs_tol(p: SailParameters, conn: sheet.Connectors | None = None) -> 
     round_off_floor): Newton cannot go below the round-off of the stiff in-plane springs (5e-11 N for
     the 30-tile chain limit at E = 4.5e9 Pa against 2e-14 N from the chain's rule)."""
     t = sheet.Tiles.of(p)
-    flat_force = 2.0 * p.intensity / 299_792_458.0 * t.area
+    flat_force = 2.0 * p.intensity / SPEED_OF_LIGHT * t.area
     scale = flat_force if flat_force > 0 else max(abs(p.pressure) * t.area, t.mass)
     slope = defect_slope(p)
     return max(NEWTON_ABS_FACTOR * scale * (slope if slope > 0 else 1.0), ROUND_OFF_FACTOR * round_off_floor(p, conn))
@@ -97,7 +99,7 @@ def round_off_warning(p: SailParameters, conn: sheet.Connectors | None = None) -
     tile, f₀ θ² (module docstring); None otherwise or for an unlit sheet."""
     conn = sheet.connectors(p) if conn is None else conn
     t = sheet.Tiles.of(p)
-    transverse = 2.0 * p.intensity / 299_792_458.0 * t.area * defect_slope(p) ** 2
+    transverse = 2.0 * p.intensity / SPEED_OF_LIGHT * t.area * defect_slope(p) ** 2
     noise = np.finfo(float).eps * max(p.length, p.width) * float(conn.stiffness[:, :2].max())
     if transverse <= 0 or noise <= transverse:
         return None

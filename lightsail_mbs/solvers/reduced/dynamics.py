@@ -52,10 +52,10 @@ import math
 import numpy as np
 from numba import njit
 
+from lightsail_mbs.base.constants import SPEED_OF_LIGHT
 from lightsail_mbs.model import loads, optics, payload
 from lightsail_mbs.model.loads import net_slice_force
 from lightsail_mbs.model.optics import packed_net_force
-from lightsail_mbs.model.parameters import SPEED_OF_LIGHT
 from lightsail_mbs.solvers.reduced.kinematics import ChainModel
 
 # layout of the constants vector of one chain (read by the compiled kernels)

@@ -18,12 +18,12 @@ import time as clock
 import numpy as np
 from numba import njit
 
+from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.solvers.reduced.dop853 import FINISHED as DONE
 from lightsail_mbs.solvers.reduced.dop853 import STATUS
 from lightsail_mbs.solvers.reduced.kinematics import ChainModel
-from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.solvers.skeleton import FINISHED, FailureMonitor, collect_samples
 
 # Output samples per call of a compiled integrator (failure check and progress in between): the run goes

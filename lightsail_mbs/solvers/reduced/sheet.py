@@ -47,13 +47,15 @@ import scipy.sparse as sp
 from numba import njit
 
 from lightsail_mbs import analysis
+from lightsail_mbs.base.constants import SPEED_OF_LIGHT
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import sheet
 from lightsail_mbs.model.loads import net_facet_force, round_gaussian_intensity
-from lightsail_mbs.model.parameters import SPEED_OF_LIGHT, ParameterError, SailParameters
+from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.solvers.reduced.sheet_radau import SheetRadau
-from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.solvers.skeleton import FailureMonitor
 
 STATE = 13  # u(3) q(4) v(3) ω_b(3) per tile
