@@ -73,6 +73,7 @@ import time
 from dataclasses import dataclass, field
 from importlib import metadata as importlib_metadata
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numba import njit
@@ -81,7 +82,9 @@ from lightsail_mbs.base.constants import SPEED_OF_LIGHT
 from lightsail_mbs.base.validation import ParameterError, check, finite
 from lightsail_mbs.model import rcwa
 from lightsail_mbs.model.loads import intensity
-from lightsail_mbs.model.parameters import SailParameters
+
+if TYPE_CHECKING:  # annotations only: the case (model/parameters.py) imports this module, not the reverse
+    from lightsail_mbs.model.parameters import SailParameters
 
 FORMAT = "lightsail-mbs optical table"
 FORMAT_VERSION = 1
