@@ -127,7 +127,7 @@ def test_code_version_follows_the_sources_that_decide_results_and_only_them(pack
     version = result_module.code_version.__wrapped__
     base = version()
     assert base == result_module.code_version()  # the copy is the installed package
-    for source in ("solvers/reduced/dynamics.py", "model/loads.py", "analysis/energy.py", "studies/runners.py"):
+    for source in ("solvers/reduced/dynamics.py", "model/loads.py", "model/energy.py", "studies/runners.py"):
         path = package_copy / source
         original = path.read_text()
         path.write_text(original + "\n# a change\n")

@@ -43,11 +43,10 @@ import time as _time
 
 import numpy as np
 
-from lightsail_mbs import analysis
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import sheet
+from lightsail_mbs.model import failure, sheet
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.exudyn.console import silenced
@@ -259,7 +258,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     abs_tol = default_abs_tol(p, system.conn) if abs_tol is None else float(abs_tol)
     mbs = system.mbs
     s = simulation_settings(settings.t_final, h, rel_tol, abs_tol, spectral_radius)
-    monitor = FailureMonitor(analysis.plane_amplitude(system.centres(mbs.systemData.GetODE2Coordinates())), settings)
+    monitor = FailureMonitor(failure.plane_amplitude(system.centres(mbs.systemData.GetODE2Coordinates())), settings)
     rows_q = [np.array(mbs.systemData.GetODE2Coordinates())]
     rows_v = [np.array(mbs.systemData.GetODE2Coordinates_t())]
     times = [0.0]
@@ -280,7 +279,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
             bar.update(t)
             if monitor.active:
                 centres = system.centres(np.array(rows_q[-SAMPLES_PER_CHECK:]))
-                if monitor.first_failure(analysis.plane_amplitude(centres)) is not None:
+                if monitor.first_failure(failure.plane_amplitude(centres)) is not None:
                     watch["failed"] = True
                     return False
         return True
@@ -306,7 +305,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         bar.close()
     wall = _time.perf_counter() - start
     centres, angles, velocities, omega = system.state(np.array(rows_q), np.array(rows_v))
-    stop = monitor.first_failure(analysis.plane_amplitude(centres))
+    stop = monitor.first_failure(failure.plane_amplitude(centres))
     if stop is not None:  # end at the first sample past failure
         centres, angles, velocities, omega = (a[: stop + 1] for a in (centres, angles, velocities, omega))
         times = times[: stop + 1]
