@@ -53,15 +53,9 @@ class RunFileError(ValueError):
 
 
 PACKAGE = Path(__file__).resolve().parent
-# the sources that decide the numbers of a run and of its sweep record (globs relative to the package folder)
-RESULT_SOURCES = (
-    "base/*.py",
-    "model/*.py",
-    "solvers/*.py",
-    "solvers/*/*.py",
-    "result.py",
-    "studies/runners.py",
-)
+# what decides the numbers of a run and of its sweep record, relative to the package folder: folders (every
+# .py file below them, at any depth) and single files
+RESULT_SOURCES = ("base", "model", "solvers", "result.py", "studies/runners.py")
 LIBRARIES = ("exudyn", "numpy", "scipy", "numba")  # their versions are part of code_version
 
 
@@ -70,13 +64,25 @@ def code_version() -> str:
     """SHA-256 (first 16 hex digits) of the source files that decide a run's numbers and its record
     (RESULT_SOURCES) and of the versions of the numerical libraries (LIBRARIES)."""
     digest = hashlib.sha256()
-    for pattern in RESULT_SOURCES:
-        for path in sorted(PACKAGE.glob(pattern)):
-            digest.update(path.relative_to(PACKAGE).as_posix().encode())
-            digest.update(path.read_bytes())
+    for path in result_source_files():
+        digest.update(path.relative_to(PACKAGE).as_posix().encode())
+        digest.update(path.read_bytes())
     for name in LIBRARIES:
         digest.update(f"{name}=={_library_version(name)}".encode())
     return digest.hexdigest()[:16]
+
+
+def result_source_files() -> list[Path]:
+    """The files code_version hashes: each file of RESULT_SOURCES and every .py file below each of its
+    folders, however deep (a new subfolder is hashed as soon as it exists)."""
+    files = []
+    for entry in RESULT_SOURCES:
+        path = PACKAGE / entry
+        if path.is_dir():
+            files += sorted(path.rglob("*.py"))
+        elif path.is_file():
+            files.append(path)
+    return files
 
 
 def _library_version(name: str) -> str | None:

@@ -258,7 +258,7 @@ MUTATIONS = [
 
 def copy_repository(target: Path) -> None:
     """Tracked files (with their modification times), the package's numba caches and the record of the kernel
-    sources they were compiled from (lightsail_mbs._drop_stale_kernels)."""
+    sources they were compiled from (lightsail_mbs.base.kernels.drop_stale_kernels)."""
     files = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True).stdout
     for name in files.decode().split("\0"):
         if name and (ROOT / name).is_file():

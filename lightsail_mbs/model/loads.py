@@ -56,9 +56,9 @@ import math
 from typing import TYPE_CHECKING
 
 import numpy as np
-from numba import njit
 
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT
+from lightsail_mbs.base.kernels import njit
 
 if TYPE_CHECKING:  # annotations only: the case imports this module (through model/optics.py), not the reverse
     from lightsail_mbs.model.parameters import SailParameters

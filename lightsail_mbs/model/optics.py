@@ -76,9 +76,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
-from numba import njit
 
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT
+from lightsail_mbs.base.kernels import njit
 from lightsail_mbs.base.validation import ParameterError, check, finite
 from lightsail_mbs.model import rcwa
 from lightsail_mbs.model.loads import intensity

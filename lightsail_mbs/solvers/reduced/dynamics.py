@@ -50,9 +50,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT
+from lightsail_mbs.base.kernels import njit
 from lightsail_mbs.model import loads, optics, payload
 from lightsail_mbs.model.loads import net_slice_force
 from lightsail_mbs.model.optics import packed_net_force

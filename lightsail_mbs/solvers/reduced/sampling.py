@@ -16,8 +16,8 @@ import math
 import time as clock
 
 import numpy as np
-from numba import njit
 
+from lightsail_mbs.base.kernels import njit
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.progress import Progress

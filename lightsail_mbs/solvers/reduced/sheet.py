@@ -44,9 +44,9 @@ import time as _time
 
 import numpy as np
 import scipy.sparse as sp
-from numba import njit
 
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT
+from lightsail_mbs.base.kernels import njit
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import failure, sheet
