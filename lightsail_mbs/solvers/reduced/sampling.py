@@ -7,7 +7,7 @@ the thousands spends its time integrating: `Trajectory.fill` writes the centres 
 r_{i+1} = r_i + a_i e_i + b e_{i+1} of Eqs 13–14, 30–31), their velocities, the angles (and extensions)
 of each output sample into the (samples, n) arrays of the Result, and returns its amplitude
 (analysis.amplitude: the spread of the centres' offsets from their total-least-squares line) for the
-failure monitor. Tested against the numpy forms of kinematics.py and analysis.failure.
+failure monitor. Tested against the numpy forms of kinematics.py and model.failure.
 """
 
 from __future__ import annotations
