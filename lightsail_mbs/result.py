@@ -5,7 +5,7 @@ Provenance: every Result records what made it (:func:`provenance`): this package
 numba, Python and the platform, and the time it was made.
 
 ``code_version`` is the version of everything that decides a run's numbers and its stored record: a
-hash of the source files in :data:`RESULT_SOURCES` (the case and its physics, the solvers, the Result,
+hash of the source files in :data:`RESULT_SOURCES` (the leaf layer, the case and its physics, the solvers, the Result,
 the failure rule and the energy of its summary, and the function that turns a run into a sweep record)
 together with the versions of the numerical libraries in :data:`LIBRARIES`. A change to any of them, and
 only that, makes stored results stale (:mod:`lightsail_mbs.studies.store` recomputes them). Python and the
@@ -32,10 +32,11 @@ from pathlib import Path
 
 import numpy as np
 
-from lightsail_mbs import analysis
-from lightsail_mbs.model import shapes
-from lightsail_mbs.model.parameters import RUN_FIELDS, ParameterError, SailParameters
-from lightsail_mbs.solvers.settings import RunSettings
+from lightsail_mbs.base.constants import VERSION
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model import energy, failure, shapes
+from lightsail_mbs.model.parameters import RUN_FIELDS, SailParameters
 
 ARRAYS = ("time", "x", "y", "theta", "z", "vx", "vy", "omega", "z_rate", "amplitude")
 # the sheet's tile arrays (T, N, 3): saved and loaded only when a Result has them
@@ -52,16 +53,9 @@ class RunFileError(ValueError):
 
 
 PACKAGE = Path(__file__).resolve().parent
-# the sources that decide the numbers of a run and of its sweep record (globs relative to the package folder)
-RESULT_SOURCES = (
-    "model/*.py",
-    "solvers/*.py",
-    "solvers/*/*.py",
-    "result.py",
-    "analysis/failure.py",
-    "analysis/energy.py",
-    "studies/runners.py",
-)
+# what decides the numbers of a run and of its sweep record, relative to the package folder: folders (every
+# .py file below them, at any depth) and single files
+RESULT_SOURCES = ("base", "model", "solvers", "result.py", "studies/runners.py")
 LIBRARIES = ("exudyn", "numpy", "scipy", "numba")  # their versions are part of code_version
 
 
@@ -70,13 +64,25 @@ def code_version() -> str:
     """SHA-256 (first 16 hex digits) of the source files that decide a run's numbers and its record
     (RESULT_SOURCES) and of the versions of the numerical libraries (LIBRARIES)."""
     digest = hashlib.sha256()
-    for pattern in RESULT_SOURCES:
-        for path in sorted(PACKAGE.glob(pattern)):
-            digest.update(path.relative_to(PACKAGE).as_posix().encode())
-            digest.update(path.read_bytes())
+    for path in result_source_files():
+        digest.update(path.relative_to(PACKAGE).as_posix().encode())
+        digest.update(path.read_bytes())
     for name in LIBRARIES:
         digest.update(f"{name}=={_library_version(name)}".encode())
     return digest.hexdigest()[:16]
+
+
+def result_source_files() -> list[Path]:
+    """The files code_version hashes: each file of RESULT_SOURCES and every .py file below each of its
+    folders, however deep (a new subfolder is hashed as soon as it exists)."""
+    files = []
+    for entry in RESULT_SOURCES:
+        path = PACKAGE / entry
+        if path.is_dir():
+            files += sorted(path.rglob("*.py"))
+        elif path.is_file():
+            files.append(path)
+    return files
 
 
 def _library_version(name: str) -> str | None:
@@ -88,11 +94,9 @@ def _library_version(name: str) -> str | None:
 
 @functools.cache
 def _static_provenance() -> dict:
-    from lightsail_mbs import __version__
-
     return {
         "package": "lightsail-mbs",
-        "version": __version__,
+        "version": VERSION,
         "code_version": code_version(),
         **_git(),
         **{name: _library_version(name) for name in LIBRARIES},
@@ -178,8 +182,8 @@ class Result:
         settings: RunSettings | None = None,
         amplitude=None,
     ) -> Result:
-        """Build a Result from raw solver output. The amplitude is computed here (analysis.amplitude)
-        unless the solver passes it (a compiled twin of analysis.amplitude, tested equal to it)."""
+        """Build a Result from raw solver output. The amplitude is computed here (failure.amplitude)
+        unless the solver passes it (a compiled twin of failure.amplitude, tested equal to it)."""
         time = np.asarray(time, float)
         steps = time.shape[0]
         empty = np.zeros((steps, 0))
@@ -188,7 +192,7 @@ class Result:
         arrays["z"] = empty if z is None else np.asarray(z, float).reshape(steps, -1)
         arrays["z_rate"] = empty if z_rate is None else np.asarray(z_rate, float).reshape(steps, -1)
         if amplitude is None:
-            amplitude = analysis.amplitude(arrays["x"], arrays["y"])
+            amplitude = failure.amplitude(arrays["x"], arrays["y"])
         amplitude = np.atleast_1d(np.asarray(amplitude, float))
         return cls(
             params,
@@ -216,7 +220,7 @@ class Result:
         settings: RunSettings | None = None,
     ) -> Result:
         """Build a sheet's Result from tile trajectories (T, N, 3); the amplitude is computed here
-        (analysis.plane_amplitude)."""
+        (failure.plane_amplitude)."""
         from lightsail_mbs.model import sheet
 
         time = np.asarray(time, float)
@@ -226,7 +230,7 @@ class Result:
             for name, a in zip(TILE_ARRAYS, (centres, angles, velocities, angular_velocities))
         }
         empty = np.zeros((steps, 0))
-        amplitude = np.atleast_1d(analysis.plane_amplitude(tiles["tile_centres"]))
+        amplitude = np.atleast_1d(failure.plane_amplitude(tiles["tile_centres"]))
         return cls(
             params,
             solver,
@@ -247,13 +251,13 @@ class Result:
         """Offsets from the best-fit line (chain, (T, n)) or plane (sheet, (T, N)) over time (m): what the
         failure rule measures."""
         if self.is_sheet:
-            return analysis.plane_offsets(self.tile_centres)
-        return analysis.line_offsets(self.x, self.y)
+            return failure.plane_offsets(self.tile_centres)
+        return failure.line_offsets(self.x, self.y)
 
     # ---- summary ---------------------------------------------------------------------------
     @property
     def failure_time(self) -> float | None:
-        return analysis.failure_time(self.time, self.amplitude, self.settings.failure_ratio)
+        return failure.failure_time(self.time, self.amplitude, self.settings.failure_ratio)
 
     @property
     def failed(self) -> bool:
@@ -312,11 +316,11 @@ class Result:
 
     @property
     def dissipated_energy(self) -> np.ndarray:
-        """Heat generated by the dampers since t = 0 (J), per sample (analysis.dissipated_energy; nan for a
+        """Heat generated by the dampers since t = 0 (J), per sample (energy.dissipated_energy; nan for a
         sheet, whose connector dampers are not accounted)."""
         if self.is_sheet:
             return np.full(self.time.shape, np.nan)
-        return analysis.dissipated_energy(self)
+        return energy.dissipated_energy(self)
 
     def summary(self) -> dict:
         sheet = {"ny": self.params.ny, "tiles": self.params.n * self.params.ny} if self.is_sheet else {}

@@ -146,7 +146,7 @@ def main():
         *mirror,
         "",
         "Zero means bit for bit: the table path computes each force in the product order of the solver's "
-        "Eq. (11) path (model/optics.packed_slice_force, normal_tangential_into), and the frame acceleration "
+        "Eq. (11) path (model/optics_kernels.packed_net_force), and the frame acceleration "
         "c_n(0) Ī/(cρh) of the table is the case's (2R + α) Ī/(cρh) to the bit.",
         "",
         "## 2. The two solvers on a computed grating table",

@@ -117,16 +117,16 @@ MUTATIONS = [
     Mutation(
         "no-interpolation",
         "analysis and result tests passing without failure-time interpolation",
-        "lightsail_mbs/analysis/failure.py",
+        "lightsail_mbs/model/failure.py",
         "return float(time[k - 1] + (limit - a0) / (a1 - a0) * (time[k] - time[k - 1]))",
         "return float(time[k])",
         "failure_time returns the first sample at the limit instead of interpolating",
         (
-            "tests/analysis/test_failure.py::test_failure_time_interpolated",
+            "tests/model/test_failure.py::test_failure_time_interpolated",
             "tests/test_result.py::test_summary_and_failure",
         ),
         (
-            "tests/analysis/test_failure.py::test_failure_time_interpolated",
+            "tests/model/test_failure.py::test_failure_time_interpolated",
             "tests/test_result.py::test_summary_and_failure",
         ),
     ),
@@ -186,8 +186,8 @@ MUTATIONS = [
         "exudyn-ratio",
         "failure_ratio ≠ 2 never reaching a solver",
         "lightsail_mbs/solvers/exudyn/chain.py",
-        "monitor = FailureMonitor(analysis.amplitude(initial.x, initial.y), settings)",
-        "monitor = FailureMonitor(analysis.amplitude(initial.x, initial.y), settings.replace(failure_ratio=2.0))",
+        "monitor = FailureMonitor(failure.amplitude(initial.x, initial.y), settings)",
+        "monitor = FailureMonitor(failure.amplitude(initial.x, initial.y), settings.replace(failure_ratio=2.0))",
         "Exudyn's stop rule uses the paper's ratio 2 whatever the settings say",
         ("tests/cli/test_commands.py::test_failure_ratio_option_reaches_the_solver[exudyn]",),
         ("tests/solvers/exudyn/test_chain.py",),
@@ -258,7 +258,7 @@ MUTATIONS = [
 
 def copy_repository(target: Path) -> None:
     """Tracked files (with their modification times), the package's numba caches and the record of the kernel
-    sources they were compiled from (lightsail_mbs._drop_stale_kernels)."""
+    sources they were compiled from (lightsail_mbs.base.kernels.drop_stale_kernels)."""
     files = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True).stdout
     for name in files.decode().split("\0"):
         if name and (ROOT / name).is_file():

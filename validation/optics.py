@@ -206,7 +206,7 @@ def main(argv=None):
         "",
         f"Made by `python validation/optics.py{' --quick' if args.quick else ''}`"
         + (" (a smoke run: 20 harmonics, 2° nodes — not the committed numbers)." if args.quick else "."),
-        f"Tables: meent {optics._backend_version('meent')} (numpy backend), {harmonics} harmonics (orders −N…N), "
+        f"Tables: meent {optics.backend_version('meent')} (numpy backend), {harmonics} harmonics (orders −N…N), "
         f"{theta.size} nodes on ±85° (spacing ≤ {step / DEG:g}°, breaks at the Rayleigh anomalies "
         f"±{abs(big.rayleigh_anomalies()[0]) / DEG:.4f}°). CPU time of the RCWA behind each table "
         "(one BLAS thread; from the cache when it was computed before):",

@@ -33,14 +33,14 @@ import numpy as np  # noqa: E402
 
 from lightsail_mbs import RunSettings, SailParameters  # noqa: E402
 from lightsail_mbs import solve as solve_with_estimate  # noqa: E402
-from lightsail_mbs.model import sheet, theory  # noqa: E402
+from lightsail_mbs.model import sheet, sheet_connectors, theory  # noqa: E402
 from lightsail_mbs.solvers.reduced.sheet import SheetModel  # noqa: E402
 from lightsail_mbs.studies.tables import fmt  # noqa: E402
 
 solve = functools.partial(solve_with_estimate, uncertainty=False)  # single runs: no error bars in this report
 
 HERE = Path(__file__).resolve().parent
-CURRENT_EDGE_STIFFNESS = sheet.edge_stiffness
+CURRENT_EDGE_STIFFNESS = sheet_connectors.edge_stiffness
 
 
 def former_edge_stiffness(p, tiles, edge, span, bending=True):
@@ -73,7 +73,7 @@ def spectra() -> list[str]:
         "|---|---|---|---|---|",
     ]
     for label, stiffness in (("former E_m h e³/(12 s)", former_edge_stiffness), ("current D_m e/s", None)):
-        sheet.edge_stiffness = stiffness or CURRENT_EDGE_STIFFNESS
+        sheet_connectors.edge_stiffness = stiffness or CURRENT_EDGE_STIFFNESS  # what connectors() calls
         try:
             for em in (4.5e9, None):
                 for reference in ("flat", "initial"):
@@ -91,7 +91,7 @@ def spectra() -> list[str]:
                         )
                         print(lines[-1], flush=True)
         finally:
-            sheet.edge_stiffness = CURRENT_EDGE_STIFFNESS
+            sheet_connectors.edge_stiffness = CURRENT_EDGE_STIFFNESS
     return lines
 
 

@@ -1,7 +1,9 @@
 """Analysis of Results: failure and amplitude, energy, frequencies, linear and finite-amplitude
-stability, statics. Analysis reads a Result (or a chain state), never a solver's internals.
+stability, statics. Analysis reads a Result (or a chain state); the exceptions that still build a
+solver's system from its internals (linear_stability, statics, finite_amplitude) are listed in the
+import contract (pyproject.toml).
 
-The failure rule and the energy functions are also reachable from the package itself
+The failure rule and the energy functions (model.failure, model.energy) are also reachable from here
 (``analysis.amplitude``, ``analysis.failure_time``, ``analysis.mechanical_energy``, …).
 """
 

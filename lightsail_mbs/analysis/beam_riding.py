@@ -81,8 +81,10 @@ import numpy as np
 from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq
 
+from lightsail_mbs.base.constants import SPEED_OF_LIGHT
+from lightsail_mbs.base.validation import check, finite
 from lightsail_mbs.model import optics, shapes
-from lightsail_mbs.model.parameters import SPEED_OF_LIGHT, SailParameters, check, finite
+from lightsail_mbs.model.parameters import SailParameters
 
 VERDICTS = ("rides", "drifts out", "tumbles")
 

@@ -27,7 +27,8 @@ E ≪ E_cr,max (and the rigid chain) F depends on n.
 
 This module measures the constants on the reduced solver in these units: short runs (a few t_c)
 bisected in the stiffness ratio (critical_ratio), paired runs for the divergence of neighbouring
-trajectories (divergence), and the scales (time_scale, stiffness_ratio).
+trajectories (divergence), and the stiffness ratio (stiffness_ratio). The scales k and t_c are the
+model's (model.theory.wavenumber, model.theory.time_scale; importable from here too).
 """
 
 from __future__ import annotations
@@ -39,8 +40,10 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from lightsail_mbs import analysis
+from lightsail_mbs.base.validation import ParameterError, check, finite
 from lightsail_mbs.model import shapes, theory
-from lightsail_mbs.model.parameters import ParameterError, SailParameters, check, finite
+from lightsail_mbs.model.parameters import SailParameters
+from lightsail_mbs.model.theory import time_scale, wavenumber
 
 MIN_FACTOR, MAX_FACTOR = 1.001, 10.0  # allowed final bracket widths hi/lo of critical_ratio
 BLOWUP_RATIO = 10.0  # scaled runs past failure end here (the sail has crumpled; slopes no longer small)
@@ -53,18 +56,6 @@ def log_bisect(fails, lo: float, hi: float, factor: float) -> tuple[float, float
         mid = math.sqrt(lo * hi)
         lo, hi = (mid, hi) if fails(mid) else (lo, mid)
     return lo, hi
-
-
-def wavenumber(p: SailParameters) -> float:
-    """k = 2πν/L (1/m)."""
-    return 2.0 * math.pi * p.defect_mode / p.length
-
-
-def time_scale(p: SailParameters) -> float:
-    """t_c = 1/(k √(g₀ a₀)) (s): the time the second-order load needs to move the defect by a₀."""
-    if p.defect_amplitude <= 0 or p.nominal_acceleration <= 0:
-        raise ParameterError("amplitude and intensity must be > 0 for a finite-amplitude time scale")
-    return 1.0 / (wavenumber(p) * math.sqrt(p.nominal_acceleration * p.defect_amplitude))
 
 
 def _stiffness(p: SailParameters):

@@ -45,8 +45,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import shapes
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.model.parameters import SailParameters
 
 # modes without restoring force by support: a free sail translates in x, y and rotates
 RIGID_MODES = {"free": 3, "cantilever": 0, "pinned": 0}

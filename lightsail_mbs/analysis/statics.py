@@ -14,8 +14,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import shapes
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.model.parameters import SailParameters
 
 NEWTON_ITERATIONS = 20
 NEWTON_TOLERANCE = 1e-14  # relative to the largest coordinate change of the first iterate

@@ -17,7 +17,7 @@ import tempfile
 import traceback
 from datetime import datetime
 
-from lightsail_mbs.model.parameters import ParameterError
+from lightsail_mbs.base.validation import ParameterError
 
 DESCRIPTION = """\
 Does a laser-driven lightsail keep its shape under the beam, or crumple? lightsail-mbs simulates a sail (the

@@ -7,8 +7,9 @@ from __future__ import annotations
 import json
 import sys
 
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.cli.options import add_case_options, params_from_args, settings_from_args, writable_file
-from lightsail_mbs.model.parameters import PAPER_CASES, ParameterError
+from lightsail_mbs.model.parameters import PAPER_CASES
 
 
 def register(sub) -> None:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from lightsail_mbs.cli.options import writable_folder
 
 
@@ -29,10 +31,18 @@ def register(sub) -> None:
 
 def run(args) -> int:
     from lightsail_mbs.studies import crosscheck
+    from lightsail_mbs.viz.plots import crosscheck_figure
 
     writable_folder(args.out, "--out")
+    out = Path(args.out)
+
+    def draw(case, exudyn, reduced):
+        ie, ir = crosscheck.common_samples(exudyn.time, reduced.time, case.settings.sample_interval)
+        title, path = f"{case.name}: {case.note}", out / f"crosscheck_{case.name}.png"
+        crosscheck_figure(exudyn, reduced, ie, ir, title, crosscheck.ANGLE_LIMIT, path)
+
     rows = crosscheck.run(
-        args.cases, out_dir=args.out, progress=not args.quiet, exudyn_step_scale=args.exudyn_step_scale
+        args.cases, out_dir=out, progress=not args.quiet, exudyn_step_scale=args.exudyn_step_scale, draw=draw
     )
     print(f"wrote {args.out}/crosscheck.md: {sum(r['passed'] for r in rows)}/{len(rows)} cases pass")
     return 0 if all(r["passed"] for r in rows) else 1

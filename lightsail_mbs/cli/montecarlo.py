@@ -5,8 +5,8 @@ from __future__ import annotations
 import dataclasses
 import json
 
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.cli.options import add_case_options, params_from_args, settings_from_args, writable_folder
-from lightsail_mbs.model.parameters import ParameterError
 from lightsail_mbs.solvers import SOLVERS
 
 SWEEPABLE = ("youngs_modulus", "tension", "thickness", "intensity", "defect_amplitude")  # studies.montecarlo's

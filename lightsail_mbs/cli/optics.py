@@ -18,7 +18,7 @@ import json
 import math
 import sys
 
-from lightsail_mbs.model.parameters import ParameterError, check
+from lightsail_mbs.base.validation import ParameterError, check
 
 
 def register(sub) -> None:

@@ -14,9 +14,10 @@ import sys
 import tempfile
 from pathlib import Path
 
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model.fields import FIELDS, number
-from lightsail_mbs.model.parameters import PAPER_CASES, ParameterError, SailParameters
-from lightsail_mbs.solvers.settings import RunSettings
+from lightsail_mbs.model.parameters import PAPER_CASES, SailParameters
 
 # the options whose name is not --field-name
 OPTION_NAMES = {"youngs_modulus": "--modulus", "defect_mode_y": "--mode-y"}

@@ -92,7 +92,7 @@ def run(args) -> int:
 
 def run_sheet(args, result) -> int:
     """A sheet run: deflection map and 3-D view per frame (viz.sheet), matplotlib only."""
-    from lightsail_mbs.model.parameters import ParameterError
+    from lightsail_mbs.base.validation import ParameterError
     from lightsail_mbs.viz.frames import check_fps, make_movie, parse_size
     from lightsail_mbs.viz.sheet import render_sheet_frames
 

@@ -13,8 +13,8 @@ from __future__ import annotations
 
 import time
 
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.cli.options import writable_folder
-from lightsail_mbs.model.parameters import ParameterError
 from lightsail_mbs.paper import PIPELINES, SCENARIOS, pipeline
 from lightsail_mbs.solvers import SOLVERS
 

@@ -33,7 +33,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from lightsail_mbs.solvers import solve
+    from lightsail_mbs.analysis.runs import solve
 
     params, settings = params_from_args(args), settings_from_args(args)
     out = writable_file(args.out, "--out", ".npz") if args.out else None

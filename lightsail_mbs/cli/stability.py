@@ -20,8 +20,8 @@ import json
 import math
 import time
 
+from lightsail_mbs.base.validation import check, finite
 from lightsail_mbs.cli.options import add_case_options, params_from_args
-from lightsail_mbs.model.parameters import check, finite
 
 
 def register(sub) -> None:
@@ -143,8 +143,8 @@ def run_sheet(args, p) -> int:
     """The sheet: bisect E/E_cr,max or T/T_cr,max with full runs (studies.sheet.stability_boundaries)."""
     import tempfile
 
+    from lightsail_mbs.base.settings import RunSettings
     from lightsail_mbs.cli.options import writable_folder
-    from lightsail_mbs.solvers.settings import RunSettings
     from lightsail_mbs.studies import sheet as sheet_study
 
     quantity = args.quantity.replace("-", "_")

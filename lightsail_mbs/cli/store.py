@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from lightsail_mbs.model.parameters import ParameterError
+from lightsail_mbs.base.validation import ParameterError
 
 
 def register(sub) -> None:

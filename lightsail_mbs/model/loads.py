@@ -53,11 +53,15 @@ write it with n_⊥ = −sin θ and 1 − cos θ = 2 sin²(θ/2); every chain so
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
-from numba import njit
 
-from lightsail_mbs.model.parameters import SPEED_OF_LIGHT, SailParameters
+from lightsail_mbs.base.constants import SPEED_OF_LIGHT
+from lightsail_mbs.base.kernels import njit
+
+if TYPE_CHECKING:  # annotations only: the case imports this module (through model/optics.py), not the reverse
+    from lightsail_mbs.model.parameters import SailParameters
 
 
 def intensity(p: SailParameters, x: np.ndarray) -> np.ndarray:

@@ -17,6 +17,8 @@ import math
 import numbers
 from dataclasses import dataclass
 
+from lightsail_mbs.base.constants import SPEED_OF_LIGHT  # noqa: F401 - re-exported
+from lightsail_mbs.base.validation import ParameterError, check, finite
 from lightsail_mbs.model import casefile
 from lightsail_mbs.model.derived import DerivedQuantities
 from lightsail_mbs.model.fields import (
@@ -30,29 +32,6 @@ from lightsail_mbs.model.fields import (
     SHEET_BOUNDARIES,
 )
 from lightsail_mbs.model.records import LEGACY_NAMES, RUN_FIELDS, SHEET_DEFAULTS, current_names, record  # noqa: F401
-
-SPEED_OF_LIGHT = 299_792_458.0  # m/s
-
-
-class ParameterError(ValueError):
-    """A parameter is outside its allowed range; the message names it, its value and the range."""
-
-
-def check(name: str, value, ok: bool, allowed: str) -> None:
-    if not ok:
-        raise ParameterError(f"{name}={value!r} is invalid: allowed {allowed}")
-
-
-def finite(name: str, value) -> float:
-    """value as a float; ParameterError unless it is a real number (not a bool or a string), finite."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ParameterError(f"{name}={value!r} is invalid: allowed a finite real number")
-    try:
-        v = float(value)
-    except (TypeError, ValueError, OverflowError):
-        raise ParameterError(f"{name}={value!r} is invalid: allowed a finite real number") from None
-    check(name, value, math.isfinite(v), "a finite real number (no NaN or inf)")
-    return v
 
 
 def _integer(value, low: int, high: float = math.inf) -> bool:

@@ -24,8 +24,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numpy as np
-
 from lightsail_mbs.model import shapes
 from lightsail_mbs.model.parameters import SailParameters
 
@@ -43,24 +41,11 @@ class Attachment:
     centre_across: float  # ρ_c along p_j
 
 
-def middle_slice(n: int) -> int:
-    """j: the slice that holds the sail's middle (its centre for odd n, its right end for even n)."""
-    return (n - 1) // 2
-
-
 def attachment(p: SailParameters) -> Attachment | None:
     """The payload's attachment of case p, None without a payload."""
     if p.payload_mass <= 0.0:
         return None
-    state = shapes.initial_state(p.replace(initial_tilt=0.0))  # the stem is fixed in the untilted sail's axes
-    j = middle_slice(p.n)
-    c, s = np.cos(state.theta[j]), np.sin(state.theta[j])
-    half = 0.5 * p.slice_length
-    mid_x, mid_y = state.x[j], state.y[j]
-    if p.n % 2 == 0:  # the middle is slice j's right end
-        mid_x, mid_y = mid_x + half * c, mid_y + half * s
-    wx, wy = mid_x - state.x[j], mid_y - state.y[j] - p.payload_stem
-    along, across = c * wx + s * wy, -s * wx + c * wy
+    j, along, across = shapes.stem_offset(p)
     m, mp = p.slice_mass, p.payload_mass
     total = m + mp
     inertia = p.slice_inertia + p.payload_inertia + m * mp / total * (along**2 + across**2)
@@ -69,10 +54,6 @@ def attachment(p: SailParameters) -> Attachment | None:
 
 def position(p: SailParameters, x, y, theta):
     """The payload's position (x_p, y_p) from slice centres and angles (arrays (…, n)); None without one."""
-    a = attachment(p)
-    if a is None:
+    if p.payload_mass <= 0.0:
         return None
-    x, y, theta = (np.asarray(v, float) for v in (x, y, theta))
-    th = theta[..., a.slice_index]
-    c, s = np.cos(th), np.sin(th)
-    return x[..., a.slice_index] + a.along * c - a.across * s, y[..., a.slice_index] + a.along * s + a.across * c
+    return shapes.stem_end(p, x, y, theta)

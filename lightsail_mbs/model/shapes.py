@@ -29,7 +29,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model.parameters import SailParameters
 
 
 @dataclass(frozen=True)
@@ -270,16 +271,45 @@ def initial_state(p: SailParameters, profile=None, perturbation: float = 0.0) ->
 def _tilted(p: SailParameters, x, y, theta):
     """The shape turned by p.initial_tilt (counter-clockwise) about the craft's centre of mass, the payload
     (model/payload.py) included: a rigid tilt that leaves the centre of mass where it was."""
-    from lightsail_mbs.model import payload
-
     m, mp = p.slice_mass, p.payload_mass
     gx, gy = m * x.sum(), m * y.sum()
     if mp > 0:
-        px, py = payload.position(p.replace(initial_tilt=0.0), x, y, theta)
+        px, py = stem_end(p.replace(initial_tilt=0.0), x, y, theta)
         gx, gy = gx + mp * px, gy + mp * py
     gx, gy = gx / (m * p.n + mp), gy / (m * p.n + mp)
     c, s = np.cos(p.initial_tilt), np.sin(p.initial_tilt)
     return gx + c * (x - gx) - s * (y - gy), gy + s * (x - gx) + c * (y - gy), theta + p.initial_tilt
+
+
+def middle_slice(n: int) -> int:
+    """j: the slice that holds the sail's middle (its centre for odd n, its right end for even n)."""
+    return (n - 1) // 2
+
+
+def stem_offset(p: SailParameters):
+    """(j, ρ_e, ρ_p): the slice j that holds the sail's middle and the offset from its centre of the end of
+    a stem of length payload_stem that leaves the middle along −ŷ, in slice j's axes at its initial angle
+    on the untilted sail (model/payload.py welds the payload there)."""
+    state = initial_state(p.replace(initial_tilt=0.0))  # the stem is fixed in the untilted sail's axes
+    j = middle_slice(p.n)
+    c, s = np.cos(state.theta[j]), np.sin(state.theta[j])
+    half = 0.5 * p.slice_length
+    mid_x, mid_y = state.x[j], state.y[j]
+    if p.n % 2 == 0:  # the middle is slice j's right end
+        mid_x, mid_y = mid_x + half * c, mid_y + half * s
+    wx, wy = mid_x - state.x[j], mid_y - state.y[j] - p.payload_stem
+    return j, c * wx + s * wy, -s * wx + c * wy
+
+
+def stem_end(p: SailParameters, x, y, theta):
+    """The stem's end (x_p, y_p) (stem_offset) from slice centres and angles (arrays (…, n)): where a payload
+    sits."""
+    j, along, across = stem_offset(p)
+    along, across = float(along), float(across)
+    x, y, theta = (np.asarray(v, float) for v in (x, y, theta))
+    th = theta[..., j]
+    c, s = np.cos(th), np.sin(th)
+    return x[..., j] + along * c - across * s, y[..., j] + along * s + across * c
 
 
 MIN_SLICES_PER_HALF_WAVE = 4  # fewer slices per half wavelength do not draw the defect's shape

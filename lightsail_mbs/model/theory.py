@@ -1,4 +1,5 @@
-"""Closed-form quasi-static theory of the paper's Section II (Eqs 4, 7–10).
+"""Closed-form quasi-static theory of the paper's Section II (Eqs 4, 7–10), and the time scale t_c of the
+finite-amplitude problem (lightsail_mbs.analysis.finite_amplitude).
 
 All functions take a :class:`SailParameters` and return SI values. Tensions are
 returned in newtons: the paper's per-width value multiplied by the width W.
@@ -6,9 +7,13 @@ returned in newtons: the paper's per-width value multiplied by the width W.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from lightsail_mbs.model.parameters import SPEED_OF_LIGHT, SailParameters
+from lightsail_mbs.base.constants import SPEED_OF_LIGHT
+from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model.parameters import SailParameters
 
 
 def radiation_pressure(p: SailParameters) -> float:
@@ -79,6 +84,18 @@ def summary(p: SailParameters) -> dict:
         "torsional_stiffness": p.torsional_stiffness,
         "axial_stiffness": p.axial_stiffness if p.model == "tnt" else None,
     }
+
+
+def wavenumber(p: SailParameters) -> float:
+    """k = 2πν/L (1/m)."""
+    return 2.0 * math.pi * p.defect_mode / p.length
+
+
+def time_scale(p: SailParameters) -> float:
+    """t_c = 1/(k √(g₀ a₀)) (s): the time the second-order load needs to move the defect by a₀."""
+    if p.defect_amplitude <= 0 or p.nominal_acceleration <= 0:
+        raise ParameterError("amplitude and intensity must be > 0 for a finite-amplitude time scale")
+    return 1.0 / (wavenumber(p) * math.sqrt(p.nominal_acceleration * p.defect_amplitude))
 
 
 # The stiffness that holds each model's defect in check and its critical value: what a stability map,

@@ -53,7 +53,7 @@ def pipeline(name: str):
 
 def scenario(name: str):
     """The pipeline module of the scenario ``name`` (a key of SCENARIOS)."""
-    from lightsail_mbs.model.parameters import ParameterError
+    from lightsail_mbs.base.validation import ParameterError
 
     if name not in SCENARIOS:
         raise ParameterError(f"scenario={name!r} is invalid: allowed one of {', '.join(SCENARIOS)}")

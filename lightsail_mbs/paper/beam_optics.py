@@ -23,9 +23,9 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import paper_case, paper_settings
+from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.model import loads, shapes
 from lightsail_mbs.paper.common import sweep_options
-from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.studies.sweep import run_cases
 from lightsail_mbs.studies.tables import print_table, write_csv
 from lightsail_mbs.viz.plots import new_figure, save_figure

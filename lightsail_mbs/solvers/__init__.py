@@ -22,9 +22,11 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.solvers import contract, events, registry  # noqa: F401 - registry: the declarations
-from lightsail_mbs.solvers.settings import RunSettings, paper_settings
+from lightsail_mbs.solvers.settings import paper_settings
 from lightsail_mbs.solvers.skeleton import interrupts_propagate
 
 if TYPE_CHECKING:
@@ -84,7 +86,4 @@ def solve(
 
             result = estimate.assess(engine, params, sampled, options, result)
     result.settings = settings  # the run control asked for; info["sampling"] says how it was sampled
-    from lightsail_mbs.analysis import resolvedness
-
-    resolvedness.annotate(params, result)  # the resolvedness-in-n verdict: info and, if ill-posed, a warning
     return result

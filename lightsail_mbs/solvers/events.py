@@ -6,7 +6,7 @@ bracket it (a_(k−1) < ratio · a(0) ≤ a_k), the root of the line through the
 
     t_lin = t_(k−1) + (ratio · a(0) − a_(k−1)) / (a_k − a_(k−1)) · (t_k − t_(k−1))
 
-(analysis.failure_time). Its **location error** is estimated from the samples themselves: the root in
+(model.failure.failure_time). Its **location error** is estimated from the samples themselves: the root in
 the bracket of the parabola through the samples k − 2, k − 1 and k, t_quad, differs from t_lin by about
 the line's own error (the line errs by ~a'' Δt²/(8 a'), the parabola by O(Δt³)), and the bound is
 
@@ -41,7 +41,7 @@ import math
 
 import numpy as np
 
-from lightsail_mbs.solvers.settings import RunSettings
+from lightsail_mbs.base.settings import RunSettings
 
 LOCATION_SAFETY = 2.0  # E_loc = LOCATION_SAFETY · |t_lin − t_quad|
 LOCATE_RTOL = 1e-6  # a failure time is located to E_loc ≤ LOCATE_RTOL · t_f, or its run is refined

@@ -27,7 +27,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from lightsail_mbs.solvers.settings import RunSettings
+from lightsail_mbs.base.settings import RunSettings
 
 FINISHED = "finished"  # status of an integrator that has reached t_final
 

@@ -62,9 +62,9 @@ from __future__ import annotations
 
 import math
 
+from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.solvers import contract, events
-from lightsail_mbs.solvers.settings import RunSettings
 
 TIGHTEN = 10.0  # the tight twin's tolerances are the base run's / TIGHTEN (adaptive methods)
 WIDE_TIGHTEN = 100.0  # the reduced solver's DOP853: rtol / 100

@@ -17,8 +17,8 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from lightsail_mbs.model.parameters import ParameterError
-from lightsail_mbs.solvers.settings import RunSettings
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.studies.sweep import Case, Sweep, solve_case
 
 

@@ -18,9 +18,9 @@ import math
 import numpy as np
 
 from lightsail_mbs.analysis.frequencies import SineFit, fit_sinusoid
+from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.model import chain_theory as ct
 from lightsail_mbs.model.parameters import SailParameters
-from lightsail_mbs.solvers.settings import RunSettings
 
 WIRE_DIAMETER = 0.43e-3  # m, D'Addario G3 (paper Appendix B)
 CANTILEVER_RUN = RunSettings(t_final=2.0, stop_at_failure=False)  # Appendix A: 2 s

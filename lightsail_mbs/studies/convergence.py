@@ -44,8 +44,9 @@ import math
 import time
 from dataclasses import asdict, dataclass, field
 
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
-from lightsail_mbs.solvers.settings import RunSettings
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model.parameters import SailParameters
 
 ONE_PERCENT = 0.01
 DEFAULT_FACTOR = 2.0

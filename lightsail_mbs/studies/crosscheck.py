@@ -10,23 +10,26 @@ runs were made with it (the default). A row passes when the verdicts agree, ther
 free vibration conserves energy to 1e-8, and either the angles agree to ANGLE_LIMIT and the failure
 times to FAILURE_TIME_LIMIT, or — for a case that either solver flags as ill-conditioned, whose answer
 a perturbation at round-off level moves by more than 1e-4 — the answers differ by less than the combined
-uncertainty. Plots (viz.plots.crosscheck_figure): θ of three slices from both solvers and abs(Δθ) on a
-log scale.
+uncertainty. Plots (drawn by the command, viz.plots.crosscheck_figure): θ of three slices from both solvers
+and abs(Δθ) on a log scale.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from lightsail_mbs import analysis
-from lightsail_mbs.model.parameters import ParameterError, SailParameters, paper_case
-from lightsail_mbs.result import with_uncertainty
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model.parameters import SailParameters, paper_case
+from lightsail_mbs.result import Result, with_uncertainty
 from lightsail_mbs.solvers import solve
-from lightsail_mbs.solvers.settings import RunSettings, paper_settings
+from lightsail_mbs.solvers.settings import paper_settings
 from lightsail_mbs.studies.tables import fmt
 
 WINDOW_RATIO = 1.5  # compare angles while both amplitudes are < 1.5 × initial
@@ -236,11 +239,13 @@ def run(
     progress: bool = False,
     write: bool = True,
     exudyn_step_scale: float = 1.0,
+    draw: Callable[[Case, Result, Result], object] | None = None,
 ) -> list[dict]:
-    """Run the selected cases with both solvers; write crosscheck.md and the plots into out_dir.
+    """Run the selected cases with both solvers; write crosscheck.md into out_dir.
 
     exudyn_step_scale multiplies each case's Exudyn step (its own scale × exudyn_chain.default_step_size):
-    < 1 shows how the Exudyn solution converges towards the reduced one."""
+    < 1 shows how the Exudyn solution converges towards the reduced one. draw(case, exudyn, reduced), if
+    given, is called with each case's two runs (the command draws the plots with it)."""
     from lightsail_mbs.solvers.exudyn.chain import default_step_size
 
     if not 0 < exudyn_step_scale <= 1:
@@ -256,19 +261,8 @@ def run(
         row = compare(case, exudyn, reduced)
         row["exudyn_step"] = exudyn.info.get("step_size") or step
         rows.append(row)
-        if write:
-            from lightsail_mbs.viz.plots import crosscheck_figure
-
-            ie, ir = common_samples(exudyn.time, reduced.time, case.settings.sample_interval)
-            crosscheck_figure(
-                exudyn,
-                reduced,
-                ie,
-                ir,
-                f"{case.name}: {case.note}",
-                ANGLE_LIMIT,
-                out_dir / f"crosscheck_{case.name}.png",
-            )
+        if draw is not None:
+            draw(case, exudyn, reduced)
         if progress:
             print(
                 f"  max|Δθ| = {row['max_dtheta']:.2e} rad, failed {row['failed_exudyn']}/{row['failed_reduced']}, "

@@ -12,9 +12,10 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import theory
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
-from lightsail_mbs.solvers.settings import RunSettings
+from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.studies.bisection import BoundaryProblem, bisect_boundaries
 from lightsail_mbs.studies.sweep import solve_case
 

@@ -12,8 +12,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
-from lightsail_mbs.solvers.settings import RunSettings
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.studies.sweep import Case, run_sweep, solve_case
 
 SWEEPABLE = ("youngs_modulus", "tension", "thickness", "intensity", "defect_amplitude")

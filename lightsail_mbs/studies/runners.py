@@ -18,7 +18,7 @@ import traceback
 from collections.abc import Callable
 from concurrent.futures.process import BrokenProcessPool
 
-from lightsail_mbs.model.parameters import ParameterError
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.result import Result
 
 SCHEDULER_TIMEOUT = 10.0  # s to wait for a Dask scheduler to answer

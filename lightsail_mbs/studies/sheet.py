@@ -33,10 +33,11 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import analysis
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import plate_theory, theory
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
-from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.studies.bisection import Boundary, BoundaryProblem, bisect_boundaries
 from lightsail_mbs.studies.sweep import Case, run_cases, run_sweep
 

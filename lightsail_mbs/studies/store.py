@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from lightsail_mbs.model.parameters import ParameterError
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.result import code_version, write_atomically
 
 REQUIRED = ("key", "status", "code_version")
@@ -138,7 +138,7 @@ class CaseStore:
     def _result_matches(self, key: str, record: dict) -> bool:
         """The saved Result loads as a whole run (Result.load: archive intact, every entry and array there)
         and is the run of this record's case (the same parameters and settings)."""
-        from lightsail_mbs.model.parameters import ParameterError
+        from lightsail_mbs.base.validation import ParameterError
         from lightsail_mbs.result import Result, RunFileError
 
         try:

@@ -24,9 +24,10 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from lightsail_mbs.model.parameters import LEGACY_NAMES, ParameterError, SailParameters
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model.parameters import LEGACY_NAMES, SailParameters
 from lightsail_mbs.result import Result
-from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.studies.runners import available_cores, dask_client, make_runner
 from lightsail_mbs.studies.store import CaseStore, to_json
 

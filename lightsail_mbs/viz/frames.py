@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 from PIL import Image
 
-from lightsail_mbs.model.parameters import ParameterError
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.result import Result
 from lightsail_mbs.viz.scene import Layout, build_scene, frame_exaggeration, make_style
 

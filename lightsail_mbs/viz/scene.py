@@ -21,8 +21,8 @@ import numpy as np
 from matplotlib.colors import LinearSegmentedColormap
 
 from lightsail_mbs.analysis import fails_at_trough
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model.loads import radiation_forces
-from lightsail_mbs.model.parameters import ParameterError
 from lightsail_mbs.result import Result
 
 COLOR_BY = ("curvature", "moment", None)

@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs import analysis
-from lightsail_mbs.model.parameters import ParameterError
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.result import Result
 from lightsail_mbs.viz.frames import _prepare, _write_png, frame_indices, parse_size, write_frames
 

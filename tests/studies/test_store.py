@@ -127,7 +127,7 @@ def test_code_version_follows_the_sources_that_decide_results_and_only_them(pack
     version = result_module.code_version.__wrapped__
     base = version()
     assert base == result_module.code_version()  # the copy is the installed package
-    for source in ("solvers/reduced/dynamics.py", "model/loads.py", "analysis/energy.py", "studies/runners.py"):
+    for source in ("solvers/reduced/dynamics.py", "model/loads.py", "model/energy.py", "studies/runners.py"):
         path = package_copy / source
         original = path.read_text()
         path.write_text(original + "\n# a change\n")
@@ -138,3 +138,20 @@ def test_code_version_follows_the_sources_that_decide_results_and_only_them(pack
     assert version() == base  # what only draws or reports results does not make records stale
     monkeypatch.setattr(result_module, "_library_version", lambda name: "0.0" if name == "numpy" else "1")
     assert version() != base  # nor do the libraries' versions go unnoticed
+
+
+def test_code_version_follows_a_new_module_at_any_depth_of_a_deciding_folder(package_copy):
+    version = result_module.code_version.__wrapped__
+    base = version()
+    nested = package_copy / "model" / "planforms" / "meshes" / "disc.py"
+    nested.parent.mkdir(parents=True)
+    nested.write_text("RINGS = 8\n")
+    assert nested in result_module.result_source_files()
+    with_module = version()
+    assert with_module != base
+    nested.write_text("RINGS = 9\n")
+    assert version() not in (base, with_module)
+    (package_copy / "viz" / "extra").mkdir()
+    (package_copy / "viz" / "extra" / "plot.py").write_text("COLOUR = 'k'\n")
+    nested.write_text("RINGS = 8\n")
+    assert version() == with_module  # a new module outside the deciding folders does not count

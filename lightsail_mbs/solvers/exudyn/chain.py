@@ -26,7 +26,7 @@ Integrators, chosen per case (``method="auto"``, the choice and its reason in Re
 
 1. The stiffness number ω_max t_c: the chain's highest frequency (top_frequency: the zig-zag mode of
    the bending and tension springs, ω² = 4k_T/J + T l/J; the axial springs of the extensible TnT chain,
-   2√(k_s/m)) times the instability's time scale t_c = 1/(k√(g₀a₀)) (analysis.finite_amplitude.time_scale).
+   2√(k_s/m)) times the instability's time scale t_c = 1/(k√(g₀a₀)) (model.theory.time_scale).
 2. Non-stiff free chains (ω_max t_c ≤ STIFF_LIMIT: rigid, soft torsion, soft inextensible TnT):
    Exudyn's explicit DOPRI5 with automatic step size. Its error control uses one absolute tolerance
    for every coordinate and rate, atol = rtol × the smallest state scale (angles: the defect slope
@@ -69,16 +69,16 @@ import time as _time
 
 import numpy as np
 
-from lightsail_mbs import analysis
-from lightsail_mbs.model import shapes
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model import failure, shapes, theory
+from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.exudyn.console import solve_steps
 from lightsail_mbs.solvers.exudyn.sampler import Sampler
 from lightsail_mbs.solvers.exudyn.supports import add_supports
 from lightsail_mbs.solvers.exudyn.tree import ChainLayout, generalized_force, tree_arguments
 from lightsail_mbs.solvers.progress import Progress
-from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.solvers.skeleton import FailureMonitor
 
 METHODS = ("auto", "DOPRI5", "generalized-alpha")
@@ -107,11 +107,9 @@ def defect_slope(p: SailParameters) -> float:
 
 def instability_time(p: SailParameters) -> float:
     """t_c = 1/(k√(g₀a₀)) (s), or inf for a flat or unlit sail (nothing grows)."""
-    from lightsail_mbs.analysis.finite_amplitude import time_scale
-
     if p.defect_amplitude <= 0 or p.nominal_acceleration <= 0:
         return math.inf
-    return time_scale(p)
+    return theory.time_scale(p)
 
 
 def top_frequency(p: SailParameters) -> float:
@@ -287,7 +285,7 @@ def run(
 
     start = _time.perf_counter()
     initial = shapes.initial_state(p, perturbation=perturbation)
-    monitor = FailureMonitor(analysis.amplitude(initial.x, initial.y), settings)
+    monitor = FailureMonitor(failure.amplitude(initial.x, initial.y), settings)
     SC, mbs, layout, _, _ = build(p, initial)
     info = {"method": method, "method_reason": reason, "rtol": rtol, "top_frequency": top_frequency(p)}
     if method == "generalized-alpha":

@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from lightsail_mbs import analysis
+from lightsail_mbs.model import failure
 from lightsail_mbs.solvers.exudyn.tree import ChainLayout
 from lightsail_mbs.solvers.skeleton import FailureMonitor
 
@@ -43,7 +43,7 @@ class Sampler:
         self.steps = 0
         self._next_check = min(self.check_every, times.size - 1)
         x, y, _, _ = layout.positions(q0)
-        self._last = (0.0, analysis.amplitude(x, y))  # time and amplitude of the last checked sample
+        self._last = (0.0, failure.amplitude(x, y))  # time and amplitude of the last checked sample
 
     def __call__(self, mbs, t) -> bool:
         self.steps += 1
@@ -85,7 +85,7 @@ class Sampler:
         every = self.check_every
         if self.monitor.active and len(self.q) > checked:
             x, y, _, _ = self.layout.positions(np.asarray(self.q[checked:]))
-            amplitude = np.atleast_1d(analysis.amplitude(x, y))
+            amplitude = np.atleast_1d(failure.amplitude(x, y))
             over = self.monitor.first_failure(amplitude)
             if over is not None:
                 self.failed_at = checked + over

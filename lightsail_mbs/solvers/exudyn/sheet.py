@@ -43,13 +43,14 @@ import time as _time
 
 import numpy as np
 
-from lightsail_mbs import analysis
-from lightsail_mbs.model import sheet
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.base.constants import SPEED_OF_LIGHT
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model import failure, sheet
+from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.exudyn.console import silenced, solve_steps
 from lightsail_mbs.solvers.progress import Progress
-from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.solvers.skeleton import FailureMonitor
 
 STEP_FACTOR = 0.026  # h = STEP_FACTOR · sqrt(L/g₀), as the chain's
@@ -86,7 +87,7 @@ def default_abs_tol(p: SailParameters, conn: sheet.Connectors | None = None) -> 
     round_off_floor): Newton cannot go below the round-off of the stiff in-plane springs (5e-11 N for
     the 30-tile chain limit at E = 4.5e9 Pa against 2e-14 N from the chain's rule)."""
     t = sheet.Tiles.of(p)
-    flat_force = 2.0 * p.intensity / 299_792_458.0 * t.area
+    flat_force = 2.0 * p.intensity / SPEED_OF_LIGHT * t.area
     scale = flat_force if flat_force > 0 else max(abs(p.pressure) * t.area, t.mass)
     slope = defect_slope(p)
     return max(NEWTON_ABS_FACTOR * scale * (slope if slope > 0 else 1.0), ROUND_OFF_FACTOR * round_off_floor(p, conn))
@@ -97,7 +98,7 @@ def round_off_warning(p: SailParameters, conn: sheet.Connectors | None = None) -
     tile, f₀ θ² (module docstring); None otherwise or for an unlit sheet."""
     conn = sheet.connectors(p) if conn is None else conn
     t = sheet.Tiles.of(p)
-    transverse = 2.0 * p.intensity / 299_792_458.0 * t.area * defect_slope(p) ** 2
+    transverse = 2.0 * p.intensity / SPEED_OF_LIGHT * t.area * defect_slope(p) ** 2
     noise = np.finfo(float).eps * max(p.length, p.width) * float(conn.stiffness[:, :2].max())
     if transverse <= 0 or noise <= transverse:
         return None
@@ -257,7 +258,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     abs_tol = default_abs_tol(p, system.conn) if abs_tol is None else float(abs_tol)
     mbs = system.mbs
     s = simulation_settings(settings.t_final, h, rel_tol, abs_tol, spectral_radius)
-    monitor = FailureMonitor(analysis.plane_amplitude(system.centres(mbs.systemData.GetODE2Coordinates())), settings)
+    monitor = FailureMonitor(failure.plane_amplitude(system.centres(mbs.systemData.GetODE2Coordinates())), settings)
     bar = Progress(settings.t_final, progress, label=f"exudyn sheet {p.n}x{p.ny}")
     recorder = Recorder(mbs, system, monitor, h, dt, bar)
     mbs.SetPostStepUserFunction(recorder)
@@ -266,7 +267,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     wall = _time.perf_counter() - start
     state = system.state(np.array(recorder.rows_q), np.array(recorder.rows_v))
     times = recorder.times
-    stop = monitor.first_failure(analysis.plane_amplitude(state[0]))
+    stop = monitor.first_failure(failure.plane_amplitude(state[0]))
     if stop is not None:  # end at the first sample past failure
         state, times = tuple(a[: stop + 1] for a in state), times[: stop + 1]
     info = {
@@ -324,7 +325,7 @@ class Recorder:
             self.bar.update(t)
             if self.monitor.active:
                 centres = self.system.centres(np.array(self.rows_q[-SAMPLES_PER_CHECK:]))
-                if self.monitor.first_failure(analysis.plane_amplitude(centres)) is not None:
+                if self.monitor.first_failure(failure.plane_amplitude(centres)) is not None:
                     self.failed = True
                     return False
         return True

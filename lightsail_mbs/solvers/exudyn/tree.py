@@ -43,12 +43,13 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
 
+from lightsail_mbs.base.constants import SPEED_OF_LIGHT
+from lightsail_mbs.base.kernels import njit
 from lightsail_mbs.model import loads, optics, payload, shapes
 from lightsail_mbs.model.loads import gaussian_intensity, net_slice_force
 from lightsail_mbs.model.optics import packed_net_force
-from lightsail_mbs.model.parameters import SPEED_OF_LIGHT, SailParameters
+from lightsail_mbs.model.parameters import SailParameters
 
 
 @dataclass(frozen=True)

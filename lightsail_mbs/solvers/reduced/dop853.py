@@ -18,8 +18,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from lightsail_mbs.base.kernels import njit
 from lightsail_mbs.solvers.reduced import tableaus
 from lightsail_mbs.solvers.reduced.chain_constants import N
 from lightsail_mbs.solvers.reduced.dynamics import rhs_into, workspace

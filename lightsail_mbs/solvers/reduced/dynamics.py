@@ -51,8 +51,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from lightsail_mbs.base.kernels import njit
 from lightsail_mbs.model.loads import net_slice_force
 from lightsail_mbs.model.optics import packed_net_force
 from lightsail_mbs.solvers.reduced.chain_constants import (

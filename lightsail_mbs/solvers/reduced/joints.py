@@ -12,8 +12,8 @@ substitutes for Λ interleaved with the final slice accelerations:
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
+from lightsail_mbs.base.kernels import njit
 from lightsail_mbs.solvers.reduced.chain_constants import (
     AL,
     ARM,

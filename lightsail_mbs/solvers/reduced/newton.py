@@ -100,8 +100,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from lightsail_mbs.base.kernels import njit
 from lightsail_mbs.solvers.reduced.chain_constants import C_S, C_T, EXTENSIBLE, HALF, INERTIA, K_S, K_T, MASS, N
 from lightsail_mbs.solvers.reduced.dynamics import joint_forces
 

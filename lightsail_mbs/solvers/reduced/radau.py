@@ -29,8 +29,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from lightsail_mbs.base.kernels import njit
 from lightsail_mbs.solvers.reduced import tableaus
 from lightsail_mbs.solvers.reduced.chain_constants import C_S, C_T, EXTENSIBLE, K_S, K_T, N
 from lightsail_mbs.solvers.reduced.dop853 import (

@@ -7,7 +7,7 @@ the thousands spends its time integrating: `Trajectory.fill` writes the centres 
 r_{i+1} = r_i + a_i e_i + b e_{i+1} of Eqs 13–14, 30–31), their velocities, the angles (and extensions)
 of each output sample into the (samples, n) arrays of the Result, and returns its amplitude
 (analysis.amplitude: the spread of the centres' offsets from their total-least-squares line) for the
-failure monitor. Tested against the numpy forms of kinematics.py and analysis.failure.
+failure monitor. Tested against the numpy forms of kinematics.py and model.failure.
 """
 
 from __future__ import annotations
@@ -16,14 +16,14 @@ import math
 import time as clock
 
 import numpy as np
-from numba import njit
 
+from lightsail_mbs.base.kernels import njit
+from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.solvers.reduced.dop853 import FINISHED as DONE
 from lightsail_mbs.solvers.reduced.dop853 import STATUS
 from lightsail_mbs.solvers.reduced.kinematics import ChainModel
-from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.solvers.skeleton import FINISHED, FailureMonitor, collect_samples
 
 # Output samples per call of a compiled integrator (failure check and progress in between): the run goes

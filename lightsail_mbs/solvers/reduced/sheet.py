@@ -46,14 +46,15 @@ import time as _time
 import numpy as np
 import scipy.sparse as sp
 
-from lightsail_mbs import analysis
-from lightsail_mbs.model import sheet
-from lightsail_mbs.model.parameters import SPEED_OF_LIGHT, ParameterError, SailParameters
+from lightsail_mbs.base.constants import SPEED_OF_LIGHT
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model import failure, sheet
+from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.solvers.reduced.sheet_kernels import STATE, fill_jacobian, rhs_kernel, unpack_into
 from lightsail_mbs.solvers.reduced.sheet_radau import SheetRadau
-from lightsail_mbs.solvers.settings import RunSettings
 from lightsail_mbs.solvers.skeleton import FailureMonitor
 
 COLOURS = 5
@@ -262,7 +263,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         h_max=h_max,
     )
     times = settings.sample_times()
-    monitor = FailureMonitor(analysis.plane_amplitude(model.start), settings)
+    monitor = FailureMonitor(failure.plane_amplitude(model.start), settings)
     bar = Progress(settings.t_final, progress, label=f"reduced sheet {params.n}x{params.ny}")
     states, error, k = [y0], None, 1
     try:
@@ -285,7 +286,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
             states.extend(batch)
             bar.update(solver.t)
             centres = model.flat + np.array(batch).reshape(len(batch), -1, STATE)[..., :3]
-            stop = monitor.first_failure(analysis.plane_amplitude(centres))
+            stop = monitor.first_failure(failure.plane_amplitude(centres))
             if stop is not None:
                 del states[len(states) - len(batch) + stop + 1 :]
                 break

@@ -11,8 +11,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from lightsail_mbs.base.kernels import njit
 from lightsail_mbs.model.loads import net_facet_force, round_gaussian_intensity
 
 STATE = 13  # u(3) q(4) v(3) ω_b(3) per tile

@@ -47,8 +47,10 @@ import math
 
 import numpy as np
 
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import shapes
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.reduced.dop853 import Dop853
 from lightsail_mbs.solvers.reduced.dynamics import ChainDynamics
@@ -63,7 +65,6 @@ from lightsail_mbs.solvers.reduced.sampling import (
     trajectory_result,
 )
 from lightsail_mbs.solvers.reduced.warmup import compile_notice
-from lightsail_mbs.solvers.settings import RunSettings
 
 COMPILED = {"DOP853": Dop853, "Radau": CompiledRadau}  # numba step loops
 SCIPY = ("RK45", "BDF", "LSODA")  # scipy's steppers

@@ -29,8 +29,10 @@ import numpy as np
 from scipy.integrate import BDF, LSODA, Radau
 from scipy.linalg import solve_triangular
 
+from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import shapes
-from lightsail_mbs.model.parameters import ParameterError, SailParameters
+from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.reduced.dynamics import ChainDynamics
 from lightsail_mbs.solvers.reduced.kinematics import (
@@ -42,7 +44,6 @@ from lightsail_mbs.solvers.reduced.kinematics import (
     torsion_torques,
 )
 from lightsail_mbs.solvers.reduced.sampling import sampled_run, state_scales, stepper_advance, trajectory_result
-from lightsail_mbs.solvers.settings import RunSettings
 
 METHODS = {"Radau": Radau, "BDF": BDF, "LSODA": LSODA}
 DEFAULT_RTOL = 1e-6

@@ -94,11 +94,11 @@ def compile_all() -> float:
     one state and on a batch, and its dense Jacobian (scipy's implicit methods). Returns the wall time (s)."""
     import numpy as np
 
+    from lightsail_mbs.base.settings import RunSettings
     from lightsail_mbs.model.parameters import paper_case
     from lightsail_mbs.solvers import solve
     from lightsail_mbs.solvers.reduced.dynamics import ChainDynamics
     from lightsail_mbs.solvers.reduced.kinematics import ChainModel
-    from lightsail_mbs.solvers.settings import RunSettings
 
     start = time.perf_counter()
     settings = RunSettings(t_final=0.002)

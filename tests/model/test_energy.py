@@ -1,4 +1,4 @@
-"""Energy of a run (analysis.failure): mechanical energy of a state, and material damping — the modal decay
+"""Energy of a run (model.energy): mechanical energy of a state, and material damping — the modal decay
 rate c = β k predicts and the heat it generates balancing the loss of mechanical energy."""
 
 import numpy as np

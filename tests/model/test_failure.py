@@ -1,5 +1,5 @@
-"""Amplitude and failure criterion (analysis.failure): invariant to rigid motion, interpolated failure time,
-troughs."""
+"""Amplitude and failure criterion (model.failure, read through analysis): invariant to rigid motion,
+interpolated failure time, troughs (analysis.fails_at_trough)."""
 
 import numpy as np
 import pytest

@@ -1,0 +1,22 @@
+"""``solve`` as users call it (``lightsail_mbs.solve``): a run of the solver template with the verdicts
+analysis makes of its case.
+
+:func:`lightsail_mbs.solvers.solve` runs a case (failure located by event, the uncertainty twins); this
+adds what only analysis can say, from the case's linear growth-rate spectrum: whether the answer has a
+continuum limit in n (:mod:`lightsail_mbs.analysis.resolvedness`), recorded in ``Result.info`` and, when
+the case is ill-posed in n, one line in ``Result.warnings``. Sweeps call the template alone.
+"""
+
+from __future__ import annotations
+
+from lightsail_mbs import solvers
+from lightsail_mbs.analysis import resolvedness
+
+
+def solve(
+    params, solver: str = "exudyn", settings=None, *, progress: bool = False, uncertainty: bool = True, **options
+):
+    """:func:`lightsail_mbs.solvers.solve` (same arguments), then the resolvedness verdict of the case."""
+    result = solvers.solve(params, solver, settings, progress=progress, uncertainty=uncertainty, **options)
+    resolvedness.annotate(params, result)
+    return result
