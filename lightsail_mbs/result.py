@@ -295,6 +295,25 @@ class Result:
         """Whether the answer is insensitive to perturbations at round-off level; None when not estimated."""
         return (self.uncertainty or {}).get("well_conditioned")
 
+    def film_text(self) -> str | None:
+        """One line on the film twin (solvers.uncertainty): the answer with a real film and the verdict
+        defect- or roughness-dominated; None when the estimate did not run it."""
+        film = (self.uncertainty or {}).get("film_sensitivity")
+        if not film or not film.get("assessed"):
+            return None
+        what = "fails at" if film["failed"] else "survives with max amplitude ratio"
+        unit = " s" if film["failed"] else ""
+        text = f"film: with {film['film']} the sail {what} {film['value']:.6g}{unit}"
+        if not math.isfinite(film["shift"]):
+            return text + ": roughness-dominated (the film changes the verdict)"
+        text += f" ({film['relative_shift']:.2g} relative): {film['verdict']}"
+        if film.get("holds_below"):
+            text += (
+                f"; the ideal-defect answer holds only below at most about {film['holds_below']:.1g} m RMS (linear "
+                "from the reference film; a response concave in the RMS, as on the paper's soft sail, puts it lower)"
+            )
+        return text
+
     def answer_text(self) -> str:
         """The answer with its error bar: 'FAILED at t = 2.1112 ± 0.0001 s' or 'not failed (max amplitude
         ratio 1.2460 ± 0.0005)', with '(ill-conditioned)' when it is; a ratio of exactly 1 in every run (the

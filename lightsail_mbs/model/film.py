@@ -42,7 +42,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lightsail_mbs.model.parameters import ParameterError, check, finite
+from lightsail_mbs.base.validation import ParameterError, check, finite
 
 _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(40)  # the 1-D cumulative integrals (smooth integrands)
 _NODES_2D, _WEIGHTS_2D = np.polynomial.legendre.leggauss(8)  # each 2-D mode's bin, per direction
@@ -121,6 +121,18 @@ class Film:
 
 
 REFERENCE_FILM = Film(rms=1e-9, correlation_length=0.1, hurst=0.5)
+
+
+def of_case(p) -> Film | None:
+    """The film of a case (SailParameters.film_rms, film_correlation_length, film_hurst, film_seed), checked,
+    each error naming the case's field; None when film_rms is 0 (no film)."""
+    seed = p.film_seed
+    check("film_seed", seed, isinstance(seed, int) and not isinstance(seed, bool) and seed >= 0, "an integer ≥ 0")
+    try:
+        spectrum = Film(p.film_rms, p.film_correlation_length, p.film_hurst)
+    except ParameterError as exc:
+        raise ParameterError(f"film_{exc}") from None
+    return spectrum if spectrum.rms > 0 else None
 
 
 def parse_film(text: str) -> Film:

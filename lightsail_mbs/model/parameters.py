@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT  # noqa: F401 - re-exported
 from lightsail_mbs.base.validation import ParameterError, check, finite
-from lightsail_mbs.model import casefile
+from lightsail_mbs.model import casefile, film
 from lightsail_mbs.model.derived import DerivedQuantities
 from lightsail_mbs.model.fields import (
     BENDING_REFERENCES,
@@ -72,6 +72,10 @@ class SailParameters(DerivedQuantities):
     defect_spectrum: float = 1.0  # multi-mode defect: mean amplitude ∝ ν_k^(−β)
     roughness: float = 0.0  # m: seeded roughness at every wavelength the chain carries (shapes.roughness_profile)
     roughness_seed: int = 0  # seed of the roughness
+    film_rms: float = 0.0  # σ, m: RMS of a physical film roughness (model.film); 0: none
+    film_correlation_length: float = 0.1  # ξ, m: the film spectrum's long-wave roll-off
+    film_hurst: float = 0.5  # H: the film spectrum's self-affine exponent
+    film_seed: int = 0  # seed of the film's modes
     beam_waist: float = math.inf  # w, m: Gaussian beam I₀ exp(−2(x − x_c)²/w²); inf = uniform (paper)
     beam_center: float | None = None  # x_c, m; None: the sail's middle L/2
     reflectivity: float = 1.0  # R, specular (paper: 1)
@@ -138,6 +142,7 @@ class SailParameters(DerivedQuantities):
             f"{self.length / (2 * math.pi * self.n):.3g} m (slopes of its shortest waves below 45°)",
         )
         check("roughness_seed", self.roughness_seed, _integer(self.roughness_seed, 0), "an integer ≥ 0")
+        film.of_case(self)  # the film's fields, each checked by the film model
         waist = self.beam_waist
         check(
             "beam_waist",
@@ -240,6 +245,7 @@ class SailParameters(DerivedQuantities):
         check("billow_radius", self.billow_radius, self.billow_radius == math.inf, "inf (flat) for a sheet")
         check("billow_rest", self.billow_rest, self.billow_rest is False, "False for a sheet")
         check("initial_tilt", self.initial_tilt, self.initial_tilt == 0, "0 for a sheet")
+        check("film_rms", self.film_rms, self.film_rms == 0, "0 for a sheet (the film is wired for chains only)")
         check("optics", self.optics, self.optics is None, "None for a sheet (its tiles: reflectivity, absorptivity)")
         check("payload_mass", self.payload_mass, self.payload_mass == 0, "0 for a sheet")
         for name in ("torsional_damping", "axial_damping"):

@@ -40,6 +40,10 @@ LATER_DEFAULTS = {
     "initial_tilt": 0.0,
     "roughness": 0.0,
     "roughness_seed": 0,
+    "film_rms": 0.0,
+    "film_correlation_length": 0.1,
+    "film_hurst": 0.5,
+    "film_seed": 0,
 }
 # Names under which saved runs and store records written before the current field names hold them.
 LEGACY_NAMES = {"amplitude": "defect_amplitude", "mode": "defect_mode", "defect_modes": "defect_mode_count"}

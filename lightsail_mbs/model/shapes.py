@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model import film
 from lightsail_mbs.model.parameters import SailParameters
 
 
@@ -96,14 +97,19 @@ def roughness_profile(p: SailParameters, amplitude: float, seed: int):
 
 def defect_profile(p: SailParameters, perturbation: float = 0.0):
     """The initial shape of a case: the paper's sine, or the multi-mode defect if defect_seed is set, plus
-    the case's roughness (p.roughness, seed p.roughness_seed) and a perturbation roughness of amplitude
+    the case's roughness (p.roughness, seed p.roughness_seed), its film (p.film_rms, …: the film's line
+    scan on the modes the chain carries, model.film) and a perturbation roughness of amplitude
     `perturbation` (m, seed PERTURBATION_SEED: the conditioning probe of solvers.uncertainty)."""
     defect = sine_profile(p) if p.defect_seed is None else multimode_profile(p)
-    if not p.roughness and not perturbation:
+    spectrum = film.of_case(p)
+    if not p.roughness and not perturbation and spectrum is None:
         return defect
     rough = roughness_profile(p, p.roughness, p.roughness_seed)
     probe = roughness_profile(p, perturbation, PERTURBATION_SEED)
-    return lambda x: defect(x) + rough(x) + probe(x)
+    if spectrum is None:
+        return lambda x: defect(x) + rough(x) + probe(x)
+    heights = film.film_profile(spectrum, p.length, p.n, p.film_seed)
+    return lambda x: defect(x) + rough(x) + probe(x) + heights(x)
 
 
 PERTURBATION_SEED = 271828  # the seed of the conditioning probe's roughness (the same for every solver)
@@ -146,7 +152,7 @@ def billowed_hinge_points(p: SailParameters, profile=None, perturbation: float =
         )
     spans = 2.0 * R * np.arcsin(chords / (2.0 * R))
     s0 = 0.5 * (p.length - spans.sum())  # the chain centred on the apex s = L/2
-    if profile is None and p.defect_amplitude == 0 and not p.roughness and not perturbation:
+    if profile is None and p.defect_amplitude == 0 and not p.roughness and not perturbation and not p.film_rms:
         return arc_point(p, s0 + np.concatenate([[0.0], np.cumsum(spans)]))[0]
     w = profile or defect_profile(p, perturbation)
 

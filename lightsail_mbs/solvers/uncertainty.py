@@ -40,6 +40,13 @@ solver, and the one reported is the most accurate of them:
    it could), or for a sail that did not fail, how far its largest amplitude may lie above the largest
    sample (the parabola through the peak sample and its neighbours).
 
+4. **Film twin** — the base run started from the case's shape plus a physical film
+   (:mod:`lightsail_mbs.model.film`): the reference film (1 nm RMS, ξ = 0.1 m, H = 0.5) for a case without
+   one, or the case's own film at the next seed. It is not part of U: the ideal-defect answer and its U
+   stand for a film smoother than any real one, and this twin says whether a real film changes them — the
+   run is *defect-dominated* when the film moves q by at most FILM_TOL · |q|, else *roughness-dominated*,
+   with the RMS below which the ideal answer would hold estimated as linear in the film's RMS.
+
 The uncertainty of the reported q is U = SAFETY · (E_int + S) + E_s, and the run is **well-conditioned**
 when S ≤ CONDITION_TOL · |q|. When a twin's verdict differs (one fails within the run, the other not), U is
 infinite and the run ill-conditioned: the sail is at its stability boundary for that run length.
@@ -63,6 +70,7 @@ from __future__ import annotations
 import math
 
 from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.model import film
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.solvers import contract, events
 
@@ -73,6 +81,7 @@ STEP_TIGHTEN = 16.0  # generalized-α: the tight twin, tolerances / 16, the step
 PROBE_LEVEL = 1e-12  # the probe twin's roughness amplitude, in units of the defect amplitude a₀
 SAFETY = 2.0  # U = SAFETY · (E_int + S)
 CONDITION_TOL = 1e-4  # well-conditioned: S ≤ CONDITION_TOL · |q|
+FILM_TOL = 1e-3  # defect-dominated: the film twin moves q by ≤ FILM_TOL · |q|
 RULE = (
     f"reported: the run at tolerances/F; U = {SAFETY:g}·(E_int + S) + E_s; E_int = Σ|q_(k+1) − q_k| over the runs at "
     f"tolerances/1, /F: F = {TIGHTEN:g} (DOP853: {WIDE_TIGHTEN:g}; generalized-α: the step /1, /2, /4); "
@@ -193,9 +202,13 @@ def assess(solver, params: SailParameters, settings: RunSettings, options: dict,
     for name, twin_options in twins:
         runs[name] = solver.run(params, settings, progress=False, **twin_options)
         records[name] = record_of(runs[name], twin_options)
+    film_case, film_text = film_twin(params)
+    if film_case is not None:
+        runs["film"] = solver.run(film_case, settings, progress=False, **options)
+        records["film"] = record_of(runs["film"], options)
     total_wall = sum(record["wall_time"] for record in records.values())
     for name, record in records.items():
-        if record["error"] is not None:
+        if record["error"] is not None and name != "film":  # the film twin's error is its own record's
             result.uncertainty = {
                 **not_estimated(f"not estimated: the {name} twin ended with a solver error ({record['error']})"),
                 "quantity": quantity,
@@ -235,12 +248,53 @@ def assess(solver, params: SailParameters, settings: RunSettings, options: dict,
             if part
         ),
         "rule": RULE,
+        "film_sensitivity": film_sensitivity(records, film_text, quantity, value),
         "held_at_floor": held,
         "reported": order[-1],
         **records,
     }
     reported.wall_time = total_wall
     return reported
+
+
+def film_twin(params: SailParameters) -> tuple[SailParameters | None, str]:
+    """(the film twin's case, what it is): the case with the reference film (model.film.REFERENCE_FILM) when
+    it has none, with its own film at the next seed when it has one; None for a sheet (not wired yet)."""
+    if params.model == "sheet":
+        return None, "not assessed: the film is wired for chains only"
+    if params.film_rms == 0:
+        ref = film.REFERENCE_FILM
+        twin = params.replace(film_rms=ref.rms, film_correlation_length=ref.correlation_length, film_hurst=ref.hurst)
+        return twin, f"the reference film ({ref.describe()})"
+    return params.replace(film_seed=params.film_seed + 1), f"the same film at seed {params.film_seed + 1}"
+
+
+def film_sensitivity(records: dict, text: str, quantity: str, value: float) -> dict:
+    """What the film twin says (module docstring, item 4): its answer, the shift from the base run's, and the
+    verdict "defect-dominated" (shift ≤ FILM_TOL · |q|) or "roughness-dominated", with, for a case without a
+    film, the RMS below which the ideal-defect answer holds, estimated as linear in the film's RMS."""
+    if "film" not in records:
+        return {"assessed": False, "film": text}
+    twin, base = records["film"], records["base"]
+    if twin["error"] is not None:
+        return {"assessed": False, "film": text, "error": twin["error"]}
+    shift = abs(twin["value"] - base["value"]) if twin["failed"] == base["failed"] else math.inf
+    relative = shift / abs(value) if value else math.inf
+    verdict = "defect-dominated" if relative <= FILM_TOL else "roughness-dominated"
+    holds_below = None
+    if verdict == "roughness-dominated" and text.startswith("the reference film") and math.isfinite(relative):
+        holds_below = film.REFERENCE_FILM.rms * FILM_TOL / relative
+    return {
+        "assessed": True,
+        "film": text,
+        "quantity": quantity,
+        "value": twin["value"],
+        "failed": twin["failed"],
+        "shift": shift,
+        "relative_shift": relative,
+        "verdict": verdict,
+        "holds_below": holds_below,
+    }
 
 
 def sampling_error(run, settings: RunSettings, failed: bool) -> float:

@@ -290,7 +290,7 @@ def converge(
     **options
         Options of the reduced solver (rtol, method, …).
     """
-    from lightsail_mbs.solvers import solve
+    from lightsail_mbs.analysis.runs import solve
     from lightsail_mbs.solvers.reduced.solver import DEFAULT_RTOL
 
     sizes = [int(n) for n in sizes]

@@ -160,7 +160,7 @@ def test_reported_run_is_the_tightest_and_its_error_bar_the_spread_of_the_sequen
     assert u["integration_error"] == pytest.approx(2e-6 + 7e-6)
     assert u["sensitivity"] == pytest.approx(1e-9)
     assert u["uncertainty"] == pytest.approx(2 * (9e-6 + 1e-9))
-    assert reported.wall_time == pytest.approx(4.0)  # base, h/2, h/4 and the probe
+    assert reported.wall_time == pytest.approx(5.0)  # base, h/2, h/4, the probe and the film twin
 
 
 @pytest.mark.parametrize(
