@@ -24,7 +24,11 @@ OPTION_NAMES = {"youngs_modulus": "--modulus", "defect_mode_y": "--mode-y"}
 # option name -> (RunSettings field, type, help)
 RUN_OPTIONS = {
     "--t-final": ("t_final", float, "final time (s)"),
-    "--output-interval": ("output_interval", float, "output interval (s) [default: min(1 ms, t_final/1000)]"),
+    "--output-interval": (
+        "output_interval",
+        float,
+        "output interval (s) [default: min(1 ms, t_final/1000), finer for a faster case]",
+    ),
     "--failure-ratio": ("failure_ratio", float, "failure when amplitude ≥ ratio × initial"),
 }
 # other spellings accepted for some options
