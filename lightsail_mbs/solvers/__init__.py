@@ -84,6 +84,6 @@ def solve(
         if uncertainty:
             from lightsail_mbs.solvers import uncertainty as estimate
 
-            result = estimate.assess(engine, params, sampled, options, result)
+            result = estimate.assess(engine, params, sampled, options, result, progress=progress)
     result.settings = settings  # the run control asked for; info["sampling"] says how it was sampled
     return result

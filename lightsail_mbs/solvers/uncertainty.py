@@ -174,11 +174,11 @@ def record_of(run, options: dict) -> dict:
     return record
 
 
-def assess(solver, params: SailParameters, settings: RunSettings, options: dict, result):
+def assess(solver, params: SailParameters, settings: RunSettings, options: dict, result, progress: bool = False):
     """The Result to report for `result` (a run of `solver`, a registered contract.Solver or any object with
     its ``run``, with `options`), with its uncertainty record (Result.uncertainty): runs the twins (module
     docstring; the options they change found by their roles, solvers.contract rule 8) and returns the
-    tightest run, or `result` itself when no estimate can be made."""
+    tightest run, or `result` itself when no estimate can be made. `progress`: a bar for every twin too."""
     reason = None
     if result.error is not None:
         reason = f"not estimated: the run ended with a solver error ({result.error})"
@@ -200,11 +200,11 @@ def assess(solver, params: SailParameters, settings: RunSettings, options: dict,
     for name in roles["perturbation"][:1]:
         twins.append(("probe", {**options, name: PROBE_LEVEL * params.displacement_scale}))
     for name, twin_options in twins:
-        runs[name] = solver.run(params, settings, progress=False, **twin_options)
+        runs[name] = solver.run(params, settings, progress=progress, **twin_options)
         records[name] = record_of(runs[name], twin_options)
     film_case, film_text = film_twin(params)
     if film_case is not None:
-        runs["film"] = solver.run(film_case, settings, progress=False, **options)
+        runs["film"] = solver.run(film_case, settings, progress=progress, **options)
         records["film"] = record_of(runs["film"], options)
     total_wall = sum(record["wall_time"] for record in records.values())
     for name, record in records.items():
