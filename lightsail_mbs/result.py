@@ -1,38 +1,31 @@
 """One Result type, whatever solver made it: arrays, summary, provenance, save/load (.npz + .json).
 
-Provenance: every Result records what made it (:func:`provenance`): this package's version and
-``code_version``, the git commit when it runs from a checkout, the versions of Exudyn, numpy, scipy and
-numba, Python and the platform, and the time it was made.
-
-``code_version`` is the version of everything that decides a run's numbers and its stored record: a
-hash of the source files in :data:`RESULT_SOURCES` (the leaf layer, the case and its physics, the solvers, the Result,
-the failure rule and the energy of its summary, and the function that turns a run into a sweep record)
-together with the versions of the numerical libraries in :data:`LIBRARIES`. A change to any of them, and
-only that, makes stored results stale (:mod:`lightsail_mbs.studies.store` recomputes them). Python and the
-platform are recorded but not hashed: a numba-compiled loop may round differently on another CPU, which
-moves numbers at the level of round-off, not of the physics.
+Provenance: every Result records what made it (:func:`~lightsail_mbs.base.provenance.provenance`): this
+package's version and ``code_version``, the git commit when it runs from a checkout, the versions of Exudyn,
+numpy, scipy and numba, Python and the platform, and the time it was made.
 """
 
 from __future__ import annotations
 
-import functools
-import hashlib
 import json
 import math
-import os
-import platform
-import subprocess
-import tempfile
 import zipfile
 import zlib
 from dataclasses import dataclass, field
-from datetime import datetime, timezone
-from importlib import metadata
 from pathlib import Path
 
 import numpy as np
 
-from lightsail_mbs.base.constants import VERSION
+from lightsail_mbs.base.files import write_atomically
+from lightsail_mbs.base.formatting import with_uncertainty
+from lightsail_mbs.base.provenance import (  # noqa: F401 - re-exported: what made a Result
+    LIBRARIES,
+    PACKAGE,
+    RESULT_SOURCES,
+    code_version,
+    provenance,
+    result_source_files,
+)
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import energy, failure, shapes
@@ -50,78 +43,6 @@ SUMMARY_ENTRIES = ("solver", "parameters", "wall_time", "error", "info")
 
 class RunFileError(ValueError):
     """A file that should hold a saved run is missing, unreadable or something else; the message names it."""
-
-
-PACKAGE = Path(__file__).resolve().parent
-# what decides the numbers of a run and of its sweep record, relative to the package folder: folders (every
-# .py file below them, at any depth) and single files
-RESULT_SOURCES = ("base", "model", "solvers", "result.py", "studies/runners.py")
-LIBRARIES = ("exudyn", "numpy", "scipy", "numba")  # their versions are part of code_version
-
-
-@functools.cache
-def code_version() -> str:
-    """SHA-256 (first 16 hex digits) of the source files that decide a run's numbers and its record
-    (RESULT_SOURCES) and of the versions of the numerical libraries (LIBRARIES)."""
-    digest = hashlib.sha256()
-    for path in result_source_files():
-        digest.update(path.relative_to(PACKAGE).as_posix().encode())
-        digest.update(path.read_bytes())
-    for name in LIBRARIES:
-        digest.update(f"{name}=={_library_version(name)}".encode())
-    return digest.hexdigest()[:16]
-
-
-def result_source_files() -> list[Path]:
-    """The files code_version hashes: each file of RESULT_SOURCES and every .py file below each of its
-    folders, however deep (a new subfolder is hashed as soon as it exists)."""
-    files = []
-    for entry in RESULT_SOURCES:
-        path = PACKAGE / entry
-        if path.is_dir():
-            files += sorted(path.rglob("*.py"))
-        elif path.is_file():
-            files.append(path)
-    return files
-
-
-def _library_version(name: str) -> str | None:
-    try:
-        return metadata.version(name)
-    except metadata.PackageNotFoundError:
-        return None
-
-
-@functools.cache
-def _static_provenance() -> dict:
-    return {
-        "package": "lightsail-mbs",
-        "version": VERSION,
-        "code_version": code_version(),
-        **_git(),
-        **{name: _library_version(name) for name in LIBRARIES},
-        "python": platform.python_version(),
-        "platform": platform.platform(),
-    }
-
-
-def _git() -> dict:
-    """The commit (and whether the tree had uncommitted changes) when the package runs from a git checkout."""
-    top = next((d for d in (PACKAGE, *PACKAGE.parents) if (d / ".git").exists()), None)
-    if top is None:
-        return {"git_commit": None, "git_dirty": None}
-    try:
-        run = functools.partial(subprocess.run, cwd=top, capture_output=True, text=True, timeout=5, check=True)
-        commit = run(["git", "rev-parse", "HEAD"]).stdout.strip()
-        dirty = bool(run(["git", "status", "--porcelain", "--untracked-files=no"]).stdout.strip())
-    except (OSError, subprocess.SubprocessError):
-        return {"git_commit": None, "git_dirty": None}
-    return {"git_commit": commit, "git_dirty": dirty}
-
-
-def provenance() -> dict:
-    """What makes a Result now: versions, code_version, git commit, platform and the time (UTC)."""
-    return {**_static_provenance(), "created": datetime.now(timezone.utc).isoformat(timespec="seconds")}
 
 
 @dataclass
@@ -495,56 +416,6 @@ def _with_saved_table(path: Path, parameters: dict, arrays: dict) -> tuple[dict,
         f"(digest {saved.digest})"
     )
     return {**parameters, "optics": str(copy)}, note
-
-
-def with_uncertainty(value: float | None, uncertainty: float | None, digits: int = 6) -> str:
-    """'2.1112 ± 0.0001': the value rounded to the uncertainty's first significant digit (two when it
-    starts with 1); without an uncertainty, `digits` significant digits; '± inf' when infinite. A value
-    below 1e-3 or from 1e5 on is written in scientific notation with the same rule on its mantissa:
-    '(6.29483 ± 0.00004)e-06'."""
-    if value is None:
-        return "–"
-    if uncertainty is None:
-        return f"{value:.{digits}g}"
-    if not math.isfinite(uncertainty):
-        return f"{value:.{digits}g} ± inf"
-    if uncertainty <= 0:
-        return f"{value:.{digits}g} ± 0"
-    if value != 0 and not 1e-3 <= abs(value) < 1e5 and uncertainty < abs(value):
-        power = math.floor(math.log10(abs(value)))
-        return f"({with_uncertainty(value / 10.0**power, uncertainty / 10.0**power)})e{power:+03d}"
-    exponent = math.floor(math.log10(uncertainty))
-    if f"{uncertainty:.0e}"[0] == "1":
-        exponent -= 1
-    decimals = max(0, -exponent)
-    step = 10.0**exponent
-    shown = math.ceil(uncertainty / step - 1e-9) * step
-    if decimals:
-        return f"{value:.{decimals}f} ± {shown:.{decimals}f}"
-    return f"{round(value / step) * step:.0f} ± {shown:.0f}"
-
-
-def write_atomically(path: Path, write) -> None:
-    """write(binary handle) into a temporary file beside path, flushed to disk, then renamed to path
-    (with the permissions a new file gets from the umask): a reader sees the old file or the whole new one."""
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        os.chmod(tmp, 0o666 & ~_umask())
-        with os.fdopen(fd, "wb") as handle:
-            write(handle)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
-@functools.cache
-def _umask() -> int:
-    mask = os.umask(0o022)
-    os.umask(mask)
-    return mask
 
 
 def _check_arrays(path: Path, arrays: dict, params: SailParameters) -> None:

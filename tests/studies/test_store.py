@@ -6,7 +6,7 @@ import shutil
 
 import pytest
 
-from lightsail_mbs import result as result_module
+from lightsail_mbs.base import provenance as provenance_module
 from lightsail_mbs.cli import main
 from lightsail_mbs.studies import store as store_module
 from lightsail_mbs.studies.store import CaseStore
@@ -41,7 +41,7 @@ def test_a_record_made_by_other_code_is_not_served(tmp_path, markers, monkeypatc
     third = sweep(cases, tmp_path)
     assert executions(markers) == {c.key: 3 for c in cases}
     assert [r["failed"] for r in third] == [r["failed"] for r in first]
-    assert all(r["code_version"] == result_module.code_version() for r in third)
+    assert all(r["code_version"] == provenance_module.code_version() for r in third)
 
 
 @pytest.mark.parametrize(
@@ -104,7 +104,7 @@ def test_store_command_reports_each_state(tmp_path, markers, capsys):
     }
     assert main(["store", str(tmp_path)]) == 0
     out = capsys.readouterr().out
-    assert result_module.code_version() in out
+    assert provenance_module.code_version() in out
     assert "2 record(s) will be recomputed" in out
     assert [line.split() for line in out.splitlines()[1:5]] == [
         ["current", "3"],
@@ -118,15 +118,15 @@ def test_store_command_reports_each_state(tmp_path, markers, capsys):
 def package_copy(tmp_path, monkeypatch):
     """The package's sources copied to a folder that code_version reads instead of the installed ones."""
     copy = tmp_path / "lightsail_mbs"
-    shutil.copytree(result_module.PACKAGE, copy, ignore=shutil.ignore_patterns("__pycache__"))
-    monkeypatch.setattr(result_module, "PACKAGE", copy)
+    shutil.copytree(provenance_module.PACKAGE, copy, ignore=shutil.ignore_patterns("__pycache__"))
+    monkeypatch.setattr(provenance_module, "PACKAGE", copy)
     return copy
 
 
 def test_code_version_follows_the_sources_that_decide_results_and_only_them(package_copy, monkeypatch):
-    version = result_module.code_version.__wrapped__
+    version = provenance_module.code_version.__wrapped__
     base = version()
-    assert base == result_module.code_version()  # the copy is the installed package
+    assert base == provenance_module.code_version()  # the copy is the installed package
     for source in ("solvers/reduced/dynamics.py", "model/loads.py", "model/energy.py", "studies/runners.py"):
         path = package_copy / source
         original = path.read_text()
@@ -136,17 +136,17 @@ def test_code_version_follows_the_sources_that_decide_results_and_only_them(pack
     for source in ("viz/plots.py", "cli/info.py", "studies/maps.py", "paper/fig5.py"):
         (package_copy / source).write_text((package_copy / source).read_text() + "\n# a change\n")
     assert version() == base  # what only draws or reports results does not make records stale
-    monkeypatch.setattr(result_module, "_library_version", lambda name: "0.0" if name == "numpy" else "1")
+    monkeypatch.setattr(provenance_module, "_library_version", lambda name: "0.0" if name == "numpy" else "1")
     assert version() != base  # nor do the libraries' versions go unnoticed
 
 
 def test_code_version_follows_a_new_module_at_any_depth_of_a_deciding_folder(package_copy):
-    version = result_module.code_version.__wrapped__
+    version = provenance_module.code_version.__wrapped__
     base = version()
     nested = package_copy / "model" / "planforms" / "meshes" / "disc.py"
     nested.parent.mkdir(parents=True)
     nested.write_text("RINGS = 8\n")
-    assert nested in result_module.result_source_files()
+    assert nested in provenance_module.result_source_files()
     with_module = version()
     assert with_module != base
     nested.write_text("RINGS = 9\n")
