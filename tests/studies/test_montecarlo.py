@@ -103,7 +103,8 @@ def test_montecarlo_over_films_from_the_command_line(tmp_path, capsys):
     assert main(args) == 0
     (row,) = json.loads(capsys.readouterr().out)
     records = CaseStore(store).records()
-    assert sorted(r["parameters"].get("film_seed", 0) for r in records)  # left out at its default, 0 == [0, 1, 2, 3]
+    seeds = sorted(r["parameters"].get("film_seed", 0) for r in records)  # a record leaves out film_seed = 0
+    assert seeds == [0, 1, 2, 3] and all(r["parameters"]["defect_seed"] is None for r in records)
     times = np.array([r["failure_time"] for r in records])
     assert row["value"] == 4.5e8 and row["runs"] == row["failures"] == 4
     assert row["failure_time_median"] == pytest.approx(np.median(times))
