@@ -122,7 +122,7 @@ def tile_forces(p: SailParameters, centres: np.ndarray, normals: np.ndarray) -> 
 
 # ---- the chain this sheet reduces to, and what the grid resolves ----------------------------------
 def as_strip(p: SailParameters) -> SailParameters:
-    """The paper's torsion chain of the same sail (n slices, the sheet's E, beam and defect along x): the
+    """The paper's torsion chain of the same sail (n slices, the sheet's E, beam, defect along x and film): the
     sheet's limit for a 1-D defect, free side edges and no edge tension (module docstring)."""
     require_sheet(p)
     return SailParameters(
@@ -144,6 +144,10 @@ def as_strip(p: SailParameters) -> SailParameters:
         reflectivity=p.reflectivity,
         absorptivity=p.absorptivity,
         bending=p.bending,
+        film_rms=p.film_rms,
+        film_correlation_length=p.film_correlation_length,
+        film_hurst=p.film_hurst,
+        film_seed=p.film_seed,
     )
 
 

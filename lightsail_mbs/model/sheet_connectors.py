@@ -208,7 +208,7 @@ def connectors(
     # K(0 − offset) = F along the a → b direction: offset = −F/k
     offset[:, :2] = -pre / K[:, :2]
     gap = np.zeros((len(rows), 3))
-    if p.defect_amplitude > 0 and "initial" in (p.membrane_reference, p.bending_reference):
+    if (p.defect_amplitude > 0 or p.film_rms > 0) and "initial" in (p.membrane_reference, p.bending_reference):
         if centres is None or quaternions is None:
             centres, quaternions = initial_quaternions(p)
         rotations = quaternion_rotation(quaternions)

@@ -1,6 +1,6 @@
 """The sheet's defects and initial state (model "sheet", :mod:`lightsail_mbs.model.sheet`): the 1-D sine on
 the chain's exact-chord construction, the doubly sinusoidal and the seeded random 2-D defects, the
-tiles' initial centres and orientations, and the seeded offsets of a perturbed start.
+tiles' initial centres and orientations (with the case's film, model.film), and the seeded offsets of a perturbed start.
 """
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from lightsail_mbs.model import shapes
+from lightsail_mbs.model import film, shapes
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.model.sheet_grid import flat_centres, quaternion_rotation, require_sheet, tilt_quaternion
 
@@ -89,24 +89,50 @@ def initial_quaternions(p: SailParameters) -> tuple[np.ndarray, np.ndarray]:
     chord, turned about y by −θ_i (θ the chain's angle from +x towards its transverse axis, here +z):
     q = (cos(θ/2), 0, −sin(θ/2), 0).
     2-D defects: centres on the surface above the flat grid points, each tile turned by the twist-free
-    rotation that takes ẑ to the surface normal (−w_x, −w_y, 1)/|…| (tilt_quaternion)."""
+    rotation that takes ẑ to the surface normal (−w_x, −w_y, 1)/|…| (tilt_quaternion).
+
+    A film (film_rms > 0, model.film): on a sheet of ny ≥ 2 tiles across, its surface h(x, y) is added to
+    the shape — every centre moves by z += h at its (x, y), every tile turns to the normal of the combined
+    surface, (−(w_x + h_x), −h_y, 1) with w_x the chain's chord slope tan θ_i for a 1-D defect. A strip
+    (ny = 1) carries one tile across its width, as the chain carries one slice: it sees the film's line
+    scan along x (film_profile, the chain's), so that a strip with a 1-D defect starts exactly as the
+    torsion chain of the same sail and film (as_strip); a 2-D defect on a strip adds the line scan h(x)."""
     require_sheet(p)
     flat = flat_centres(p)
-    count = flat.shape[0]
-    identity = np.tile([1.0, 0.0, 0.0, 0.0], (count, 1))
-    if p.defect_amplitude == 0:
-        return flat, identity
+    spectrum = film.of_case(p)
+    if p.defect_amplitude == 0 and spectrum is None:
+        return flat, np.tile([1.0, 0.0, 0.0, 0.0], (flat.shape[0], 1))
     if p.defect_mode_y is None:
-        chain = shapes.initial_state(p)
+        strip = p.ny == 1  # the chain's construction carries the line scan itself
+        chain = shapes.initial_state(p if strip or spectrum is None else p.replace(film_rms=0.0))
         i = np.tile(np.arange(p.n), p.ny)
         centres = np.column_stack([chain.x[i], flat[:, 1], chain.y[i]])
-        half = 0.5 * chain.theta[i]
-        q = np.column_stack([np.cos(half), 0 * half, -np.sin(half), 0 * half])
-        return centres, q
-    w, wx, wy = defect_surface(p)
-    x, y = flat[:, 0], flat[:, 1]
-    centres = np.column_stack([x, y, w(x, y)])
-    return centres, tilt_quaternion(np.column_stack([-wx(x, y), -wy(x, y), np.ones_like(x)]))
+        if strip or spectrum is None:
+            half = 0.5 * chain.theta[i]
+            return centres, np.column_stack([np.cos(half), 0 * half, -np.sin(half), 0 * half])
+        slope_x, slope_y = np.tan(chain.theta[i]), np.zeros(centres.shape[0])
+    else:
+        w, wx, wy = defect_surface(p)
+        x, y = flat[:, 0], flat[:, 1]
+        centres = np.column_stack([x, y, w(x, y)])
+        slope_x, slope_y = wx(x, y), wy(x, y)
+    if spectrum is not None:
+        heights, film_x, film_y = film_field(p, spectrum, centres[:, 0], centres[:, 1])
+        centres[:, 2] += heights
+        slope_x, slope_y = slope_x + film_x, slope_y + film_y
+    return centres, tilt_quaternion(np.column_stack([-slope_x, -slope_y, np.ones_like(slope_x)]))
+
+
+def film_field(p: SailParameters, spectrum: film.Film, x, y) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(h, ∂h/∂x, ∂h/∂y) of the case's film at the points (x, y) (m): its surface on a sheet of ny ≥ 2 tiles
+    across (film_surface, the modes the nx × ny grid carries), its line scan along x on a strip (ny = 1:
+    film_profile, the modes of the chain of n slices; ∂h/∂y = 0)."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    if p.ny == 1:
+        line = film.film_profile(spectrum, p.length, p.n, p.film_seed)
+        return line(x), line.slope(x), np.zeros_like(x)
+    surface = film.film_surface(spectrum, p.length, p.width, p.n, p.ny, p.film_seed)
+    return surface(x, y), surface.slope_x(x, y), surface.slope_y(x, y)
 
 
 def perturbed(p: SailParameters, centres: np.ndarray, perturbation: float) -> np.ndarray:

@@ -259,9 +259,7 @@ def assess(solver, params: SailParameters, settings: RunSettings, options: dict,
 
 def film_twin(params: SailParameters) -> tuple[SailParameters | None, str]:
     """(the film twin's case, what it is): the case with the reference film (model.film.REFERENCE_FILM) when
-    it has none, with its own film at the next seed when it has one; None for a sheet (not wired yet)."""
-    if params.model == "sheet":
-        return None, "not assessed: the film is wired for chains only"
+    it has none, with its own film at the next seed when it has one (a chain's line scan, a sheet's surface)."""
     if params.film_rms == 0:
         ref = film.REFERENCE_FILM
         twin = params.replace(film_rms=ref.rms, film_correlation_length=ref.correlation_length, film_hurst=ref.hurst)

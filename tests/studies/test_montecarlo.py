@@ -56,3 +56,61 @@ def test_cases_carry_the_settings_and_vary_the_defect():
     assert sorted({c.params.defect_amplitude for c in cases}) == [1e-6, 1e-5]
     assert sorted(c.params.defect_seed for c in cases) == [0, 0, 1, 1, 2, 2]
     assert montecarlo.cases(SailParameters(n=12), "defect_amplitude", [1e-6], 1)[0].settings == RunSettings()
+
+
+def film_dependent_case(case):
+    """Fails at t = 1 + 0.01·film_seed whatever the defect: a stand-in for the spread over films."""
+    return {"failed": True, "failure_time": 1.0 + 0.01 * case.params.film_seed, "error": None}
+
+
+def test_monte_carlo_over_films_varies_the_film_seed_and_keeps_the_defect(tmp_path):
+    base = SailParameters(n=12, defect_seed=4, film_rms=1e-9)
+    cases = montecarlo.cases(base, "youngs_modulus", [1e10], 5, over="film")
+    assert [c.params.film_seed for c in cases] == [0, 1, 2, 3, 4]
+    assert {c.params.defect_seed for c in cases} == {4} and {c.params.film_rms for c in cases} == {1e-9}
+    rows = montecarlo.run(
+        base,
+        "youngs_modulus",
+        [1e10],
+        21,
+        tmp_path,
+        workers=1,
+        progress=False,
+        case_function=film_dependent_case,
+        over="film",
+    )
+    times = 1.0 + 0.01 * np.arange(21)
+    assert rows[0].failure_time_median == pytest.approx(1.1)
+    assert rows[0].failure_time_q05 == pytest.approx(np.percentile(times, 5)) == pytest.approx(1.01)
+    assert rows[0].failure_time_q95 == pytest.approx(1.19)
+    with pytest.raises(ParameterError, match="film_rms=0.0 is invalid: allowed > 0"):
+        montecarlo.cases(SailParameters(), "youngs_modulus", [1e10], 3, over="film")
+    with pytest.raises(ParameterError, match="over='roughness' is invalid"):
+        montecarlo.cases(base, "youngs_modulus", [1e10], 3, over="roughness")
+
+
+def test_montecarlo_over_films_from_the_command_line(tmp_path, capsys):
+    """A soft sail with a 10 nm film, four films: each finished case is in the store with its film seed, the
+    printed distribution is the store's, and the films spread the failure time."""
+    import json
+
+    from lightsail_mbs.cli import main
+    from lightsail_mbs.studies.store import CaseStore
+
+    store = tmp_path / "store"
+    args = ["montecarlo", "--n", "12", "--solver", "reduced", "--seeds", "4", "--modulus", "4.5e8"]
+    args += ["--film-rms", "1e-8", "--over", "film", "--store", str(store), "--workers", "1", "--json", "--quiet"]
+    assert main(args) == 0
+    (row,) = json.loads(capsys.readouterr().out)
+    records = CaseStore(store).records()
+    seeds = sorted(r["parameters"].get("film_seed", 0) for r in records)  # a record leaves out film_seed = 0
+    assert seeds == [0, 1, 2, 3] and all(r["parameters"]["defect_seed"] is None for r in records)
+    times = np.array([r["failure_time"] for r in records])
+    assert row["value"] == 4.5e8 and row["runs"] == row["failures"] == 4
+    assert row["failure_time_median"] == pytest.approx(np.median(times))
+    assert (
+        row["failure_time_q05"] == pytest.approx(np.percentile(times, 5))
+        and row["failure_time_q05"] < row["failure_time_q95"]
+    )
+    assert main([*args[:-2], "--quiet"]) == 0
+    assert "4 films (RMS σ = 1e-08 m" in capsys.readouterr().out
