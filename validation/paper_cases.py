@@ -102,8 +102,9 @@ def main(argv=None) -> int:
         "(docs: the physics, failure criterion);",
         "'where' is the sign of the largest deviation from the best-fit line at the last sample. Failure times "
         "and the largest amplitude ratios of survivors carry their uncertainty; each is the answer of the tightest "
-        "run of a tolerance sequence, its error bar from the sequence's spread and from a twin started perturbed "
-        "by 1e-12 a₀ (docs: the solvers, how sure a run is); wall times are of the base runs.",
+        "run of a tolerance sequence, its error bar from the sequence's spread, from a twin started perturbed "
+        "by 1e-12 a₀ and from where the failure (or the largest ratio) falls between output samples, the "
+        "failure located by event (docs: the solvers, how sure a run is); wall times are of the base runs.",
         "",
         f"| case | paper | {head} |",
         "|" + "---|" * (2 + 6 * len(args.solvers)),
