@@ -245,6 +245,7 @@ class SailParameters(DerivedQuantities):
         check("billow_radius", self.billow_radius, self.billow_radius == math.inf, "inf (flat) for a sheet")
         check("billow_rest", self.billow_rest, self.billow_rest is False, "False for a sheet")
         check("initial_tilt", self.initial_tilt, self.initial_tilt == 0, "0 for a sheet")
+        check("roughness", self.roughness, self.roughness == 0, "0 for a sheet (its film: film_rms, model.film)")
         check("optics", self.optics, self.optics is None, "None for a sheet (its tiles: reflectivity, absorptivity)")
         check("payload_mass", self.payload_mass, self.payload_mass == 0, "0 for a sheet")
         for name in ("torsional_damping", "axial_damping"):

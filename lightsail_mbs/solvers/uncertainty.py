@@ -335,8 +335,8 @@ def explain(params, quantity, value, integration, sensitivity, well, failed) -> 
     sheet = params.model == "sheet"
     bodies = "tiles" if sheet else "slices"
     remedy = (
-        "It is changed by the roughness the sail starts from (set one explicitly: SailParameters.roughness, "
-        f"--roughness; any real film is rougher than 1e-9 a₀), by the number of {bodies} (fewer {bodies} carry "
+        "It is changed by the roughness the sail starts from (set a film: SailParameters.film_rms, --film-rms; "
+        f"any real film is rougher than 1e-9 a₀), by the number of {bodies} (fewer {bodies} carry "
         "fewer unstable short waves) and by bending stiffness or tension; a tighter tolerance does not change it."
     )
     if math.isinf(sensitivity):
