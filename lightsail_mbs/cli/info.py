@@ -29,8 +29,9 @@ def run(args) -> int:
     print(f"{args.run}: {summary['solver']} run of a {p.model} sail, {size}, t_end = {summary['t_end']:.6g} s")
     print(f"  answer: {result.answer_text()}")
     print(f"  conditioning: {conditioning(summary['uncertainty'])}")
-    if result.film_text():
-        print(f"  {result.film_text()}")
+    film = result.film_text()
+    if film:
+        print(f"  {film}")
     if summary["failed"]:
         print(f"  max amplitude ratio {summary['max_amplitude_ratio']:.4g}")
     if summary["error"]:

@@ -56,8 +56,9 @@ def run(args) -> int:
             print("uncertainty: not estimated (--no-uncertainty)")
         elif not estimate["estimated"] or not estimate["well_conditioned"]:
             print(estimate["explanation"])
-        if result.film_text():
-            print(result.film_text())
+        film = result.film_text()
+        if film:
+            print(film)
         if summary["dissipated_energy"]:
             print(f"dissipated as heat: {summary['dissipated_energy']:.6g} J")
     for note in summary["warnings"]:

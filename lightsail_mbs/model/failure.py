@@ -42,16 +42,23 @@ def amplitude(x: np.ndarray, y: np.ndarray):
     return float(amp) if amp.ndim == 0 else amp
 
 
-def failure_time(time: np.ndarray, amp: np.ndarray, ratio: float = 2.0) -> float | None:
-    """First time amplitude(t) reaches ratio · amplitude(0), linearly interpolated; None if never, and for a
+def crossing(amp: np.ndarray, ratio: float = 2.0) -> int | None:
+    """Index of the first sample whose amplitude reaches ratio · amplitude(0); None if none does, and for a
     sail that starts flat (amplitude(0) = 0: no defect to grow, as the solvers' stop rule has it)."""
-    if not amp[0] > 0:
+    amp = np.asarray(amp, float)
+    if not amp.size or not amp[0] > 0:
+        return None
+    above = np.nonzero(amp >= ratio * amp[0])[0]
+    return int(above[0]) if above.size else None
+
+
+def failure_time(time: np.ndarray, amp: np.ndarray, ratio: float = 2.0) -> float | None:
+    """First time amplitude(t) reaches ratio · amplitude(0), linearly interpolated between the samples that
+    bracket it (crossing); None if never, and for a sail that starts flat."""
+    k = crossing(amp, ratio)
+    if k is None:
         return None
     limit = ratio * amp[0]
-    above = np.nonzero(amp >= limit)[0]
-    if above.size == 0:
-        return None
-    k = int(above[0])
     if k == 0:
         return float(time[0])
     a0, a1 = amp[k - 1], amp[k]

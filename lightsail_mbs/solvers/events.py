@@ -6,9 +6,10 @@ bracket it (a_(k−1) < ratio · a(0) ≤ a_k), the root of the line through the
 
     t_lin = t_(k−1) + (ratio · a(0) − a_(k−1)) / (a_k − a_(k−1)) · (t_k − t_(k−1))
 
-(model.failure.failure_time). Its **location error** is estimated from the samples themselves: the root in
-the bracket of the parabola through the samples k − 2, k − 1 and k, t_quad, differs from t_lin by about
-the line's own error (the line errs by ~a'' Δt²/(8 a'), the parabola by O(Δt³)), and the bound is
+(model.failure.failure_time, at the sample model.failure.crossing finds). Its **location error** is
+estimated from the samples themselves: the root in the bracket of the parabola through the samples
+k − 2, k − 1 and k, t_quad, differs from t_lin by about the line's own error (the line errs by
+~a'' Δt²/(8 a'), the parabola by O(Δt³)), and the bound is
 
     E_loc = LOCATION_SAFETY · |t_lin − t_quad|.
 
@@ -42,6 +43,7 @@ import math
 import numpy as np
 
 from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.model import failure
 
 LOCATION_SAFETY = 2.0  # E_loc = LOCATION_SAFETY · |t_lin − t_quad|
 LOCATE_RTOL = 1e-6  # a failure time is located to E_loc ≤ LOCATE_RTOL · t_f, or its run is refined
@@ -53,26 +55,18 @@ SAMPLES_PER_TIME_SCALE = 20  # default output interval: the case's fastest time 
 SAMPLE_MEMORY = 4e6  # numbers the samples of one run may hold (32 MB), for the default and refined intervals
 
 
-def bracket(time: np.ndarray, amplitude: np.ndarray, ratio: float) -> int | None:
-    """Index k of the first sample at or above ratio · a(0); None if none is or the sail starts flat."""
-    if not amplitude.size or not amplitude[0] > 0:
-        return None
-    above = np.nonzero(amplitude >= ratio * amplitude[0])[0]
-    return int(above[0]) if above.size else None
-
-
 def location_error(time: np.ndarray, amplitude: np.ndarray, ratio: float) -> float | None:
     """E_loc of the failure time found on the samples (module docstring): LOCATION_SAFETY · |t_lin − t_quad|
     (s), inf for an unresolved bracket, None when the run did not fail."""
     time, amplitude = np.asarray(time, float), np.asarray(amplitude, float)
-    k = bracket(time, amplitude, ratio)
+    k = failure.crossing(amplitude, ratio)
     if k is None:
         return None
     if k < 2 or amplitude[k] > MAX_BRACKET_GROWTH * amplitude[k - 1]:
         return math.inf
     limit = ratio * amplitude[0]
     t, a = time[k - 2 : k + 1], amplitude[k - 2 : k + 1]
-    t_lin = t[1] + (limit - a[1]) / (a[2] - a[1]) * (t[2] - t[1])
+    t_lin = failure.failure_time(time, amplitude, ratio)
     # the parabola through the three samples, in s = t − t_(k−1): a(s) = a₁ + b s + c s²
     h0, h2 = t[0] - t[1], t[2] - t[1]
     d0, d2 = (a[0] - a[1]) / h0, (a[2] - a[1]) / h2
@@ -157,9 +151,8 @@ def refined_settings(result, settings: RunSettings) -> tuple[RunSettings | None,
     error = location_error(time, amplitude, ratio)
     if error is None or result.error is not None:
         return None, None
-    k = bracket(time, amplitude, ratio)
-    t_f = float(result.failure_time)
-    tolerance = LOCATE_RTOL * t_f if t_f > 0 else LOCATE_RTOL * float(time[k])
+    k = failure.crossing(amplitude, ratio)
+    tolerance = LOCATE_RTOL * float(result.failure_time)  # > 0: the crossing is at a sample k ≥ 1
     if error <= tolerance:
         return None, None
     width = float(time[k] - time[k - 1])

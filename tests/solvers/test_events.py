@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from lightsail_mbs import RunSettings, SailParameters, paper_case, solve
+from lightsail_mbs.model import failure
 from lightsail_mbs.result import with_uncertainty
 from lightsail_mbs.solvers import events
 
@@ -37,7 +38,7 @@ def test_location_error_bounds_the_linear_root_of_an_exponential(interval):
     bound E_loc, and by no less than an eighth of it (the bound is the line's own error, not a blanket)."""
     rate = 3.0
     time, amplitude = exponential_samples(rate, interval, 1.0)
-    k = events.bracket(time, amplitude, 2.0)
+    k = failure.crossing(amplitude, 2.0)
     t_lin = time[k - 1] + (2.0 - amplitude[k - 1]) / (amplitude[k] - amplitude[k - 1]) * interval
     exact = math.log(2.0) / rate
     bound = events.location_error(time, amplitude, 2.0)
