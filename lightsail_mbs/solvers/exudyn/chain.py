@@ -402,7 +402,7 @@ def _samples(sampler: Sampler | None, error: str | None, q0: np.ndarray):
     coordinates q0 at rest when the run failed before its first step (no sampler)."""
     if sampler is None:
         return np.zeros(1), q0[None, :], np.zeros_like(q0[None, :])
-    sampler.check()
+    sampler.check(final=error is None)
     time, q, q_t = sampler.arrays()
     if error is not None:  # keep the samples with a finite state
         finite = np.all(np.isfinite(q), axis=1) & np.all(np.isfinite(q_t), axis=1)

@@ -57,11 +57,14 @@ class Sampler:
             return not self.check()
         return True
 
-    def _sample(self) -> None:
-        """Interpolate the output times passed by the kept steps (then forget all but the last step)."""
+    def _sample(self, final: bool = False) -> None:
+        """Interpolate the output times passed by the kept steps (then forget all but the last step); at the
+        end of the run (final), also the times within 1e-6 of a step past its last one (the grid's end, which
+        steps accumulated in floating point may fall short of)."""
         t = np.asarray(self.steps_t)
         k0 = len(self.q)
-        k1 = int(np.searchsorted(self.times, t[-1] * (1 + 1e-13) + 1e-300, side="right"))
+        reach = t[-1] + 1e-6 * (t[-1] - t[-2]) if final and t.size > 1 else t[-1] * (1 + 1e-13) + 1e-300
+        k1 = int(np.searchsorted(self.times, reach, side="right"))
         if k1 > k0:
             times = self.times[k0:k1]
             step = np.clip(np.searchsorted(t, times * (1 - 1e-13), side="left"), 1, t.size - 1)
@@ -75,13 +78,13 @@ class Sampler:
         for kept in (self.steps_t, self.steps_q, self.steps_v, self.steps_a):
             del kept[:-1]
 
-    def check(self) -> bool:
+    def check(self, final: bool = False) -> bool:
         """Sample, then check the new samples; True (and the samples cut after it) at the first one at or
-        above the limit."""
+        above the limit. final: the run has ended (see _sample)."""
         if self.failed_at is not None:
             return True
         checked = len(self.q)
-        self._sample()
+        self._sample(final)
         every = self.check_every
         if self.monitor.active and len(self.q) > checked:
             x, y, _, _ = self.layout.positions(np.asarray(self.q[checked:]))

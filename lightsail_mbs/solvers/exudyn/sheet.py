@@ -59,6 +59,7 @@ NEWTON_REL_TOL = 1e-8
 NEWTON_ABS_FACTOR = 1e-8  # the chain's rule: 1e-8 f₀ × defect slope
 ROUND_OFF_FACTOR = 2.0  # Newton's absolute tolerance ≥ this × the residual's round-off floor
 SAMPLES_PER_CHECK = 20
+ON_STEP = 1e-3  # a step within this many steps of an output time is taken as on it (round-off of Σh)
 OPTIONS = ("step_size", "newton_rel_tol", "newton_abs_tol", "spectral_radius", "perturbation")
 
 
@@ -220,8 +221,11 @@ def simulation_settings(t_final: float, step_size: float, rel_tol: float, abs_to
 
     s = exu.SimulationSettings()
     ti = s.timeIntegration
-    ti.endTime = t_final
-    ti.numberOfSteps = max(1, int(round(t_final / step_size)))
+    steps = t_final / step_size
+    if abs(steps - round(steps)) <= 1e-9 * max(1.0, steps):  # a whole number of steps ends at t_final
+        ti.endTime, ti.numberOfSteps = t_final, max(1, int(round(steps)))
+    else:  # steps of exactly step_size (on the output grid), the last one past t_final
+        ti.endTime, ti.numberOfSteps = math.ceil(steps) * step_size, int(math.ceil(steps))
     ti.newton.relativeTolerance = rel_tol
     ti.newton.absoluteTolerance = abs_tol
     ti.generalizedAlpha.spectralRadius = spectral_radius
@@ -260,7 +264,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     s = simulation_settings(settings.t_final, h, rel_tol, abs_tol, spectral_radius)
     monitor = FailureMonitor(failure.plane_amplitude(system.centres(mbs.systemData.GetODE2Coordinates())), settings)
     bar = Progress(settings.t_final, progress, label=f"exudyn sheet {p.n}x{p.ny}")
-    recorder = Recorder(mbs, system, monitor, h, dt, bar)
+    recorder = Recorder(mbs, system, monitor, h, settings.sample_times(), bar)
     mbs.SetPostStepUserFunction(recorder)
     solver = exu.MainSolverImplicitSecondOrder()
     error = solve_steps(solver, mbs, s, bar, failure="Newton did not converge", stopped=lambda: recorder.failed)
@@ -299,27 +303,35 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
 
 
 class Recorder:
-    """The post-step function of a sheet run: the state at every output sample (every step that reaches
-    the next sample time; Exudyn may redo a step that Newton failed, so by time, not by count), and the stop
-    rule every SAMPLES_PER_CHECK samples. Attributes: rows_q, rows_v and times of the samples, steps, failed
-    (the stop rule fired)."""
+    """The post-step function of a sheet run: the state at every output time (the step that lands on it;
+    by time, not by count: Exudyn shortens and redoes a step that Newton failed, and its later steps may
+    pass an output time, as the last step passes a t_final that the interval does not divide: then the
+    cubic Hermite interpolant of the two steps around it), and the stop rule every SAMPLES_PER_CHECK
+    samples. Attributes: rows_q, rows_v and times of the samples, steps, failed (the stop rule fired)."""
 
-    def __init__(self, mbs, system: SheetSystem, monitor: FailureMonitor, h: float, dt: float, bar):
-        self.system, self.monitor, self.h, self.dt, self.bar = system, monitor, h, dt, bar
+    def __init__(self, mbs, system: SheetSystem, monitor: FailureMonitor, h: float, grid: np.ndarray, bar):
+        self.system, self.monitor, self.h, self.grid, self.bar = system, monitor, h, grid, bar
         self.rows_q = [np.array(mbs.systemData.GetODE2Coordinates())]
         self.rows_v = [np.array(mbs.systemData.GetODE2Coordinates_t())]
         self.times = [0.0]
-        self.steps, self.failed, self.next_sample = 0, False, dt
+        self.steps, self.failed = 0, False
+        self.previous = (0.0, self.rows_q[0], self.rows_v[0])  # the last step: (t, q, q̇)
 
     def __call__(self, mbs, t) -> bool:
         if t < 0.5 * self.h:  # Exudyn also calls this once at initialisation
             return True
         self.steps += 1
-        if t < self.next_sample - 0.25 * self.h:  # by time: Exudyn may redo a step that Newton failed
+        if len(self.times) == self.grid.size:  # past the last output time
             return True
-        self.next_sample += self.dt
-        self.rows_q.append(np.array(mbs.systemData.GetODE2Coordinates()))
-        self.rows_v.append(np.array(mbs.systemData.GetODE2Coordinates_t()))
+        target, data, previous = self.grid[len(self.times)], mbs.systemData, self.previous
+        q, v = np.array(data.GetODE2Coordinates()), np.array(data.GetODE2Coordinates_t())
+        self.previous = (t, q, v)
+        if t < target - ON_STEP * self.h:
+            return True
+        if t > target + ON_STEP * self.h:  # a step past the output time (a shortened step, the end)
+            t, q, v = (target, *hermite(previous, (t, q, v), target))
+        self.rows_q.append(q)
+        self.rows_v.append(v)
         self.times.append(t)
         if (len(self.times) - 1) % SAMPLES_PER_CHECK == 0:
             self.bar.update(t)
@@ -329,6 +341,18 @@ class Recorder:
                     self.failed = True
                     return False
         return True
+
+
+def hermite(start, end, time: float) -> tuple[np.ndarray, np.ndarray]:
+    """Coordinates and their rates at `time` in the step from start = (t₀, q₀, q̇₀) to end = (t₁, q₁, q̇₁):
+    the cubic Hermite polynomial and its derivative."""
+    (t0, q0, v0), (t1, q1, v1) = start, end
+    span = t1 - t0
+    s = (time - t0) / span
+    q = (2 * s**3 - 3 * s**2 + 1) * q0 + (s**3 - 2 * s**2 + s) * span * v0 + (3 * s**2 - 2 * s**3) * q1
+    q = q + (s**3 - s**2) * span * v1
+    v = (6 * s**2 - 6 * s) / span * (q0 - q1) + (3 * s**2 - 4 * s + 1) * v0 + (3 * s**2 - 2 * s) * v1
+    return q, v
 
 
 def static_centres(p: SailParameters, rel_tol: float = 1e-10) -> np.ndarray:

@@ -268,3 +268,13 @@ def test_soft_torsion_failure_time_converges():
         uncertainty=False,
     )
     assert fine.failure_time == pytest.approx(coarse.failure_time, rel=1e-2)
+
+
+def test_the_last_sample_is_kept_when_the_steps_fall_short_of_t_final_by_round_off():
+    """33,200 steps of t_final/33,200 accumulate to just below t_final in floating point: the grid's last
+    sample (t_final) is still taken, from the last step (contract rule 4)."""
+    p = SailParameters(model="rigid", n=11, intensity=0.0, tip_load=1e-9, tip_load_time_constant=1e-4)
+    settings = RunSettings(t_final=1e-5, output_interval=1e-5 / 33200, stop_at_failure=False)
+    result = exudyn_chain.run(p, settings, step_size=1e-5 / 33200)
+    assert result.error is None
+    np.testing.assert_allclose(result.time, settings.sample_times(), rtol=0, atol=1e-18)

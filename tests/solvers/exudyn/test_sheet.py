@@ -142,3 +142,35 @@ def test_initial_equilibrium_is_at_rest_in_exudyn_too():
     assert np.max(np.abs(after[:, 2] - expected[:, 2])) < 1e-6 * scale
     # in-plane: Exudyn's round-off floor k_∥ ε L / m (docs: sheet), the same before and after
     assert np.max(np.abs(after[:, :2] - expected[:, :2])) < 1e-7
+
+
+def test_samples_lie_on_the_grid_when_the_interval_does_not_divide_the_run():
+    """Contract rule 4: an interval that does not divide t_final, and a t_final that no whole number of steps
+    reaches, still give samples at exactly settings.sample_times(); the last one, between two steps, is the
+    cubic Hermite interpolant, close to the line between the two steps around it."""
+    p = SailParameters(model="sheet", n=4, ny=4, youngs_modulus=4.5e9, beam_waist=0.6, intensity=1e9)
+    coarse = RunSettings(t_final=1.0005e-3, output_interval=3e-4, stop_at_failure=False)
+    result = exudyn_sheet.run(p, coarse, step_size=1e-5)
+    np.testing.assert_allclose(result.time, coarse.sample_times(), rtol=0, atol=1e-15)
+    fine_settings = RunSettings(t_final=1.01e-3, output_interval=1e-5, stop_at_failure=False)
+    fine = exudyn_sheet.run(p, fine_settings, step_size=1e-5)
+    before, after = fine.tile_centres[-2], fine.tile_centres[-1]
+    line = before + 0.05 * (after - before)  # 1.0005e-3 s is 5 % into the step from 1e-3 s to 1.01e-3 s
+    np.testing.assert_allclose(result.tile_centres[-1], line, rtol=0, atol=0.01 * np.max(np.abs(after - before)))
+    assert np.max(np.abs(after - before)) > 0
+
+
+def test_samples_lie_on_the_grid_when_newton_shortens_steps():
+    """A stiff clamped strip whose first steps Newton fails: Exudyn shortens them, and its later steps pass
+    the output times instead of landing on them; the samples are still at settings.sample_times()."""
+    length = 0.10809697574952476
+    p = SailParameters(
+        model="sheet", n=19, ny=3, length=length, thickness=4.08e-7, density=551.8, youngs_modulus=5.66e12,
+        intensity=1e6, defect_amplitude=3.77e-3, defect_mode=0.5, beam_waist=length, reflectivity=0.455,
+        boundary="clamped",
+    )  # fmt: skip
+    settings = RunSettings(t_final=0.01, output_interval=0.0025, stop_at_failure=False)
+    result = exudyn_sheet.run(p, settings)
+    assert result.info["steps"] > round(settings.t_final / result.info["step_size"])  # steps were shortened
+    np.testing.assert_allclose(result.time, settings.sample_times(), rtol=0, atol=1e-15)
+    assert np.all(np.isfinite(result.tile_centres))
