@@ -7,6 +7,7 @@ import inspect
 import pytest
 
 from lightsail_mbs import ParameterError, RunSettings, SailParameters, solve
+from lightsail_mbs.analysis import linear_stability
 from lightsail_mbs.solvers import SOLVERS, contract, uncertainty
 
 SHEET = SailParameters(model="sheet", n=4, ny=4, youngs_modulus=4.5e9)
@@ -82,6 +83,8 @@ def test_a_missing_capability_is_one_line():
         with pytest.raises(ParameterError, match=words) as caught:
             contract.REGISTRY[solver].capability(name)
         assert "\n" not in str(caught.value)
+    with pytest.raises(ParameterError, match="solver='nosuch' is invalid: allowed one of exudyn, reduced"):
+        linear_stability.angular_frequencies(SailParameters(n=4), "nosuch")
     with pytest.raises(ParameterError, match="capability 'spin' is invalid: allowed one of statics"):
         contract.register(contract.Solver("spinner", "chain", "reduced.solver", (), {"spin": "run"}))
     assert ("spinner", "chain") not in contract.REGISTRY
