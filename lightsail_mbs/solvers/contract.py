@@ -37,9 +37,9 @@ a solver keeps (a third engine follows them from this docstring alone):
    :meth:`Solver.capability` (``lookup(name, params).capability("statics")``), never a solver's module; a
    solver that lacks one gives one ``ParameterError`` line naming what it offers.
 10. **Default options.** ``defaults`` names (as a capability is named) a function
-   ``(params, settings, **options) -> dict``: the value each option of the schema takes in a run of
-   ``params`` under ``settings`` given ``options`` (None: left to the integrator).
-   :meth:`Solver.default_options` calls it; studies read a solver's default step or tolerance there.
+    ``(params, settings, **options) -> dict``: the value each option of the schema takes in a run of
+    ``params`` under ``settings`` given ``options`` (None: left to the integrator).
+    :meth:`Solver.default_options` calls it; studies read a solver's default step or tolerance there.
 """
 
 from __future__ import annotations
@@ -56,6 +56,7 @@ from lightsail_mbs.model.parameters import ParameterError
 
 FAMILIES = ("chain", "sheet")
 ROLES = ("rtol", "tolerance", "step", "perturbation")
+# rule 9: the capabilities a solver may declare, each with its call and what it returns
 CAPABILITIES = {
     "statics": "(params) -> the static equilibrium under the case's load: a ChainState (chain), the tile "
     "centres (N, 3) (sheet)",
