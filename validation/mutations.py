@@ -94,7 +94,7 @@ MUTATIONS = [
     Mutation(
         "linear-load-sign",
         "test_stability's rigid case (every ω² exactly zero)",
-        "lightsail_mbs/analysis/linear_stability.py",
+        "lightsail_mbs/solvers/exudyn/capabilities.py",
         "return np.asarray(mass), np.asarray(stiffness) - jac",
         "return np.asarray(mass), np.asarray(stiffness) + jac",
         "Exudyn's linearisation adds the load stiffness with the wrong sign",
@@ -104,7 +104,7 @@ MUTATIONS = [
     Mutation(
         "linear-load-dropped",
         "test_stability's rigid case (every ω² exactly zero)",
-        "lightsail_mbs/analysis/linear_stability.py",
+        "lightsail_mbs/solvers/exudyn/capabilities.py",
         "return beam(q).copy() - tension_only(q)",
         "return 0.0 * (beam(q).copy() - tension_only(q))",
         "Exudyn's linearisation loses the net load (radiation and frame force)",

@@ -1,7 +1,7 @@
 """Analysis of Results: failure and amplitude, energy, frequencies, linear and finite-amplitude
-stability, statics. Analysis reads a Result (or a chain state); the exceptions that still build a
-solver's system from its internals (linear_stability, statics, finite_amplitude) are listed in the
-import contract (pyproject.toml).
+stability, statics. Analysis reads a Result (or a chain state); what it needs of a solver's equations
+(linearisation, statics, eigenfrequencies, the chain's equations of motion) it asks through the solver's
+declared capabilities (solvers.contract), never a solver's module.
 
 The failure rule and the energy functions (model.failure, model.energy) are also reachable from here
 (``analysis.amplitude``, ``analysis.failure_time``, ``analysis.mechanical_energy``, …).

@@ -44,6 +44,7 @@ from lightsail_mbs.base.validation import ParameterError, check, finite
 from lightsail_mbs.model import shapes, theory
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.model.theory import time_scale, wavenumber
+from lightsail_mbs.solvers import contract
 
 MIN_FACTOR, MAX_FACTOR = 1.001, 10.0  # allowed final bracket widths hi/lo of critical_ratio
 BLOWUP_RATIO = 10.0  # scaled runs past failure end here (the sail has crumpled; slopes no longer small)
@@ -108,28 +109,23 @@ def scaled_run(
     stop_at_failure: bool = True,
     failure_ratio: float = 2.0,
 ) -> ScaledRun:
-    """Integrate the reduced model (scipy's DOP853, atol = rtol × sampling.state_scales) from rest in the
-    defect shape (plus an optional small angle perturbation, rad per slice) up to τ = tau_final, or to
-    failure (amplitude ≥ failure_ratio·a(0), located by an event, when stop_at_failure), or until the
-    amplitude reaches BLOWUP_RATIO·a(0) (past failure)."""
-    from lightsail_mbs.solvers.reduced.dynamics import ChainDynamics
-    from lightsail_mbs.solvers.reduced.kinematics import ChainModel, centres
-    from lightsail_mbs.solvers.reduced.sampling import state_scales
-
+    """Integrate the reduced model's equations (its "equations" capability; scipy's DOP853, atol = rtol × the
+    state scales) from rest in the defect shape (plus an optional small angle perturbation, rad per slice) up to
+    τ = tau_final, or to failure (amplitude ≥ failure_ratio·a(0), located by an event, when stop_at_failure), or
+    until the amplitude reaches BLOWUP_RATIO·a(0) (past failure)."""
     if p.extensible:
         raise ParameterError("scaled runs use the inextensible chain: set axial_springs=False for tnt")
     tc = time_scale(p)
-    model = ChainModel.from_params(p)
+    equations = reduced_equations(p)
     start = shapes.initial_state(p)
     theta = start.theta + (0.0 if theta_perturbation is None else np.asarray(theta_perturbation, float))
-    q0 = model.pack(start.x[0], start.y[0], theta, start.z)
+    q0 = equations.coordinates(shapes.ChainState(start.x, start.y, theta, start.z))
     y0 = np.concatenate([q0, np.zeros_like(q0)])
     amp0 = analysis.amplitude(start.x, start.y)
     limit = failure_ratio * amp0
-    dynamics = ChainDynamics(model)
 
     def amplitude_of(y):
-        x, yy = centres(model, y[: model.dof])
+        x, yy = equations.centres(y[: equations.dof])
         return analysis.amplitude(x, yy)
 
     def failed(t, y):
@@ -145,19 +141,25 @@ def scaled_run(
 
     t_eval = tc * np.linspace(0.0, tau_final, int(round(tau_final * samples_per_tau)) + 1)
     sol = solve_ivp(
-        dynamics.rhs,
+        equations.rhs,
         (0.0, t_eval[-1]),
         y0,
         method="DOP853",
         t_eval=t_eval,
         rtol=rtol,
-        atol=rtol * state_scales(model, p.defect_mode),
+        atol=rtol * equations.state_scales(p.defect_mode),
         events=[failed, left_small_slopes],
     )
-    x, yy = centres(model, sol.y[: model.dof])
+    x, yy = equations.centres(sol.y[: equations.dof])
     amp = np.atleast_1d(analysis.amplitude(x.T, yy.T)) / amp0
     fail = sol.t_events[0]
-    return ScaledRun(sol.t / tc, amp, sol.y[2 : model.dof].T, float(fail[0] / tc) if fail.size else None)
+    theta = equations.angles(sol.y[: equations.dof]).T
+    return ScaledRun(sol.t / tc, amp, theta, float(fail[0] / tc) if fail.size else None)
+
+
+def reduced_equations(p: SailParameters):
+    """The reduced solver's equations of motion of the chain (its "equations" capability, solvers.contract)."""
+    return contract.lookup("reduced", p).capability("equations")(p)
 
 
 def failure_tau(p: SailParameters, tau_final: float, **options) -> float | None:
@@ -248,9 +250,7 @@ def one_mode_force(p: SailParameters, amplitudes: np.ndarray, step: float = 1e-3
     """Generalized force F(a) = Σ_j F_j·∂r_j/∂a + Σ_j τ_j ∂θ_j/∂a on the one-parameter family of
     sine shapes a sin(kx): load and frame force (loads.applied_forces), end tension and bending
     torques of the chain, with the family's rigid translation removed (central differences, step·a₀)."""
-    from lightsail_mbs.solvers.reduced.kinematics import ChainModel, body_forces, torsion_torques
-
-    model = ChainModel.from_params(p)
+    equations = reduced_equations(p)
     da = step * p.defect_amplitude
     out = np.empty(len(amplitudes))
     for i, a in enumerate(amplitudes):
@@ -258,8 +258,7 @@ def one_mode_force(p: SailParameters, amplitudes: np.ndarray, step: float = 1e-3
         drx, dry = (plus.x - minus.x) / (2 * da), (plus.y - minus.y) / (2 * da)
         drx, dry = drx - drx.mean(), dry - dry.mean()
         dth = (plus.theta - minus.theta) / (2 * da)
-        fx, fy = body_forces(model, s.x, s.theta)
-        tau = torsion_torques(model, s.theta, np.zeros_like(s.theta))
+        fx, fy, tau = equations.slice_loads(s)
         out[i] = fx @ drx + fy @ dry + tau @ dth
     return out
 

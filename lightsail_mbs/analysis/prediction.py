@@ -2,7 +2,7 @@
 
 A chain started from its defect shape plus a film (or white roughness) differs from the ideal-defect chain by a
 small displacement Δq at rest. Linearised at rest in the initial state, q̈ = A δq (A = ∂q̈/∂q,
-:func:`lightsail_mbs.analysis.linear_stability.reduced_jacobian`), that difference evolves as
+:func:`lightsail_mbs.analysis.linear_stability.jacobian`), that difference evolves as
 
     δq(t) = cosh(√A t) Δq = Σ_i c_i cosh(√μ_i t) v_i,       c = V⁻¹ Δq,
 
@@ -36,6 +36,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from lightsail_mbs.analysis.finite_amplitude import reduced_equations
+from lightsail_mbs.analysis.linear_stability import jacobian
 from lightsail_mbs.model import failure, film, shapes
 from lightsail_mbs.model.parameters import SailParameters
 
@@ -66,17 +68,14 @@ def ideal(p: SailParameters) -> SailParameters:
 
 
 def _packed(p: SailParameters):
-    from lightsail_mbs.solvers.reduced.kinematics import ChainModel
-
-    model, state = ChainModel.from_params(p), shapes.initial_state(p)
-    return model, model.pack(state.x[0], state.y[0], state.theta, state.z)
+    """(the reduced solver's equations of the chain, q of its initial state)."""
+    equations = reduced_equations(p)
+    return equations, equations.coordinates(shapes.initial_state(p))
 
 
 def _modes(p: SailParameters, state) -> tuple[np.ndarray, np.ndarray]:
     """(√μ (complex), V): the eigenvalues' square roots and eigenvectors of A = ∂q̈/∂q at rest in `state`."""
-    from lightsail_mbs.analysis.linear_stability import reduced_jacobian
-
-    jac = reduced_jacobian(p, state=state, positions_only=True)
+    jac = jacobian(p, state=state, positions_only=True)
     mu, vectors = np.linalg.eig(jac[jac.shape[0] // 2 :])
     return np.sqrt(mu.astype(complex)), vectors
 
@@ -113,38 +112,33 @@ def predict(
     seed: the case whose start seeds the growth (default `params` itself; a case without film or roughness is
     seeded by the reference film); trajectory: the ideal-defect run (a Result of ``ideal(params)``) for the
     'trajectory' prediction, else the 'spectrum' prediction."""
-    from lightsail_mbs.solvers.reduced.dynamics import ChainDynamics
-    from lightsail_mbs.solvers.reduced.kinematics import centres
-
     seeded = seed if seed is not None else params
     if not seeded.film_rms and not seeded.roughness:
         ref = film.REFERENCE_FILM
         seeded = seeded.replace(film_rms=ref.rms, film_correlation_length=ref.correlation_length, film_hurst=ref.hurst)
     base = ideal(params)
-    model, q_seed = _packed(seeded)
+    equations, q_seed = _packed(seeded)
     _, q_ideal = _packed(base)
     roots, vectors = _modes(base, shapes.initial_state(base))
     c = np.linalg.solve(vectors, q_seed - q_ideal)
-    offsets_ideal = failure.line_offsets(*centres(model, q_ideal))
+    offsets_ideal = failure.line_offsets(*equations.centres(q_ideal))
 
     def offsets(dq):  # the failure measure's offsets of the ideal start plus δq, less the ideal start's
-        return failure.line_offsets(*centres(model, q_ideal + dq.real)) - offsets_ideal
+        return failure.line_offsets(*equations.centres(q_ideal + dq.real)) - offsets_ideal
 
-    limit = failure_ratio * failure.amplitude(*centres(model, q_seed))
+    limit = failure_ratio * failure.amplitude(*equations.centres(q_seed))
     growth = roots.real
     fastest = int(np.argmax(growth))
     mode = vectors[:, fastest].real
     mode_offsets = offsets(mode * 1e-9 / np.abs(mode).max()) / (1e-9 / np.abs(mode).max())
     seed_size = float(abs(c[fastest].real) * 0.5 * (mode_offsets.max() - mode_offsets.min()))
-    wavelength = (
-        model.params.slice_length * _wavelength_in_slices(mode[2 : 2 + params.n]) if growth[fastest] > 0 else None
-    )
+    wavelength = seeded.slice_length * _wavelength_in_slices(mode[2 : 2 + params.n]) if growth[fastest] > 0 else None
     if trajectory is not None:
         times, tau = trajectory.time, stretched_time(base, trajectory)
         shape = [failure.line_offsets(trajectory.x[k], trajectory.y[k]) for k in range(times.size)]
         method = "trajectory"
     else:
-        acc = ChainDynamics(model).accelerations(q_ideal[:, None], np.zeros((model.dof, 1)))[:, 0]
+        acc = equations.accelerations(q_ideal[:, None], np.zeros((equations.dof, 1)))[:, 0]
         d = np.linalg.solve(vectors, acc)
         times = tau = np.linspace(0.0, HORIZON / max(growth[fastest], 1e-12), TIME_SAMPLES)
         shape = [offsets_ideal + offsets(vectors @ (d * _from_rest(roots, t))) for t in times]

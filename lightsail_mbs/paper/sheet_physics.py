@@ -48,6 +48,7 @@ import numpy as np
 from lightsail_mbs import RunSettings, SailParameters
 from lightsail_mbs.paper.common import store_folder
 from lightsail_mbs.paper.sheet_physics_report import plot, summary_markdown
+from lightsail_mbs.solvers.contract import lookup
 from lightsail_mbs.studies import sheet as sheet_study
 from lightsail_mbs.studies.sweep import run_cases
 from lightsail_mbs.studies.tables import print_table, write_csv
@@ -390,13 +391,12 @@ def long_horizon(
     Each case is run again at a ten times tighter rtol: a late runaway that the solver's own error
     seeds moves with the tolerance (columns t_2_rtol10, max_ratio_rtol10, and error_rtol10 when that run
     ended in a solver error, recorded as a result)."""
-    from lightsail_mbs.solvers.reduced.sheet import DEFAULT_RTOL
-
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     store_dir = store_folder(out, store, NAME)
     rows = horizon_rows(grids, ratios, settings, store_dir, workers, progress)
-    tight = horizon_rows(grids, ratios, settings, store_dir, workers, progress, options={"rtol": DEFAULT_RTOL / 10})
+    rtol = lookup("reduced", base(grids[0])).default_options(base(grids[0]), settings)["rtol"]
+    tight = horizon_rows(grids, ratios, settings, store_dir, workers, progress, options={"rtol": rtol / 10})
     for row, twin in zip(rows, tight, strict=True):
         row.update(t_2_rtol10=twin["t_2"], max_ratio_rtol10=twin["max_ratio"], error_rtol10=twin["error"])
     write_csv(out / "sheet_long_horizon.csv", rows)

@@ -6,10 +6,10 @@ its name and the family of ``params``, checks the options against its schema, an
 template of :func:`lightsail_mbs.solvers.solve` (failure located by event, uncertainty twins). The rules
 a solver keeps (a third engine follows them from this docstring alone):
 
-1. **Declaration.** ``Solver(name, family, module, options, capabilities)``: ``module`` (relative to
-   ``lightsail_mbs.solvers``) exposes ``run``; ``options`` is its option schema; ``capabilities`` maps
-   what else it offers analysis to the module's functions (rule 9). A name may be registered once per
-   family.
+1. **Declaration.** ``Solver(name, family, module, options, capabilities, defaults)``: ``module``
+   (relative to ``lightsail_mbs.solvers``) exposes ``run``; ``options`` is its option schema;
+   ``capabilities`` maps what else it offers analysis to functions of its package (rule 9); ``defaults``
+   names its default-options function (rule 10). A name may be registered once per family.
 2. **Options are checked before anything is solved.** An option not in the schema, or a value the
    schema does not allow, raises ``ParameterError`` with one line naming the option, the solver and what is
    allowed (:meth:`Solver.check_options`). The module may check further (combinations), before solving.
@@ -30,10 +30,16 @@ a solver keeps (a third engine follows them from this docstring alone):
    tolerance: divided by F, never below its floor), ``"step"`` (a fixed step: divided by √F) and
    ``"perturbation"`` (the amplitude, m, of a seeded roughness added to the start). A solver without a
    perturbation option cannot be assessed.
-9. **Capabilities.** ``capabilities`` maps the analyses the solver supports beyond ``run`` to the
-   functions of its module that do them: ``"statics"`` (the static shape under the load),
-   ``"eigenfrequencies"`` (the linear spectrum at rest), ``"linearise"`` (the Jacobian of its equations at
-   a state). Analysis calls them through :meth:`Solver.capability`, never the module directly.
+9. **Capabilities.** ``capabilities`` maps the analyses the solver supports beyond ``run`` (the names of
+   :data:`CAPABILITIES`, each with its call) to the functions that do them: a function of the solver's
+   module (``"static_centres"``), or of another module of its own package (``"capabilities:statics"``:
+   ``lightsail_mbs.solvers.<package>.capabilities.statics``). Analysis calls them through
+   :meth:`Solver.capability` (``lookup(name, params).capability("statics")``), never a solver's module; a
+   solver that lacks one gives one ``ParameterError`` line naming what it offers.
+10. **Default options.** ``defaults`` names (as a capability is named) a function
+    ``(params, settings, **options) -> dict``: the value each option of the schema takes in a run of
+    ``params`` under ``settings`` given ``options`` (None: left to the integrator).
+    :meth:`Solver.default_options` calls it; studies read a solver's default step or tolerance there.
 """
 
 from __future__ import annotations
@@ -50,6 +56,17 @@ from lightsail_mbs.model.parameters import ParameterError
 
 FAMILIES = ("chain", "sheet")
 ROLES = ("rtol", "tolerance", "step", "perturbation")
+# rule 9: the capabilities a solver may declare, each with its call and what it returns
+CAPABILITIES = {
+    "statics": "(params) -> the static equilibrium under the case's load: a ChainState (chain), the tile "
+    "centres (N, 3) (sheet)",
+    "eigenfrequencies": "(params[, count]) -> ω (rad/s, ascending) of the equations linearised at rest in the "
+    "initial state",
+    "linearise": "(params, state, ...) -> ∂ẏ/∂y of the first-order equations at rest in `state`",
+    "mass_stiffness": "(params, load, step, relative_epsilon) -> (M, K) of M q̈ + K q = 0 at the initial state",
+    "equations": "(params) -> the chain's equations of motion in minimal coordinates (rhs, accelerations, "
+    "coordinates of a state, centres, state scales, slice loads)",
+}
 
 
 def family_of(params) -> str:
@@ -117,6 +134,7 @@ class Solver:
     module: str
     options: tuple[Option, ...]
     capabilities: dict = field(default_factory=dict)
+    defaults: str | None = None
 
     @property
     def label(self) -> str:
@@ -143,12 +161,27 @@ class Solver:
     def implementation(self):
         return importlib.import_module(f"lightsail_mbs.solvers.{self.module}")
 
+    def resolve(self, target: str) -> Callable:
+        """The function a declaration names (rule 9): "function" in the solver's module, or
+        "module:function" in a module of the solver's package; imported on first use."""
+        if ":" not in target:
+            return getattr(self.implementation(), target)
+        module, function = target.split(":")
+        package = self.module.split(".")[0]
+        return getattr(importlib.import_module(f"lightsail_mbs.solvers.{package}.{module}"), function)
+
     def capability(self, name: str) -> Callable:
         """The function behind a declared capability (rule 9); ParameterError when it is not declared."""
         if name not in self.capabilities:
             offered = ", ".join(self.capabilities) or "none"
             raise ParameterError(f"{self.label} has no capability {name!r}: it offers {offered}")
-        return getattr(self.implementation(), self.capabilities[name])
+        return self.resolve(self.capabilities[name])
+
+    def default_options(self, params, settings, **options) -> dict:
+        """Rule 10: the value of each option in a run of `params` under `settings` given `options`."""
+        if self.defaults is None:
+            raise ParameterError(f"{self.label} declares no default options")
+        return self.resolve(self.defaults)(params, settings, **options)
 
 
 REGISTRY: dict[tuple[str, str], Solver] = {}
@@ -161,6 +194,9 @@ def register(solver: Solver) -> Solver:
     for option in solver.options:
         if option.role is not None and option.role not in ROLES:
             raise ParameterError(f"role={option.role!r} of option {option.name!r} is invalid: allowed {ROLES}")
+    for capability in solver.capabilities:
+        if capability not in CAPABILITIES:
+            raise ParameterError(f"capability {capability!r} is invalid: allowed one of {', '.join(CAPABILITIES)}")
     key = (solver.name, solver.family)
     if key in REGISTRY:
         raise ParameterError(f"solver {solver.name!r} is registered for the {solver.family} family already")
@@ -184,12 +220,18 @@ def names() -> tuple[str, ...]:
 
 def lookup(name: str, params) -> Solver:
     """The solver `name` for the family of `params`; one ParameterError line when there is none."""
+    return declared(name, family_of(params), f"model={params.model!r}")
+
+
+def declared(name: str, family: str, case: str | None = None) -> Solver:
+    """The solver `name` of `family`; one ParameterError line when there is none (`case`: how the caller
+    named the family, for that line)."""
     if name not in names():
         raise ParameterError(f"solver={name!r} is invalid: allowed one of {', '.join(names())}")
-    family = family_of(params)
     if (name, family) not in REGISTRY:
         others = [n for n, f in REGISTRY if f == family]
         raise ParameterError(
-            f"solver={name!r} is invalid for a {family} (model={params.model!r}): allowed one of {', '.join(others)}"
+            f"solver={name!r} is invalid for a {family} ({case or f'family={family!r}'}): allowed one of "
+            f"{', '.join(others)}"
         )
     return REGISTRY[(name, family)]

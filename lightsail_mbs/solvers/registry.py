@@ -1,8 +1,10 @@
 """The registered solvers: each engine's declaration for each model family it runs (solvers.contract).
 
 A new engine is a folder under ``lightsail_mbs/solvers/`` with a ``run`` that keeps the contract, and its
-``register(Solver(...))`` here. The declarations import nothing of the engines (Exudyn, numba): the
-modules are imported when a run or a capability first needs them.
+``register(Solver(...))`` here. Capabilities and default options are named as "function" (of the
+solver's module) or "module:function" (of a module of its package: each engine's ``capabilities.py``).
+The declarations import nothing of the engines (Exudyn, numba): the modules are imported when a run or a
+capability first needs them.
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ from lightsail_mbs.solvers.contract import (
 
 PERTURBATION = Option("perturbation", non_negative, "a finite value ≥ 0 (m)", "perturbation", "seeded start (m)")
 SHEET_CAPABILITIES = {"statics": "static_centres", "eigenfrequencies": "eigenfrequencies"}
+CHAIN_DEFAULTS, SHEET_DEFAULTS = "capabilities:chain_defaults", "capabilities:sheet_defaults"
 
 # Exudyn: the chain as one ObjectKinematicTree, the sheet as rigid tiles and connectors
 STEP = Option("step_size", positive, "a finite step > 0 (s)", "step", "a fixed generalized-α step (s)")
@@ -39,8 +42,14 @@ EXUDYN_CHAIN_OPTIONS = (
     Option("samples_per_check", whole_positive, "a whole number ≥ 1", None, "output samples between checks"),
     PERTURBATION,
 )
-register(Solver("exudyn", "chain", "exudyn.chain", EXUDYN_CHAIN_OPTIONS))
-register(Solver("exudyn", "sheet", "exudyn.sheet", (STEP, *NEWTON, SPECTRAL_RADIUS, PERTURBATION), SHEET_CAPABILITIES))
+EXUDYN_CHAIN_CAPABILITIES = {
+    "statics": "capabilities:statics",
+    "eigenfrequencies": "capabilities:eigenfrequencies",
+    "mass_stiffness": "capabilities:mass_stiffness",
+}
+EXUDYN_SHEET_OPTIONS = (STEP, *NEWTON, SPECTRAL_RADIUS, PERTURBATION)
+register(Solver("exudyn", "chain", "exudyn.chain", EXUDYN_CHAIN_OPTIONS, EXUDYN_CHAIN_CAPABILITIES, CHAIN_DEFAULTS))
+register(Solver("exudyn", "sheet", "exudyn.sheet", EXUDYN_SHEET_OPTIONS, SHEET_CAPABILITIES, SHEET_DEFAULTS))
 
 # the in-house reduced-Lagrangian solvers: the chain in minimal coordinates, the sheet's tiles
 RTOL = Option("rtol", fraction, "0 < rtol < 1", "rtol", "relative tolerance")
@@ -54,5 +63,15 @@ REDUCED_CHAIN_OPTIONS = (
     Option("first_step", positive, "a finite value > 0 (s)", None, "first step (s)"),
     PERTURBATION,
 )
-register(Solver("reduced", "chain", "reduced.solver", REDUCED_CHAIN_OPTIONS))
-register(Solver("reduced", "sheet", "reduced.sheet", (RTOL, MAX_STEP, PERTURBATION), SHEET_CAPABILITIES))
+REDUCED_CHAIN_CAPABILITIES = {
+    "statics": "capabilities:statics",
+    "eigenfrequencies": "capabilities:eigenfrequencies",
+    "linearise": "capabilities:linearise",
+    "equations": "capabilities:ChainEquations",
+}
+register(
+    Solver("reduced", "chain", "reduced.solver", REDUCED_CHAIN_OPTIONS, REDUCED_CHAIN_CAPABILITIES, CHAIN_DEFAULTS)
+)
+register(
+    Solver("reduced", "sheet", "reduced.sheet", (RTOL, MAX_STEP, PERTURBATION), SHEET_CAPABILITIES, SHEET_DEFAULTS)
+)

@@ -291,7 +291,7 @@ def converge(
         Options of the reduced solver (rtol, method, …).
     """
     from lightsail_mbs.analysis.runs import solve
-    from lightsail_mbs.solvers.reduced.solver import DEFAULT_RTOL
+    from lightsail_mbs.solvers.contract import lookup
 
     sizes = [int(n) for n in sizes]
     if len(sizes) < 1 or any(b <= a for a, b in zip(sizes, sizes[1:])) or sizes[0] < 2:
@@ -315,7 +315,8 @@ def converge(
         method = result.info.get("method", "Radau" if is_sheet else "")
         tolerance_noise = None
         if noise and value is not None:
-            rtol = options.get("rtol") or result.info.get("rtol") or DEFAULT_RTOL.get(method, 1e-6)
+            rtol = options.get("rtol") or result.info.get("rtol")
+            rtol = rtol or lookup("reduced", case).default_options(case, settings, **options)["rtol"]
             tight_options = (
                 {**options, "rtol": rtol / 10} if is_sheet else {**options, "method": method, "rtol": rtol / 10}
             )

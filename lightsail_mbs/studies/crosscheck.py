@@ -29,6 +29,7 @@ from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model.parameters import SailParameters, paper_case
 from lightsail_mbs.result import Result, with_uncertainty
 from lightsail_mbs.solvers import solve
+from lightsail_mbs.solvers.contract import lookup
 from lightsail_mbs.solvers.settings import paper_settings
 from lightsail_mbs.studies.tables import fmt
 
@@ -44,7 +45,7 @@ class Case:
     settings: RunSettings
     note: str
     reduced_options: dict = field(default_factory=lambda: dict(rtol=1e-10))
-    exudyn_step_scale: float = 1.0  # × exudyn_chain.default_step_size: generalized-α is 2nd order, the
+    exudyn_step_scale: float = 1.0  # × the default generalized-α step: generalized-α is 2nd order, the
     # reduced DOP853 8th: the comparison needs a finer Exudyn step
 
 
@@ -243,11 +244,9 @@ def run(
 ) -> list[dict]:
     """Run the selected cases with both solvers; write crosscheck.md into out_dir.
 
-    exudyn_step_scale multiplies each case's Exudyn step (its own scale × exudyn_chain.default_step_size):
+    exudyn_step_scale multiplies each case's Exudyn step (its own scale × the solver's default generalized-α step):
     < 1 shows how the Exudyn solution converges towards the reduced one. draw(case, exudyn, reduced), if
     given, is called with each case's two runs (the command draws the plots with it)."""
-    from lightsail_mbs.solvers.exudyn.chain import default_step_size
-
     if not 0 < exudyn_step_scale <= 1:
         raise ParameterError(f"exudyn_step_scale={exudyn_step_scale!r} is invalid: allowed 0 < scale ≤ 1")
     out_dir = Path(out_dir)
@@ -255,7 +254,8 @@ def run(
     for case in select(names):
         if progress:
             print(f"crosscheck {case.name}: {case.note}", flush=True)
-        step = default_step_size(case.params, case.settings) * case.exudyn_step_scale * exudyn_step_scale
+        default = lookup("exudyn", case.params).default_options(case.params, case.settings, method="generalized-alpha")
+        step = default["step_size"] * case.exudyn_step_scale * exudyn_step_scale
         exudyn = solve(case.params, "exudyn", case.settings, progress=progress, step_size=step)
         reduced = solve(case.params, "reduced", case.settings, progress=progress, **case.reduced_options)
         row = compare(case, exudyn, reduced)

@@ -54,7 +54,7 @@ def test_load_acts_along_the_sail_at_first_order(name):
     while the transverse rows do not see it. For the rigid chain, whose spectrum is all zeros with and
     without the load, this is the check that can fail."""
     p = LINEAR_CASES[name]
-    jac, dark = st.reduced_jacobian(p), st.reduced_jacobian(st.unlit(p))
+    jac, dark = st.jacobian(p), st.jacobian(st.unlit(p))
     dof = p.n + 2
     np.testing.assert_allclose(jac[dof, 2:dof], -p.nominal_acceleration / p.n, rtol=1e-6)
     transverse = np.abs(jac[dof + 1 :, :dof] - dark[dof + 1 :, :dof]).max()
@@ -64,10 +64,10 @@ def test_load_acts_along_the_sail_at_first_order(name):
 def test_exudyn_own_forward_difference_jacobian_is_noisy_with_load():
     """Exudyn's forward-difference Jacobian of the lit tree cancels f₀-sized load and frame terms:
     its soft bending frequencies move by ≫ 1e-6 (numerical), the central-difference load stiffness
-    does not — why exudyn_linearization adds the load Jacobian itself."""
+    does not — why mass_stiffness adds the load Jacobian itself."""
     p = SailParameters(n=8, youngs_modulus=4.5e11)
     dark = st.linear_spectrum(st.unlit(p), "exudyn")
-    noisy = st.spectrum_of_system(*st.exudyn_linearization(p, exudyn_load="solver"))
+    noisy = st.spectrum_of_system(*st.mass_stiffness(p, load="solver"))
     assert elastic_shift(noisy, dark) > 1e-4
     assert elastic_shift(st.linear_spectrum(p, "exudyn"), dark) < 1e-6
 
@@ -80,8 +80,8 @@ def test_exudyn_load_stiffness_is_the_axial_first_order_load(name):
     from lightsail_mbs.solvers.exudyn.tree import ChainLayout
 
     p = LINEAR_CASES[name]
-    _, lit = st.exudyn_linearization(p)
-    _, dark = st.exudyn_linearization(st.unlit(p))
+    _, lit = st.mass_stiffness(p)
+    _, dark = st.mass_stiffness(st.unlit(p))
     load = (lit - dark) / p.flat_force
     angles = ChainLayout.of(p).angle_index
     expected = np.zeros_like(load)

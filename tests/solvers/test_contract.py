@@ -7,6 +7,7 @@ import inspect
 import pytest
 
 from lightsail_mbs import ParameterError, RunSettings, SailParameters, solve
+from lightsail_mbs.analysis import linear_stability
 from lightsail_mbs.solvers import SOLVERS, contract, uncertainty
 
 SHEET = SailParameters(model="sheet", n=4, ny=4, youngs_modulus=4.5e9)
@@ -27,8 +28,69 @@ def module_options(solver: contract.Solver) -> set:
 def test_each_declaration_names_exactly_the_options_its_module_takes(key):
     solver = contract.REGISTRY[key]
     assert {option.name for option in solver.options} == module_options(solver)
-    for function in solver.capabilities.values():
-        assert callable(getattr(solver.implementation(), function))
+
+
+@pytest.mark.parametrize("key", sorted(contract.REGISTRY))
+def test_every_declared_capability_is_a_callable_of_its_package(key):
+    """Rule 9: each capability is a known name and resolves to a callable of a module of the solver's own
+    package (its run module or another), named as declared."""
+    solver = contract.REGISTRY[key]
+    package = "lightsail_mbs.solvers." + solver.module.split(".")[0]
+    for name, target in [*solver.capabilities.items(), ("defaults", solver.defaults)]:
+        assert name in contract.CAPABILITIES or name == "defaults"
+        function = solver.capability(name) if name != "defaults" else solver.resolve(target)
+        assert callable(function)
+        assert function.__module__.startswith(package + ".")
+        assert function.__name__ == target.split(":")[-1]
+
+
+@pytest.mark.parametrize("key", sorted(contract.REGISTRY))
+def test_default_options_name_every_option_of_the_schema(key):
+    """Rule 10: the default options of a run are one value (or None: the integrator's choice) per option."""
+    solver = contract.REGISTRY[key]
+    params = SHEET if solver.family == "sheet" else SailParameters(n=6)
+    defaults = solver.default_options(params, RunSettings(t_final=0.1))
+    assert set(defaults) == {option.name for option in solver.options}
+    assert defaults["perturbation"] == 0.0
+    for option in solver.options:
+        assert defaults[option.name] is None or option.check(defaults[option.name]), option.name
+
+
+def test_default_options_are_the_values_a_run_takes():
+    """The defaults a study reads are those the run records: the reduced chain's method and rtol, the
+    Exudyn chain's generalized-α step (a run given it records it, fitted to the output grid)."""
+    settings = RunSettings(t_final=0.02, output_interval=0.01)
+    p = SailParameters(n=6, youngs_modulus=4.5e9)
+    reduced = contract.lookup("reduced", p)
+    run = solve(p, "reduced", settings, uncertainty=False)
+    defaults = reduced.default_options(p, settings)
+    assert (defaults["method"], defaults["rtol"]) == (run.info["method"], run.info["rtol"])
+    assert defaults["atol"].min() == run.info["atol"]
+    assert reduced.default_options(p, settings, method="Radau", rtol=1e-9)["rtol"] == 1e-9
+    exudyn = contract.lookup("exudyn", p).default_options(p, settings, method="generalized-alpha")
+    assert exudyn["method"] == "generalized-alpha" and exudyn["step_size"] > 0
+    assert contract.lookup("exudyn", p).default_options(p, settings, method="DOPRI5")["step_size"] is None
+
+
+def test_a_missing_capability_is_one_line():
+    """A solver that lacks a capability, a family or a name each give one ParameterError line, before
+    anything is imported or solved; an unknown capability cannot be declared."""
+    for solver, name, words in (
+        (("reduced", "sheet"), "linearise", "the reduced sheet solver has no capability 'linearise': it offers"),
+        (("exudyn", "chain"), "linearise", "the exudyn chain solver has no capability 'linearise': it offers"),
+        (("reduced", "chain"), "mass_stiffness", "the reduced chain solver has no capability 'mass_stiffness'"),
+    ):
+        with pytest.raises(ParameterError, match=words) as caught:
+            contract.REGISTRY[solver].capability(name)
+        assert "\n" not in str(caught.value)
+    with pytest.raises(ParameterError, match="solver='nosuch' is invalid: allowed one of exudyn, reduced"):
+        linear_stability.angular_frequencies(SailParameters(n=4), "nosuch")
+    with pytest.raises(ParameterError, match="capability 'spin' is invalid: allowed one of statics"):
+        contract.register(contract.Solver("spinner", "chain", "reduced.solver", (), {"spin": "run"}))
+    assert ("spinner", "chain") not in contract.REGISTRY
+    undeclared = contract.Solver("plain", "chain", "reduced.solver", ())
+    with pytest.raises(ParameterError, match="the plain chain solver declares no default options"):
+        undeclared.default_options(SailParameters(n=4), RunSettings())
 
 
 def test_the_registry_names_both_solvers_for_both_families():

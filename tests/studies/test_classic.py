@@ -148,8 +148,8 @@ def test_string_fundamental_from_the_time_series(solver):
 # ---- linearised modes -----------------------------------------------------------------------
 def test_free_free_chain_modes_match_euler_bernoulli_and_each_other():
     p = classic.free_beam_case(30)
-    ex = lin.elastic(lin.exudyn_angular_frequencies(p), p)[:3]
-    red = lin.elastic(lin.reduced_angular_frequencies(p), p)[:3]
+    ex = lin.elastic(lin.angular_frequencies(p, "exudyn"), p)[:3]
+    red = lin.elastic(lin.angular_frequencies(p, "reduced"), p)[:3]
     eb = classic.beam_references(p, 3)
     assert np.allclose(ex, eb, rtol=5e-3) and np.allclose(red, eb, rtol=5e-3)
     assert np.allclose(ex, red, rtol=1e-6, atol=0)
@@ -160,19 +160,17 @@ def test_free_free_chain_modes_match_euler_bernoulli_and_each_other():
 def test_tensioned_pinned_chain_matches_the_closed_form(solver):
     """ω_k² = (6T/ml)(1 − cos(kπ/n))/(2 + cos(kπ/n)): first five modes to 1e-6."""
     p = classic.g3_string_case(30, axial_springs=False, defect_amplitude=0.0)
-    fn = lin.exudyn_angular_frequencies if solver == "exudyn" else lin.reduced_angular_frequencies
-    assert np.allclose(fn(p)[:5], ct.pinned_chain_angular_frequencies(p)[:5], rtol=1e-6, atol=0)
+    closed_form = ct.pinned_chain_angular_frequencies(p)[:5]
+    assert np.allclose(lin.angular_frequencies(p, solver)[:5], closed_form, rtol=1e-6, atol=0)
 
 
 @pytest.mark.parametrize("solver", SOLVERS)
 def test_extensible_tensioned_chain_matches_its_exact_spectrum(solver):
     p = classic.g3_string_case(12, defect_amplitude=0.0)
-    fn = lin.exudyn_angular_frequencies if solver == "exudyn" else lin.reduced_angular_frequencies
-    assert np.allclose(fn(p)[:5], ct.chain_angular_frequencies(p)[:5], rtol=1e-6, atol=0)
+    assert np.allclose(lin.angular_frequencies(p, solver)[:5], ct.chain_angular_frequencies(p)[:5], rtol=1e-6, atol=0)
 
 
 @pytest.mark.parametrize("solver", SOLVERS)
 def test_clamped_chain_modes(solver):
     p = classic.cantilever_case(15)
-    fn = lin.exudyn_angular_frequencies if solver == "exudyn" else lin.reduced_angular_frequencies
-    assert np.allclose(fn(p)[:3], ct.chain_angular_frequencies(p)[:3], rtol=1e-6, atol=0)
+    assert np.allclose(lin.angular_frequencies(p, solver)[:3], ct.chain_angular_frequencies(p)[:3], rtol=1e-6, atol=0)
