@@ -167,17 +167,23 @@ class SheetSystem:
         plain = np.all(c.frame == np.eye(3), axis=(1, 2))  # connectors in the global axes
         for q in range(len(c)):
             body_a = ground if c.tile_a[q] < 0 else self.bodies[c.tile_a[q]]
-            ma = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body_a, localPosition=list(c.local_a[q])))
-            mb = mbs.AddMarker(MarkerBodyRigid(bodyNumber=self.bodies[c.tile_b[q]], localPosition=list(c.local_b[q])))
-            # a support's axes (Connectors.frame) turn both markers' frames: A₀ = frame, A₁ = R_B frame
-            frame = {} if plain[q] else {"rotationMarker0": c.frame[q], "rotationMarker1": c.frame[q]}
+            body_b = self.bodies[c.tile_b[q]]
+            if plain[q]:
+                ma = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body_a, localPosition=list(c.local_a[q])))
+                mb = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body_b, localPosition=list(c.local_b[q])))
+            else:  # a support's axes (Connectors.frame) turn both markers: A₀ = frame, A₁ = R_B frame
+                ma = mbs.AddMarker(
+                    MarkerBodyRigid(bodyNumber=body_a, localHT=exu.HT(rotation=c.frame[q], translation=c.local_a[q]))
+                )
+                mb = mbs.AddMarker(
+                    MarkerBodyRigid(bodyNumber=body_b, localHT=exu.HT(rotation=c.frame[q], translation=c.local_b[q]))
+                )
             mbs.AddObject(
                 ObjectConnectorRigidBodySpringDamper(
                     markerNumbers=[ma, mb],
                     stiffness=np.diag(c.stiffness[q]),
                     damping=np.diag(c.damping[q]),
                     offset=list(c.offset[q]),
-                    **frame,
                 )
             )
         for tile, point, force in zip(*sheet.edge_followers(p)):
