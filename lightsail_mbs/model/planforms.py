@@ -15,7 +15,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lightsail_mbs.model import sheet_mesh
+from lightsail_mbs.model import sheet_mesh, sheet_planforms
 
 
 class Planform(NamedTuple):
@@ -31,6 +31,16 @@ def _rectangle_problems(n, ny, length, width) -> list:
 PLANFORMS = {
     "rectangle": Planform(
         sheet_mesh.rectangle, _rectangle_problems, "L × W in n × ny rectangular tiles (0 ≤ x ≤ L, 0 ≤ y ≤ W)"
+    ),
+    "disc": Planform(
+        sheet_planforms.disc,
+        sheet_planforms.round_problems("disc", 3, 6),
+        "diameter L (width = L), n tiles across it in rings, ny sectors",
+    ),
+    "hexagon": Planform(
+        sheet_planforms.hexagon,
+        sheet_planforms.round_problems("hexagon", 2, 1),
+        "regular, corner to corner L along x (width = L), 6m² equilateral triangles, m = n // 2",
     ),
 }
 DEFAULT = "rectangle"
