@@ -122,3 +122,17 @@ def test_mean_intensity_is_the_tiles_mean():
     centres = sheet.flat_centres(p)
     forces = sheet.tile_forces(p, centres, np.tile([0.0, 0.0, 1.0], (len(centres), 1)))
     assert abs(forces[:, 2].sum()) < 1e-12 * np.abs(forces[:, 2]).sum()
+
+
+def test_a_sweep_runs_round_sails_under_their_own_keys(tmp_path):
+    """The planform is part of a case's store key (left out at 'rectangle'); a sweep runs disc and hexagon."""
+    from lightsail_mbs.studies.sweep import Case, run_sweep
+
+    base = SailParameters(model="sheet", n=8, ny=8, length=1.0, width=1.0, youngs_modulus=4.5e9, beam_waist=0.6)
+    settings = RunSettings(t_final=1e-4, output_interval=2e-5)
+    cases = [Case(base.replace(planform=f), "reduced", settings=settings) for f in ("rectangle", "disc", "hexagon")]
+    assert len({c.key for c in cases}) == 3
+    assert Case(base, "reduced", settings=settings).key == cases[0].key
+    records = run_sweep(cases, tmp_path, workers=1)
+    assert [r["status"] for r in records] == ["ok"] * 3
+    assert [r["tiles"] for r in records] == [64, 1 + 3 * 8, 6 * 16]
