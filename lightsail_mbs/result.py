@@ -28,7 +28,7 @@ from lightsail_mbs.base.provenance import (  # noqa: F401 - re-exported: what ma
 )
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import energy, failure, shapes
+from lightsail_mbs.model import energy, failure, planforms, shapes
 from lightsail_mbs.model.parameters import RUN_FIELDS, SailParameters
 
 ARRAYS = ("time", "x", "y", "theta", "z", "vx", "vy", "omega", "z_rate", "amplitude")
@@ -52,8 +52,8 @@ class Result:
     Chain arrays: time (T,), x, y, theta, vx, vy, omega (T, n) (x along the sail, y along the beam),
     z, z_rate (T, n−1) for the extensible TnT chain and (T, 0) otherwise, amplitude (T,).
 
-    Sheet arrays (model "sheet", N = n·ny tiles, tile k = j·n + i): tile_centres (T, N, 3) (x, y in
-    the sail's plane, z along the beam), tile_angles (T, N, 3) (Tait–Bryan xyz angles of each tile's
+    Sheet arrays (model "sheet", N tiles of its mesh; on a grid N = n·ny, tile k = j·n + i): tile_centres
+    (T, N, 3) (x, y in the sail's plane, z along the beam), tile_angles (T, N, 3) (Tait–Bryan xyz angles of each tile's
     rotation, R = R_x(φ₀) R_y(φ₁) R_z(φ₂)), tile_velocities and tile_angular_velocities (T, N, 3),
     global; the chain's arrays are then (T, 0). For a chain the tile arrays are None (and a saved
     chain run has none).
@@ -263,7 +263,7 @@ class Result:
         return energy.dissipated_energy(self)
 
     def summary(self) -> dict:
-        sheet = {"ny": self.params.ny, "tiles": self.params.n * self.params.ny} if self.is_sheet else {}
+        sheet = {"ny": self.params.ny, "tiles": planforms.mesh_of(self.params).count} if self.is_sheet else {}
         return {
             "solver": self.solver,
             "model": self.params.model,
@@ -421,7 +421,7 @@ def _with_saved_table(path: Path, parameters: dict, arrays: dict) -> tuple[dict,
 def _check_arrays(path: Path, arrays: dict, params: SailParameters) -> None:
     """RunFileError unless the arrays are real numbers of the shapes a run of params has: time and
     amplitude (T,) with T ≥ 1, the slice arrays (T, n), z and z_rate (T, n − 1) or (T, 0); a sheet's slice
-    arrays are (T, 0) and its four tile arrays (T, n·ny, 3)."""
+    arrays are (T, 0) and its four tile arrays (T, N, 3), N its mesh's tiles."""
     steps = arrays["time"].shape[0] if arrays["time"].ndim == 1 else -1
     sheet = params.model == "sheet"
     spring = (params.n - 1) if params.extensible and not sheet else 0
@@ -430,7 +430,7 @@ def _check_arrays(path: Path, arrays: dict, params: SailParameters) -> None:
         missing = [k for k in TILE_ARRAYS if k not in arrays]
         if missing:
             raise RunFileError(f"{path}: not a whole saved run of a sheet (no {', '.join(missing)})")
-        expected.update({k: (steps, params.n * params.ny, 3) for k in TILE_ARRAYS})
+        expected.update({k: (steps, planforms.mesh_of(params).count, 3) for k in TILE_ARRAYS})
     for name, array in arrays.items():
         shape = expected.get(name, (steps, 0) if sheet else (steps, params.n))
         if array.dtype.kind != "f" or array.shape != shape or steps < 1:

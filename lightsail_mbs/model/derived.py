@@ -89,9 +89,14 @@ class DerivedQuantities:
     @property
     def mean_intensity(self) -> float:
         """Ī: the beam intensity averaged over the flat sail 0 ≤ x ≤ L (and 0 ≤ y ≤ W for a sheet, whose
-        Gaussian beam is round; I₀ for the uniform beam)."""
+        Gaussian beam is round; over the tiles of a sheet of another planform, model.planforms.mean_intensity;
+        I₀ for the uniform beam)."""
         if self.uniform_beam:
             return self.intensity
+        if self.model == "sheet" and self.planform != "rectangle":  # the mesh's own mean
+            from lightsail_mbs.model import planforms
+
+            return planforms.mean_intensity(self)
         mean = self.intensity * _gaussian_mean(self.beam_waist, self.beam_center, self.length)
         if self.model == "sheet":  # the sheet's beam is round: I₀ exp(−2((x − x_c)² + (y − y_c)²)/w²)
             mean *= _gaussian_mean(self.beam_waist, self.sheet_beam_center_y, self.width)

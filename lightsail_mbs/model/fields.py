@@ -11,6 +11,8 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
+from lightsail_mbs.model import planforms
+
 MODELS = ("rigid", "torsion", "tnt", "sheet")
 CHAIN_MODELS = ("rigid", "torsion", "tnt")
 # Supports of the chain's ends (validations, paper Appendices A–B): "free" (the sail, both ends free),
@@ -183,6 +185,14 @@ FIELDS = {
         "",
         "correct the springs' rest state so that the unlit sheet (edge tension included) rests in its initial shape",
         "",
+        family="sheet",
+    ),
+    "planform": FieldInfo(
+        SHEET,
+        "",
+        "the sheet's outline and tiles: "
+        + "; ".join(f"{name}: {form.help}" for name, form in planforms.PLANFORMS.items()),
+        _choices(planforms.PLANFORMS),
         family="sheet",
     ),
     "billow_radius": FieldInfo(

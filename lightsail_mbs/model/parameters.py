@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT  # noqa: F401 - re-exported
 from lightsail_mbs.base.validation import ParameterError, check, finite
-from lightsail_mbs.model import casefile, film
+from lightsail_mbs.model import casefile, film, planforms
 from lightsail_mbs.model.derived import DerivedQuantities
 from lightsail_mbs.model.fields import (
     BENDING_REFERENCES,
@@ -99,6 +99,7 @@ class SailParameters(DerivedQuantities):
     membrane_reference: str = "initial"  # in-plane springs at rest in the "initial" (defect) or "flat" shape
     bending_reference: str = "flat"  # bending springs at rest "flat" or in the "initial" (manufactured) shape
     initial_equilibrium: bool = False  # True: the springs' rest state corrected: the unlit sheet rests as it starts
+    planform: str = "rectangle"  # the sheet's outline and its tiles: one of model.planforms.PLANFORMS
     billow_radius: float = math.inf  # R_c, m: initial circular arc (shapes.py); > 0 concave to the laser; inf: flat
     optics: str | None = None  # the slices' force law from a table: None (R, α above), "mirror", or a table file
     optics_layout: str = "uniform"  # one of OPTICS_LAYOUTS: which slices carry the table turned over
@@ -235,6 +236,10 @@ class SailParameters(DerivedQuantities):
             return
         check("ny", self.ny, _integer(self.ny, 1, 500), "an integer 1 ≤ ny ≤ 500")
         check("n", self.n, self.n <= 500, "an integer 2 ≤ n ≤ 500 for a sheet (n × ny tiles)")
+        names = planforms.PLANFORMS
+        check("planform", self.planform, self.planform in names, "one of " + ", ".join(names))
+        for name, value, allowed in planforms.problems(self):
+            check(name, value, False, allowed)
         check(
             "boundary",
             self.boundary,

@@ -26,6 +26,7 @@ SHEET_DEFAULTS = {
     "membrane_reference": "initial",
     "bending_reference": "flat",
     "initial_equilibrium": False,
+    "planform": "rectangle",
 }
 # Fields added after the store's keys were first written, omitted by to_dict at their defaults so that the
 # record (and store key) of every case that does not use them stays what it was.

@@ -6,7 +6,9 @@ defects, edge connections and loads are shared by both sheet solvers (:mod:`ligh
 
 Where it is written
 -------------------
-* :mod:`~lightsail_mbs.model.sheet_grid`: the tiles (geometry, mass, inertia) and the rotations of a tile;
+* :mod:`~lightsail_mbs.model.sheet_mesh`: the tiles and their connections as arrays, whatever the planform
+  (:mod:`~lightsail_mbs.model.planforms` names the mesh generators);
+* :mod:`~lightsail_mbs.model.sheet_grid`: the tiles' masses and inertias and the rotations of a tile;
 * :mod:`~lightsail_mbs.model.sheet_shapes`: defects and the initial state;
 * :mod:`~lightsail_mbs.model.sheet_connectors`: the edge connections, their stiffnesses, the reference
   state and pre-stress, the edge tension;
@@ -34,7 +36,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from lightsail_mbs.model import loads, shapes
+from lightsail_mbs.model import loads, planforms, shapes
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.model.sheet_connectors import (
     SHEAR_CORRECTION,
@@ -55,6 +57,7 @@ from lightsail_mbs.model.sheet_grid import (
     require_sheet,
     rotation_minus_identity,
     rotation_xyz,
+    tile_count,
     tilt_quaternion,
     tilt_rotation,
 )
@@ -95,6 +98,7 @@ __all__ = [
     "rotation_minus_identity",
     "rotation_xyz",
     "static_loads",
+    "tile_count",
     "tile_forces",
     "tilt_quaternion",
     "tilt_rotation",
@@ -104,19 +108,20 @@ __all__ = [
 # ---- loads ---------------------------------------------------------------------------------------
 def tile_forces(p: SailParameters, centres: np.ndarray, normals: np.ndarray) -> np.ndarray:
     """(..., N, 3) applied force on each tile centre in the accelerating frame: the net radiation and
-    frame force (loads.facet_forces, cancellation done analytically) plus the dead pressure p·ab ẑ (N).
+    frame force (loads.facet_forces, cancellation done analytically) plus the dead pressure p·A ẑ (N).
 
     normals: the tiles' unit normals R ẑ, their x and y components computed without cancellation."""
     t = Tiles.of(p)
     normals = np.asarray(normals, float)
     centres = np.asarray(centres, float)
     local = loads.sheet_intensity(p, centres[..., 0], centres[..., 1])
+    area = t.area if t.mesh.cell is not None else t.areas  # a grid's tiles are alike: any number of them
     f_across, f_along = loads.facet_forces(
-        normals[..., :2], normals[..., 2], local, p.mean_intensity, t.area, p.reflectivity, p.absorptivity
+        normals[..., :2], normals[..., 2], local, p.mean_intensity, area, p.reflectivity, p.absorptivity
     )
     out = np.empty(normals.shape)
     out[..., :2] = f_across
-    out[..., 2] = f_along + p.pressure * t.area
+    out[..., 2] = f_along + p.pressure * area
     return out
 
 
@@ -165,19 +170,24 @@ def defect_warnings(p: SailParameters, initial_amplitude: float) -> list[str]:
     direction (resolved, but its stability results are not yet converged in the grid)."""
     notes = shapes.defect_warnings(p, initial_amplitude, element="tiles")
     if p.defect_mode_y is not None and p.defect_amplitude > 0:
+        mesh = planforms.mesh_of(p)
+        across = mesh.across[1]
+        label = f"ny = {p.ny}" if mesh.grid is not None else f"{across:.3g} tiles across the width"
         shortest_y = shapes.shortest_mode(p, p.defect_mode_y)
-        per_half_wave_y = p.ny / (2.0 * shortest_y)
+        per_half_wave_y = across / (2.0 * shortest_y)
         if per_half_wave_y < MIN_TILES_PER_HALF_WAVE:
             notes.append(
-                f"ny = {p.ny} gives {per_half_wave_y:.3g} tiles per half wavelength of the defect across the "
+                f"{label} gives {per_half_wave_y:.3g} tiles per half wavelength of the defect across the "
                 f"width (ν_y = {shortest_y:g}); at least {MIN_TILES_PER_HALF_WAVE} are needed to resolve it"
             )
         shortest_x = shapes.shortest_mode(p, p.defect_mode)
-        coarsest = min(p.n / (2.0 * shortest_x), per_half_wave_y)
+        coarsest = min(mesh.across[0] / (2.0 * shortest_x), per_half_wave_y)
+        sizes = f"{p.n} × {p.ny} tiles" if mesh.grid is not None else f"{mesh.count} tiles ({p.planform})"
         if MIN_TILES_PER_HALF_WAVE <= coarsest < CONVERGED_TILES_PER_HALF_WAVE_2D:
             notes.append(
-                f"{p.n} × {p.ny} tiles give {coarsest:.3g} tiles per half wavelength of the doubly curved "
-                f"defect; its stability results converge from about {CONVERGED_TILES_PER_HALF_WAVE_2D} (measured "
-                "on the critical modulus of ν = 1.5 × 1.5: about 3× too high at 4, 1.14× at 6, 1.04× at 8)"
+                f"{sizes} give {coarsest:.3g} tiles per half wavelength of the doubly "
+                "curved defect; its stability results converge from about "
+                f"{CONVERGED_TILES_PER_HALF_WAVE_2D} (measured on the critical modulus of ν = 1.5 × 1.5: about 3× "
+                "too high at 4, 1.14× at 6, 1.04× at 8)"
             )
     return notes

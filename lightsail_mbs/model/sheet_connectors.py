@@ -94,6 +94,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from lightsail_mbs.model import planforms
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.model.sheet_grid import (
     Tiles,
@@ -122,10 +123,13 @@ class Connectors:
     offset : ndarray (C, 6)
         Rest values of δ (the edge-tension pre-stress) and φ (bending_reference "initial").
     kind : ndarray (C,)
-        0: x-edge, 1: y-edge, 2: ground.
+        0: x-edge, 1: y-edge, 2: ground, 3: an edge of another direction.
     gap : ndarray (C, 3)
         (X_b + l_b) − (X_a + l_a) on the flat grid (global, m): 0, unless B's marker was moved so that
         the two markers coincide in a doubly curved initial shape (membrane_reference "initial").
+    frame : ndarray (C, 3, 3)
+        A support's axes in the ground (x along the edge's outward normal, z = ẑ; the global axes for a
+        support along x or y, whose stiffness is permuted instead); the global axes between tiles.
     """
 
     tile_a: np.ndarray
@@ -137,101 +141,146 @@ class Connectors:
     offset: np.ndarray
     kind: np.ndarray
     gap: np.ndarray
+    frame: np.ndarray
 
     def __len__(self) -> int:
         return len(self.tile_a)
 
 
-def edge_stiffness(p: SailParameters, tiles: Tiles, edge: float, span: float, bending: bool = True) -> np.ndarray:
+def edge_stiffness(p: SailParameters, tiles: Tiles, edge, span, bending: bool = True) -> np.ndarray:
     """[k_x, k_y, k_z, k_rx, k_ry, k_rz] of an x-edge (normal along local x) of length `edge` between
-    centres `span` apart (module docstring); a y-edge swaps the x and y entries."""
+    centres `span` apart (module docstring; arrays of edges give (E, 6)); a y-edge swaps the x and y
+    entries."""
     em, h, D = tiles.membrane_modulus, p.thickness, tiles.bending_rigidity
+    edge, span = np.asarray(edge, float), np.asarray(span, float)
     k_par = em * h * edge / span
-    return np.array(
+    return np.stack(
         [
             k_par,
             k_par,
             SHEAR_CORRECTION * 0.5 * k_par,
             D * edge / span,
-            D * edge / span if bending else 0.0,
+            D * edge / span if bending else 0.0 * k_par,
             em * h**3 / 12.0 * edge / span,
-        ]
+        ],
+        axis=-1,
     )
 
 
 def _y_edge(k: np.ndarray) -> np.ndarray:
-    return k[[1, 0, 2, 4, 3, 5]]
+    return k[..., [1, 0, 2, 4, 3, 5]]
+
+
+def _along(T: float, e: np.ndarray, d: np.ndarray) -> np.ndarray:
+    """T e d (C, 2), exactly 0 where d is."""
+    return np.where(d != 0, T * e[:, None] * d, 0.0)
+
+
+def _support_frames(normal: np.ndarray):
+    """(stiffness permutation, frames (B, 3, 3), kinds) of supports with outward normals (B, 2): an x-edge
+    pattern along x, swapped along y, else the pattern in the frame (n̂, ẑ × n̂, ẑ) (module docstring)."""
+    along_x = normal[:, 1] == 0
+    along_y = normal[:, 0] == 0
+    frames = np.tile(np.eye(3), (len(normal), 1, 1))
+    tilted = ~(along_x | along_y)
+    frames[tilted, 0, 0] = frames[tilted, 1, 1] = normal[tilted, 0]
+    frames[tilted, 1, 0] = normal[tilted, 1]
+    frames[tilted, 0, 1] = -normal[tilted, 1]
+    return along_y, frames
 
 
 def connectors(
     p: SailParameters, centres: np.ndarray | None = None, quaternions: np.ndarray | None = None
 ) -> Connectors:
-    """The edge connections: interior x-edges, interior y-edges, then the ground connections of a
-    supported boundary, with the rest state of the initial shape (centres, quaternions; default
-    initial_quaternions(p)) and the edge-tension pre-stress."""
+    """The edge connections: the mesh's shared edges (model.sheet_mesh; on a grid the interior x-edges, then
+    the y-edges), then the ground connections of a supported boundary, with the rest state of the initial
+    shape (centres, quaternions; default initial_quaternions(p)) and the edge-tension pre-stress."""
     t = Tiles.of(p)
-    a, b, T, nx = t.a, t.b, p.edge_tension, t.nx
-    rows = []  # (tile a, tile b, local a, local b, stiffness, kind, pre-stress force on b along local x/y)
-    kx, ky = edge_stiffness(p, t, b, a), _y_edge(edge_stiffness(p, t, a, b))
-    for j in range(t.ny):
-        for i in range(nx - 1):
-            rows.append((j * nx + i, j * nx + i + 1, (0.5 * a, 0, 0), (-0.5 * a, 0, 0), kx, 0, (T * b, 0.0)))
-    for j in range(t.ny - 1):
-        for i in range(nx):
-            rows.append((j * nx + i, (j + 1) * nx + i, (0, 0.5 * b, 0), (0, -0.5 * b, 0), ky, 1, (0.0, T * a)))
+    m, T = t.mesh, p.edge_tension
+    direction = m.direction
+    K = edge_stiffness(p, t, m.edge_length, m.span)  # isotropic in the plane when bending is on
+    K = np.where((direction[:, 0] == 0)[:, None], _y_edge(K), K)
+    kind = np.where(direction[:, 1] == 0, 0, np.where(direction[:, 0] == 0, 1, 3))
+    ta, tb = m.pairs[:, 0], m.pairs[:, 1]
+    la = np.column_stack([m.marker_a, np.zeros(len(ta))])
+    lb = np.column_stack([m.marker_b, np.zeros(len(ta))])
+    pre = _along(T, m.edge_length, direction)  # the tension T e on b, along a → b
+    frame = np.tile(np.eye(3), (len(ta), 1, 1))
     if p.boundary != "free":
         bend = p.boundary == "clamped"
         flat = flat_centres(p)
-        gx = 2.0 * edge_stiffness(p, t, b, a, bending=bend)
-        gy = 2.0 * _y_edge(edge_stiffness(p, t, a, b, bending=bend))
-        for j in range(t.ny):
-            for i, sign in ((0, -1.0), (nx - 1, 1.0)):
-                k = j * nx + i
-                point = flat[k] + (sign * 0.5 * a, 0, 0)
-                # the ground's marker at the edge point, the tile's at its outer edge midpoint; the
-                # tension pulls the tile outwards (force −sign·T b on the tile along x)
-                rows.append((-1, k, tuple(point), (sign * 0.5 * a, 0, 0), gx, 2, (-sign * T * b, 0.0)))
-        for i in range(nx):
-            for j, sign in ((0, -1.0), (t.ny - 1, 1.0)):
-                k = j * nx + i
-                point = flat[k] + (0, sign * 0.5 * b, 0)
-                rows.append((-1, k, tuple(point), (0, sign * 0.5 * b, 0), gy, 2, (0.0, -sign * T * a)))
-    ta = np.array([r[0] for r in rows], int)
-    tb = np.array([r[1] for r in rows], int)
-    la = np.array([r[2] for r in rows], float).reshape(-1, 3)
-    lb = np.array([r[3] for r in rows], float).reshape(-1, 3)
-    K = np.array([r[4] for r in rows], float).reshape(-1, 6)
-    kind = np.array([r[5] for r in rows], int)
-    pre = np.array([r[6] for r in rows], float).reshape(-1, 2)
-    offset = np.zeros((len(rows), 6))
+        swap, frames = _support_frames(m.boundary_normal)
+        G = 2.0 * edge_stiffness(p, t, m.boundary_length, m.boundary_span, bending=bend)
+        G = np.where(swap[:, None], _y_edge(G), G)
+        tiles = m.boundary_tile
+        marker = np.column_stack([m.boundary_marker, np.zeros(len(tiles))])
+        # the ground's marker at the edge point, the tile's on its edge line; the tension pulls the tile
+        # outwards (a force T e along the ground → tile direction −n̂ on the ground's side)
+        ta = np.concatenate([ta, np.full(len(tiles), -1)])
+        tb = np.concatenate([tb, tiles])
+        la = np.concatenate([la, flat[tiles] + marker])
+        lb = np.concatenate([lb, marker])
+        K = np.concatenate([K, G])
+        kind = np.concatenate([kind, np.full(len(tiles), 2)])
+        pre = np.concatenate([pre, _along(T, m.boundary_length, -m.boundary_normal)])
+        frame = np.concatenate([frame, frames])
+    ta, tb, kind = ta.astype(int), tb.astype(int), kind.astype(int)
+    offset = np.zeros((len(ta), 6))
     # pre-stress: the spring force on tile b is −A₀ K(δ − offset); a tension F pulls b towards a, so
-    # K(0 − offset) = F along the a → b direction: offset = −F/k
-    offset[:, :2] = -pre / K[:, :2]
-    gap = np.zeros((len(rows), 3))
+    # K(0 − offset) = F along the a → b direction: offset = −F/k; in a support's frame F lies along its x
+    local_pre = np.einsum("kji,kj->ki", frame[:, :2, :2], pre)
+    offset[:, :2] = -np.where(_identity(frame)[:, None], pre, local_pre) / K[:, :2]
+    gap = np.zeros((len(ta), 3))
     if (p.defect_amplitude > 0 or p.film_rms > 0) and "initial" in (p.membrane_reference, p.bending_reference):
         if centres is None or quaternions is None:
             centres, quaternions = initial_quaternions(p)
         rotations = quaternion_rotation(quaternions)
+        ra = frames_a(ta, frame, rotations)
         if p.membrane_reference == "initial":
             # the rest state of the translational springs is the initial shape: B's marker moves by the
             # markers' mismatch there (~1e-10 m for a₀ = 10 µm), so that the force pair of every spring acts
             # at coincident points at rest (an offset in the spring law instead would apply ±f at points
             # δ₀ apart: a couple no potential produces, a circulatory stiffness ∝ E_m |δ₀|, module docstring)
-            mismatch = relative_displacement(ta, tb, la, lb, centres, quaternions, flat_centres(p), gap)
-            ra = np.where((ta < 0)[:, None, None], np.eye(3), rotations[np.maximum(ta, 0)])
+            mismatch = relative_displacement(ta, tb, la, lb, centres, quaternions, flat_centres(p), gap, frame)
             gap = -np.einsum("kji,kj->ki", rotations[tb], np.einsum("kij,kj->ki", ra, mismatch))
             lb = lb + gap
         if p.bending_reference == "initial":
-            ra = np.where((ta < 0)[:, None, None], np.eye(3), rotations[np.maximum(ta, 0)])
-            offset[:, 3:] = angles_xyz(np.einsum("kji,kjl->kil", ra, rotations[tb]))
+            offset[:, 3:] = angles_xyz(relative_rotation(ta, tb, frame, rotations))
     damping = p.stiffness_damping * K
     damping[:, [0, 1, 2, 5]] += t.membrane_damping * K[:, [0, 1, 2, 5]]
-    out = Connectors(ta, tb, la, lb, K, damping, offset, kind, gap)
+    out = Connectors(ta, tb, la, lb, K, damping, offset, kind, gap, frame)
     if p.initial_equilibrium:
         if centres is None or quaternions is None:
             centres, quaternions = initial_quaternions(p)
         out.offset = equilibrium_offsets(p, out, centres, quaternions)
     return out
+
+
+def _identity(frame: np.ndarray) -> np.ndarray:
+    return np.all(frame == np.eye(3), axis=(1, 2))
+
+
+def frames_a(ta: np.ndarray, frame: np.ndarray, rotations: np.ndarray) -> np.ndarray:
+    """A₀ of every connector (C, 3, 3): tile a's rotation, or the support's frame (ta = −1)."""
+    return np.where((ta < 0)[:, None, None], frame, rotations[np.maximum(ta, 0)])
+
+
+def relative_rotation(ta, tb, frame, rotations, rmi=None) -> np.ndarray:
+    """A₀ᵀ A₁ of every connector (C, 3, 3): R_aᵀ R_b between tiles, frameᵀ R_b frame at a support. With
+    rmi (R − I of every tile) it is formed from the small parts, (R_a − I)ᵀ + (R_b − I) + (R_a − I)ᵀ(R_b − I)
+    added to I."""
+    ground = ta < 0
+    if rmi is None:
+        relative = np.einsum("kji,kjl->kil", frames_a(ta, frame, rotations), rotations[tb])
+    else:
+        rmi_a = np.where(ground[:, None, None], 0.0, rmi[np.maximum(ta, 0)])
+        rmi_b = rmi[tb]
+        relative = np.eye(3) + np.swapaxes(rmi_a, 1, 2) + rmi_b + np.einsum("kji,kjl->kil", rmi_a, rmi_b)
+    tilted = ground & ~_identity(frame)
+    if np.any(tilted):
+        f = frame[tilted]
+        relative[tilted] = np.einsum("kji,kjl,klm->kim", f, rotations[tb[tilted]], f)
+    return relative
 
 
 def static_loads(p: SailParameters, conn: Connectors, centres: np.ndarray, quaternions: np.ndarray) -> np.ndarray:
@@ -241,17 +290,13 @@ def static_loads(p: SailParameters, conn: Connectors, centres: np.ndarray, quate
     flat = flat_centres(p)
     rotations = quaternion_rotation(quaternions)
     ground = conn.tile_a < 0
-    a = np.maximum(conn.tile_a, 0)
-    RA = np.where(ground[:, None, None], np.eye(3), rotations[a])
+    RA = frames_a(conn.tile_a, conn.frame, rotations)
     RB = rotations[conn.tile_b]
     delta = relative_displacement(
-        conn.tile_a, conn.tile_b, conn.local_a, conn.local_b, centres, quaternions, flat, conn.gap
+        conn.tile_a, conn.tile_b, conn.local_a, conn.local_b, centres, quaternions, flat, conn.gap, conn.frame
     )
-    rmi = rotation_minus_identity(quaternions)
-    rmi_a = np.where(ground[:, None, None], 0.0, rmi[a])
     # R_Aᵀ R_B − I from the small parts: (R_A − I)ᵀ + (R_B − I) + (R_A − I)ᵀ(R_B − I)
-    rmi_b = rmi[conn.tile_b]
-    relative = np.eye(3) + np.swapaxes(rmi_a, 1, 2) + rmi_b + np.einsum("kji,kjl->kil", rmi_a, rmi_b)
+    relative = relative_rotation(conn.tile_a, conn.tile_b, conn.frame, rotations, rotation_minus_identity(quaternions))
     strain = np.concatenate([delta, angles_xyz(relative)], axis=1)
     local = conn.stiffness * (strain - conn.offset)
     force = np.einsum("kij,kj->ki", RA, local[:, :3])
@@ -279,7 +324,7 @@ def _load_map(p: SailParameters, conn: Connectors, centres: np.ndarray, quaterni
 
     rotations = quaternion_rotation(quaternions)
     ground = conn.tile_a < 0
-    RA = np.where(ground[:, None, None], np.eye(3), rotations[np.maximum(conn.tile_a, 0)])
+    RA = frames_a(conn.tile_a, conn.frame, rotations)
     rows, cols, vals = [], [], []
 
     def block(tile, lever, sign, keep):
@@ -349,14 +394,14 @@ def equilibrium_offsets(
     return offset
 
 
-def relative_displacement(ta, tb, la, lb, centres, quaternions, flat, gap=None) -> np.ndarray:
+def relative_displacement(ta, tb, la, lb, centres, quaternions, flat, gap=None, frame=None) -> np.ndarray:
     """A₀ᵀ(p_b − p_a) of every connector in a given state (its translational strain measure), (C, 3).
 
     Evaluated from small quantities only: on the flat grid the markers of every connector coincide up to
     the small known gap = (X_b + l_b) − (X_a + l_a) (Connectors.gap), so
     p_b − p_a = gap + (u_b − u_a) + (R_b − I) l_b − (R_a − I) l_a with u = centre − flat grid point; no
     ~1 m coordinates are differenced, and R − I comes from the quaternions' small components (round-off
-    ~1e-21 m, not 1e-16 m)."""
+    ~1e-21 m, not 1e-16 m). frame: the supports' frames (Connectors.frame; default the global axes)."""
     u = np.asarray(centres) - flat
     RmI = rotation_minus_identity(quaternions)
     rotations = np.eye(3) + RmI
@@ -366,25 +411,21 @@ def relative_displacement(ta, tb, la, lb, centres, quaternions, flat, gap=None) 
     if gap is not None:
         d = d + gap
     d -= np.where(ground[:, None], 0.0, u[a] + np.einsum("kij,kj->ki", RmI[a], la))
-    Ra = np.where(ground[:, None, None], np.eye(3), rotations[a])
+    Ra = np.where(ground[:, None, None], np.eye(3) if frame is None else frame, rotations[a])
     return np.einsum("kji,kj->ki", Ra, d)
 
 
 def edge_followers(p: SailParameters):
-    """The follower edge tension on a free boundary: (tiles, local points, local forces) of every
-    boundary tile's outer edge midpoint (force T·e along the tile's own outward in-plane axis)."""
+    """The follower edge tension on a free boundary: (tiles, local points, local forces) of every boundary
+    edge of the mesh (force T·e along the tile's own outward in-plane normal, at the edge point on the
+    normal's line through the centre: model.sheet_mesh)."""
     if p.edge_tension == 0 or p.boundary != "free":
         return np.zeros(0, int), np.zeros((0, 3)), np.zeros((0, 3))
-    a, b, T, nx = p.length / p.n, p.width / p.ny, p.edge_tension, p.n
-    tiles, points, forces = [], [], []
-    for j in range(p.ny):
-        for i, s in ((0, -1.0), (nx - 1, 1.0)):
-            tiles.append(j * nx + i)
-            points.append((s * 0.5 * a, 0, 0))
-            forces.append((s * T * b, 0, 0))
-    for i in range(nx):
-        for j, s in ((0, -1.0), (p.ny - 1, 1.0)):
-            tiles.append(j * nx + i)
-            points.append((0, s * 0.5 * b, 0))
-            forces.append((0, s * T * a, 0))
-    return np.array(tiles, int), np.array(points, float), np.array(forces, float)
+    m = planforms.mesh_of(p)
+    zeros = np.zeros(len(m.boundary_tile))
+    forces = _along(p.edge_tension, m.boundary_length, m.boundary_normal)
+    return (
+        np.array(m.boundary_tile, int),
+        np.column_stack([m.boundary_marker, zeros]),
+        np.column_stack([forces, zeros]),
+    )

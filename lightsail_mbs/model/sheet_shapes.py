@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from lightsail_mbs.model import film, shapes
+from lightsail_mbs.model import film, planforms, shapes
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.model.sheet_grid import flat_centres, quaternion_rotation, require_sheet, tilt_quaternion
 
@@ -87,7 +87,9 @@ def initial_quaternions(p: SailParameters) -> tuple[np.ndarray, np.ndarray]:
     1-D defects (defect_mode_y None): every column of tiles is a slice of the chain
     (shapes.initial_state: hinge points on the profile, every chord exactly a long), the tile along its
     chord, turned about y by −θ_i (θ the chain's angle from +x towards its transverse axis, here +z):
-    q = (cos(θ/2), 0, −sin(θ/2), 0).
+    q = (cos(θ/2), 0, −sin(θ/2), 0). On a mesh that is not a grid (another planform) there are no columns:
+    the centres lie on the chain's profile w(x) (sine or seeded multi-mode, line_defect), each tile turned
+    to its slope, as for a 2-D defect.
     2-D defects: centres on the surface above the flat grid points, each tile turned by the twist-free
     rotation that takes ẑ to the surface normal (−w_x, −w_y, 1)/|…| (tilt_quaternion).
 
@@ -102,7 +104,12 @@ def initial_quaternions(p: SailParameters) -> tuple[np.ndarray, np.ndarray]:
     spectrum = film.of_case(p)
     if p.defect_amplitude == 0 and spectrum is None:
         return flat, np.tile([1.0, 0.0, 0.0, 0.0], (flat.shape[0], 1))
-    if p.defect_mode_y is None:
+    if p.defect_mode_y is None and planforms.mesh_of(p).grid is None:
+        w, wx = line_defect(p)
+        x = flat[:, 0]
+        centres = np.column_stack([x, flat[:, 1], w(x)])
+        slope_x, slope_y = wx(x), np.zeros(len(x))
+    elif p.defect_mode_y is None:
         strip = p.ny == 1  # the chain's construction carries the line scan itself
         chain = shapes.initial_state(p if strip or spectrum is None else p.replace(film_rms=0.0))
         i = np.tile(np.arange(p.n), p.ny)
@@ -121,6 +128,20 @@ def initial_quaternions(p: SailParameters) -> tuple[np.ndarray, np.ndarray]:
         centres[:, 2] += heights
         slope_x, slope_y = slope_x + film_x, slope_y + film_y
     return centres, tilt_quaternion(np.column_stack([-slope_x, -slope_y, np.ones_like(slope_x)]))
+
+
+def line_defect(p: SailParameters):
+    """(w, w_x) of the 1-D defect as functions of x: the paper's sine or the seeded multi-mode defect of the
+    chain (shapes.sine_profile, shapes.multimode_coefficients)."""
+    if p.defect_seed is None:
+        k = 2.0 * np.pi * p.defect_mode / p.length
+        return (lambda x: p.defect_amplitude * np.sin(k * x), lambda x: p.defect_amplitude * k * np.cos(k * x))
+    nu, a, phase = shapes.multimode_coefficients(p)
+    k = 2.0 * np.pi * nu / p.length
+    return (
+        lambda x: (a[:, None] * np.sin(k[:, None] * np.asarray(x)[None, :] + phase[:, None])).sum(axis=0),
+        lambda x: (a[:, None] * k[:, None] * np.cos(k[:, None] * np.asarray(x)[None, :] + phase[:, None])).sum(axis=0),
+    )
 
 
 def film_field(p: SailParameters, spectrum: film.Film, x, y) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

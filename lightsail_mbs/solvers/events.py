@@ -43,7 +43,7 @@ import math
 import numpy as np
 
 from lightsail_mbs.base.settings import RunSettings
-from lightsail_mbs.model import failure
+from lightsail_mbs.model import failure, planforms
 
 LOCATION_SAFETY = 2.0  # E_loc = LOCATION_SAFETY · |t_lin − t_quad|
 LOCATE_RTOL = 1e-6  # a failure time is located to E_loc ≤ LOCATE_RTOL · t_f, or its run is refined
@@ -97,7 +97,7 @@ def peak_error(amplitude: np.ndarray) -> float:
 
 def numbers_per_sample(params) -> int:
     """The numbers one output sample holds: 12 per tile of a sheet, 8 per slice of a chain."""
-    return 12 * params.n * params.ny if params.model == "sheet" else 8 * params.n
+    return 12 * planforms.mesh_of(params).count if params.model == "sheet" else 8 * params.n
 
 
 def time_scales(params) -> dict:

@@ -4,8 +4,10 @@ A frame of sample i shows, side by side,
 
 * the **deflection map**: each tile's offset from the best-fit plane of the tile centres (the quantity
   the failure rule measures, analysis.plane_offsets), in units of the initial amplitude a(0), on a
-  diverging colour scale (blue troughs, red crests; one range for the run, or each frame its own);
-* the **3-D view**: the surface through the tile centres in the best-fit plane's frame, the
+  diverging colour scale (blue troughs, red crests; one range for the run, or each frame its own); a
+  grid as an image, another planform's tiles as their filled outlines (model.sheet_mesh);
+* the **3-D view**: the surface through the tile centres in the best-fit plane's frame (a grid's
+  quadrilaterals, another planform's Delaunay triangles of the flat centres), the
   out-of-plane offsets multiplied by an exaggeration factor (automatic: the run's largest offset drawn
   at a tenth of the sail's size; printed on the frame), coloured like the map.
 
@@ -22,6 +24,7 @@ import numpy as np
 
 from lightsail_mbs import analysis
 from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model import planforms
 from lightsail_mbs.result import Result
 from lightsail_mbs.viz.frames import _prepare, _write_png, frame_indices, parse_size, write_frames
 
@@ -74,15 +77,25 @@ def draw_frame(result: Result, index: int, size=(1000, 450), exaggeration: float
     vmax = float(np.max(np.abs(scaled))) if vmax is None else float(vmax)
     norm = Normalize(-vmax or -1.0, vmax or 1.0)
     ax = fig.add_axes((0.06, 0.12, 0.36, 0.72))
-    image = ax.imshow(
-        scaled.reshape(p.ny, p.n),
-        origin="lower",
-        extent=(0, p.length, 0, p.width),
-        cmap=CMAP,
-        norm=norm,
-        interpolation="nearest",
-        aspect="equal",
-    )
+    mesh = planforms.mesh_of(p)
+    if mesh.grid is not None:
+        image = ax.imshow(
+            scaled.reshape(p.ny, p.n),
+            origin="lower",
+            extent=(0, p.length, 0, p.width),
+            cmap=CMAP,
+            norm=norm,
+            interpolation="nearest",
+            aspect="equal",
+        )
+    else:  # the tiles' outlines, each filled with its offset
+        from matplotlib.collections import PolyCollection
+
+        image = PolyCollection(list(mesh.outlines), array=scaled, cmap=CMAP, norm=norm, edgecolors="face")
+        ax.add_collection(image)
+        ax.set_xlim(0, p.length)
+        ax.set_ylim(0, p.width)
+        ax.set_aspect("equal")
     fig.colorbar(image, ax=ax, fraction=0.046, pad=0.03, label="offset from best-fit plane / a(0)")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
@@ -90,14 +103,21 @@ def draw_frame(result: Result, index: int, size=(1000, 450), exaggeration: float
     e = auto_exaggeration(result) if exaggeration is None else float(exaggeration)
     c, e1, e2, n = plane_frame(result.tile_centres[index])
     d = result.tile_centres[index] - c
-    shape = (p.ny, p.n)
+    shape = (p.ny, p.n) if mesh.grid is not None else (1, mesh.count)
     u = (d @ e1).reshape(shape) + 0.5 * p.length
     v = (d @ e2).reshape(shape) + 0.5 * p.width
     w = e * (d @ n).reshape(shape)
     ax3 = fig.add_axes((0.5, 0.02, 0.48, 0.8), projection="3d")
     from matplotlib import colormaps
 
-    if min(shape) > 1:
+    if mesh.grid is None:  # the surface through the tile centres, triangulated in the flat sail's plane
+        from matplotlib.tri import Triangulation
+
+        triangles = Triangulation(mesh.centres[:, 0], mesh.centres[:, 1]).triangles
+        ax3.plot_trisurf(
+            u.ravel(), v.ravel(), w.ravel(), triangles=triangles, cmap=CMAP, norm=norm, linewidth=0.2, shade=False
+        ).set_array(scaled[triangles].mean(axis=1))
+    elif min(shape) > 1:
         quad = 0.25 * (scaled.reshape(shape)[:-1, :-1] + scaled.reshape(shape)[1:, :-1])
         quad += 0.25 * (scaled.reshape(shape)[:-1, 1:] + scaled.reshape(shape)[1:, 1:])
         ax3.plot_surface(
@@ -125,8 +145,9 @@ def draw_frame(result: Result, index: int, size=(1000, 450), exaggeration: float
     ax3.set_zticks([])
     ax3.text2D(0.5, 0.98, f"3-D view, offsets × {e:.3g}", transform=ax3.transAxes, ha="center", va="top")
     ratio = result.amplitude[index] / result.amplitude[0] if result.amplitude[0] > 0 else float("nan")
+    name = "sheet" if mesh.grid is not None else f"{p.planform} sheet"
     fig.suptitle(
-        f"{result.solver} sheet {p.n}×{p.ny}: t = {result.time[index]:.6g} s, amplitude {ratio:.3f} × a(0)",
+        f"{result.solver} {name} {p.n}×{p.ny}: t = {result.time[index]:.6g} s, amplitude {ratio:.3f} × a(0)",
         fontsize=11,
     )
     failed = result.failure_time is not None and result.time[index] >= result.failure_time

@@ -49,3 +49,29 @@ def test_exaggeration_and_refusals(tmp_path):
         render_sheet_frames(growing_sine(), tmp_path)
     with pytest.raises(ParameterError, match="color_scale"):
         render_sheet_frames(run, tmp_path, color_scale="rainbow")
+
+
+def test_a_disc_is_drawn_as_its_tiles():
+    """A disc run (w ∝ x − L/2 on polar tiles): its map is the tiles' outlines, red where x > L/2, blue
+    where x < L/2, and the corner of the L × L square outside the disc is left blank."""
+    from lightsail_mbs import RunSettings, SailParameters
+    from lightsail_mbs.model import sheet
+    from lightsail_mbs.result import Result
+
+    p = SailParameters(model="sheet", planform="disc", n=9, ny=12, length=1.0, width=1.0)
+    flat = sheet.flat_centres(p)
+    times = np.linspace(0, 1, 3)
+    w = p.defect_amplitude * (flat[:, 0] - 0.5) ** 3
+    centres = np.stack([flat + np.outer([0, 0, 1], np.exp(t) * w).T for t in times])
+    zero = np.zeros_like(centres)
+    run = Result.from_tiles(p, "synthetic", times, centres, zero, zero, zero, settings=RunSettings(t_final=1.0))
+    fig = draw_frame(run, 1, size=(1000, 450))
+    image = frame_image(fig)
+    ax = fig.axes[0]
+
+    def pixel(x, y):
+        px, py = ax.transData.transform((x, y))
+        return image[int(round(450 - py)), int(round(px))].astype(int)
+
+    right, left, corner = pixel(0.9, 0.5), pixel(0.1, 0.5), pixel(0.02, 0.02)
+    assert right[0] > right[2] + 60 and left[2] > left[0] + 60 and np.all(corner > 240)

@@ -87,7 +87,7 @@ def default_abs_tol(p: SailParameters, conn: sheet.Connectors | None = None) -> 
     """max(NEWTON_ABS_FACTOR × f₀ × defect slope (the chain's rule, f₀ per tile), ROUND_OFF_FACTOR ×
     round_off_floor): Newton cannot go below the round-off of the stiff in-plane springs (5e-11 N for
     the 30-tile chain limit at E = 4.5e9 Pa against 2e-14 N from the chain's rule)."""
-    t = sheet.Tiles.of(p)
+    t = sheet.Tiles.of(p)  # the largest tile's area and mass
     flat_force = 2.0 * p.intensity / SPEED_OF_LIGHT * t.area
     scale = flat_force if flat_force > 0 else max(abs(p.pressure) * t.area, t.mass)
     slope = defect_slope(p)
@@ -147,7 +147,9 @@ class SheetSystem:
         self.conn = sheet.connectors(p, self.centres0, self.q0)
         self.SC = exu.SystemContainer()
         mbs = self.mbs = self.SC.AddSystem()
-        inertia = [*self.tiles.inertia, 0.0, 0.0, 0.0]
+        J = self.tiles.inertias  # Exudyn's order: J_xx, J_yy, J_zz, J_yz, J_xz, J_xy
+        inertias = [[J[k, 0, 0], J[k, 1, 1], J[k, 2, 2], J[k, 1, 2], J[k, 0, 2], J[k, 0, 1]] for k in range(N)]
+        masses = self.tiles.masses
         self.nodes, self.bodies = [], []
         for k in range(N):
             node = mbs.AddNode(
@@ -158,13 +160,25 @@ class SheetSystem:
                 )
             )
             self.nodes.append(node)
-            self.bodies.append(mbs.AddObject(ObjectRigidBody(mass=self.tiles.mass, inertia=inertia, nodeNumber=node)))
+            self.bodies.append(
+                mbs.AddObject(ObjectRigidBody(mass=float(masses[k]), inertia=inertias[k], nodeNumber=node))
+            )
         ground = mbs.AddObject(ObjectGround())
         c = self.conn
+        plain = np.all(c.frame == np.eye(3), axis=(1, 2))  # connectors in the global axes
         for q in range(len(c)):
             body_a = ground if c.tile_a[q] < 0 else self.bodies[c.tile_a[q]]
-            ma = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body_a, localPosition=list(c.local_a[q])))
-            mb = mbs.AddMarker(MarkerBodyRigid(bodyNumber=self.bodies[c.tile_b[q]], localPosition=list(c.local_b[q])))
+            body_b = self.bodies[c.tile_b[q]]
+            if plain[q]:
+                ma = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body_a, localPosition=list(c.local_a[q])))
+                mb = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body_b, localPosition=list(c.local_b[q])))
+            else:  # a support's axes (Connectors.frame) turn both markers: A₀ = frame, A₁ = R_B frame
+                ma = mbs.AddMarker(
+                    MarkerBodyRigid(bodyNumber=body_a, localHT=exu.HT(rotation=c.frame[q], translation=c.local_a[q]))
+                )
+                mb = mbs.AddMarker(
+                    MarkerBodyRigid(bodyNumber=body_b, localHT=exu.HT(rotation=c.frame[q], translation=c.local_b[q]))
+                )
             mbs.AddObject(
                 ObjectConnectorRigidBodySpringDamper(
                     markerNumbers=[ma, mb],
@@ -263,7 +277,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     mbs = system.mbs
     s = simulation_settings(settings.t_final, h, rel_tol, abs_tol, spectral_radius)
     monitor = FailureMonitor(failure.plane_amplitude(system.centres(mbs.systemData.GetODE2Coordinates())), settings)
-    bar = Progress(settings.t_final, progress, label=f"exudyn sheet {p.n}x{p.ny}")
+    bar = Progress(settings.t_final, progress, label=f"exudyn sheet {system.tiles.count} tiles")
     recorder = Recorder(mbs, system, monitor, h, settings.sample_times(), bar)
     mbs.SetPostStepUserFunction(recorder)
     solver = exu.MainSolverImplicitSecondOrder()

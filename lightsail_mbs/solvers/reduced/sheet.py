@@ -20,10 +20,10 @@ What is independent of Exudyn:
 * the load: the compiled facet law (loads.net_facet_force) on the normal's components
   (2(q₁q₃ + q₀q₂), 2(q₂q₃ − q₀q₁), …)/|q|², never a difference of O(1) numbers;
 * integrator: Radau IIA, order 5, adaptive (sheet_radau: velocity-reduced sparse solve, quantised
-  steps), with a sparse Jacobian from graph-coloured finite differences: tiles (i, j) with equal
-  (i + 2j) mod 5 are at least 3 grid steps apart, so their closed neighbourhoods never overlap, and
-  13 × 5 = 65 right-hand sides give the whole Jacobian (Exudyn: generalized-α, fixed step, modified
-  Newton);
+  steps), with a sparse Jacobian from graph-coloured finite differences: tiles of one colour of a
+  distance-2 colouring of the mesh's adjacency (distance2_colouring) have closed neighbourhoods that
+  never overlap, so 13 right-hand sides per colour give the whole Jacobian (a grid takes 5 colours, 65
+  right-hand sides) (Exudyn: generalized-α, fixed step, modified Newton);
 * code: the right-hand side is one numba-compiled pass over tiles, connectors, followers and loads
   (solvers.reduced.sheet_kernels).
 
@@ -40,6 +40,7 @@ perturbation (m: seeded tile offsets along z at the start, model.sheet.perturbed
 
 from __future__ import annotations
 
+import heapq
 import math
 import time as _time
 
@@ -57,7 +58,6 @@ from lightsail_mbs.solvers.reduced.sheet_kernels import STATE, fill_jacobian, rh
 from lightsail_mbs.solvers.reduced.sheet_radau import SheetRadau
 from lightsail_mbs.solvers.skeleton import FailureMonitor
 
-COLOURS = 5
 DEFAULT_RTOL = 1e-7
 DEFAULT_MAX_STEP = 0.01
 OPTIONS = ("rtol", "max_step", "perturbation")
@@ -80,22 +80,29 @@ class SheetModel:
         self.gap = np.ascontiguousarray(c.gap)
         self.K, self.Dm = np.ascontiguousarray(c.stiffness), np.ascontiguousarray(c.damping)
         self.off = np.ascontiguousarray(c.offset)
+        self.frame = np.ascontiguousarray(c.frame)
+        self.framed = ~np.all(c.frame == np.eye(3), axis=(1, 2))
         ft, fp, ff = sheet.edge_followers(p)
         self.followers = (ft.astype(np.int64), np.ascontiguousarray(fp), np.ascontiguousarray(ff))
         self.load = np.array(
             [
                 p.mean_intensity,
-                self.tiles.area / SPEED_OF_LIGHT,
+                SPEED_OF_LIGHT,
                 p.intensity,
                 p.beam_center,
                 p.sheet_beam_center_y,
                 p.beam_waist,
                 p.reflectivity,
                 p.absorptivity,
-                p.pressure * self.tiles.area,
+                p.pressure,
             ]
         )
-        self.inertia = np.asarray(self.tiles.inertia, float)
+        self.masses = np.ascontiguousarray(self.tiles.masses)
+        self.inertia = np.ascontiguousarray(self.tiles.inertias)
+        self.inverse = np.linalg.inv(self.inertia)
+        off_diagonal = self.inertia - np.einsum("kii->ki", self.inertia)[:, :, None] * np.eye(3)
+        self.diagonal = ~np.any(off_diagonal != 0, axis=(1, 2))
+        self.areas = np.ascontiguousarray(self.tiles.areas)
         self.n = STATE * N
         self.calls = 0
         self._pattern()
@@ -112,8 +119,11 @@ class SheetModel:
         rhs_kernel(
             y,
             self.flat,
-            self.tiles.mass,
+            self.masses,
             self.inertia,
+            self.inverse,
+            self.diagonal,
+            self.areas,
             self.ta,
             self.tb,
             self.la,
@@ -122,6 +132,8 @@ class SheetModel:
             self.K,
             self.Dm,
             self.off,
+            self.frame,
+            self.framed,
             *self.followers,
             self.load,
             out,
@@ -130,8 +142,8 @@ class SheetModel:
 
     def _pattern(self):
         """CSC sparsity of ∂ẏ/∂y (each tile's 13 rows depend on its own and its neighbours' 13 columns) and
-        the 5-colouring of the tiles."""
-        N, nx = self.tiles.count, self.tiles.nx
+        the colouring of the tiles (distance2_colouring of the mesh's adjacency)."""
+        N = self.tiles.count
         neighbours = [{k} for k in range(N)]
         for a, b in zip(self.ta, self.tb):
             if a >= 0:
@@ -148,15 +160,8 @@ class SheetModel:
         M = sp.csc_matrix((np.ones(rows.size), (rows, cols)), shape=(self.n, self.n))
         M.sort_indices()
         self.indptr, self.indices = M.indptr.astype(np.int64), M.indices.astype(np.int64)
-        k = np.arange(N)
-        colour = (k % nx + 2 * (k // nx)) % COLOURS
-        for col in range(COLOURS):  # no two tiles of one colour share a neighbour
-            seen = set()
-            for t in np.nonzero(colour == col)[0]:
-                if neighbours[t] & seen:
-                    raise RuntimeError("the tile colouring overlaps")
-                seen |= neighbours[t]
-        self.groups = [np.nonzero(colour == col)[0] for col in range(COLOURS)]
+        colour = distance2_colouring(neighbours)
+        self.groups = [np.nonzero(colour == col)[0] for col in range(colour.max() + 1)]
         size = max(self.p.length, self.p.width)
         self.scale = np.tile(np.r_[[size] * 3, [1.0] * 4, [size] * 3, [1.0] * 3], N)
 
@@ -216,6 +221,36 @@ class SheetModel:
         return (J[self.velocity_indices][:, self.position_indices] @ self.kinematics(y)).tocsc()
 
 
+def distance2_colouring(neighbours: list) -> np.ndarray:
+    """Colours (N,) of a graph given by its closed neighbourhoods (sets, each holding its own vertex) such
+    that no two vertices of one colour share a neighbour (a distance-2 colouring: one right-hand side per
+    colour and state component gives every column of the Jacobian).
+
+    Greedy in DSATUR order (Brélaz 1979) on the distance-2 graph: next the uncoloured vertex with the most
+    distinct colours within distance 2 (ties: the most vertices within distance 2, then the lowest index),
+    given the smallest colour free there. A rectangular grid takes 5 colours, the least possible (a tile
+    and its 4 neighbours must all differ); greedy in index order takes 6–7."""
+    N = len(neighbours)
+    reach = [set().union(*(neighbours[j] for j in neighbours[k])) - {k} for k in range(N)]
+    colour = np.full(N, -1)
+    seen = [set() for _ in range(N)]
+    heap = [(0, -len(reach[k]), k) for k in range(N)]
+    heapq.heapify(heap)
+    while heap:
+        _, _, k = heapq.heappop(heap)
+        if colour[k] >= 0:
+            continue
+        c = 0
+        while c in seen[k]:
+            c += 1
+        colour[k] = c
+        for j in reach[k]:
+            if colour[j] < 0 and c not in seen[j]:
+                seen[j].add(c)
+                heapq.heappush(heap, (-len(seen[j]), -len(reach[j]), j))
+    return colour
+
+
 def state_scales(p: SailParameters) -> np.ndarray:
     """Absolute-tolerance scales per state component: a₀ for u, the defect slope for q, and both over the
     instability time √(L/g₀) for the rates."""
@@ -223,7 +258,7 @@ def state_scales(p: SailParameters) -> np.ndarray:
     mode = p.defect_mode if p.defect_mode_y is None else max(p.defect_mode, p.defect_mode_y)
     slope = max(2 * math.pi * mode * p.defect_amplitude / p.length, a0 / p.length)
     tc = math.sqrt(p.length / p.nominal_acceleration) if p.nominal_acceleration > 0 else 1.0
-    return np.tile(np.r_[[a0] * 3, [slope] * 4, [a0 / tc] * 3, [slope / tc] * 3], p.n * p.ny)
+    return np.tile(np.r_[[a0] * 3, [slope] * 4, [a0 / tc] * 3, [slope / tc] * 3], sheet.tile_count(p))
 
 
 def run(params: SailParameters, settings: RunSettings, *, progress: bool = False, **options) -> Result:
@@ -264,7 +299,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     )
     times = settings.sample_times()
     monitor = FailureMonitor(failure.plane_amplitude(model.start), settings)
-    bar = Progress(settings.t_final, progress, label=f"reduced sheet {params.n}x{params.ny}")
+    bar = Progress(settings.t_final, progress, label=f"reduced sheet {sheet.tile_count(params)} tiles")
     states, error, k = [y0], None, 1
     try:
         while solver.status == "running" and k < len(times):

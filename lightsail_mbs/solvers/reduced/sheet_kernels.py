@@ -34,8 +34,33 @@ def rotation_minus_identity(q0, q1, q2, q3, R):
 
 
 @njit(cache=True)
-def rhs_kernel(y, flat, mass, inertia, ta, tb, la, lb, gap, K, Dm, off, fol_tile, fol_point, fol_force, load, out):
-    """dy/dt of the sheet (solvers.reduced.sheet). load = (Ī, A/c, I₀, x_c, y_c, w, R, α, p·A)."""
+def rhs_kernel(
+    y,
+    flat,
+    mass,
+    inertia,
+    inverse,
+    diagonal,
+    area,
+    ta,
+    tb,
+    la,
+    lb,
+    gap,
+    K,
+    Dm,
+    off,
+    frame,
+    framed,
+    fol_tile,
+    fol_point,
+    fol_force,
+    load,
+    out,
+):
+    """dy/dt of the sheet (solvers.reduced.sheet). Per tile: mass, inertia (3, 3) and its inverse, diagonal
+    (its inertia is diagonal), area; per connector: frame (3, 3), a support's axes where framed.
+    load = (Ī, c, I₀, x_c, y_c, w, R, α, p)."""
     N = flat.shape[0]
     R = np.empty((N, 3, 3))
     RmI = np.empty((N, 3, 3))
@@ -86,7 +111,7 @@ def rhs_kernel(y, flat, mass, inertia, ta, tb, la, lb, gap, K, Dm, off, fol_tile
         else:
             for i in range(3):
                 for j in range(3):
-                    RA[i, j] = 1.0 if i == j else 0.0
+                    RA[i, j] = frame[c, i, j] if framed[c] else (1.0 if i == j else 0.0)
                 ra[i] = 0.0
                 d[i] = y[bB + i] + sb[i] + gap[c, i]
             wa0 = wa1 = wa2 = 0.0
@@ -101,6 +126,11 @@ def rhs_kernel(y, flat, mass, inertia, ta, tb, la, lb, gap, K, Dm, off, fol_tile
         for i in range(3):
             for j in range(3):
                 Rrel[i, j] = RA[0, i] * R[B, 0, j] + RA[1, i] * R[B, 1, j] + RA[2, i] * R[B, 2, j]
+        if A < 0 and framed[c]:  # frameᵀ R_B frame: the support's rotation in its own axes
+            for i in range(3):
+                r0, r1, r2 = Rrel[i, 0], Rrel[i, 1], Rrel[i, 2]
+                for j in range(3):
+                    Rrel[i, j] = r0 * frame[c, 0, j] + r1 * frame[c, 1, j] + r2 * frame[c, 2, j]
         phi1 = math.atan2(Rrel[0, 2], math.sqrt(Rrel[1, 2] ** 2 + Rrel[2, 2] ** 2))
         phi0 = math.atan2(-Rrel[1, 2], Rrel[2, 2])
         phi2 = math.atan2(-Rrel[0, 1], Rrel[0, 0])
@@ -140,7 +170,7 @@ def rhs_kernel(y, flat, mass, inertia, ta, tb, la, lb, gap, K, Dm, off, fol_tile
         T[k, 0] += ra[1] * fg[2] - ra[2] * fg[1]
         T[k, 1] += ra[2] * fg[0] - ra[0] * fg[2]
         T[k, 2] += ra[0] * fg[1] - ra[1] * fg[0]
-    mean_intensity, area_c, peak, cx, cy, waist, refl, absorb, pressure_force = (
+    mean_intensity, light_speed, peak, cx, cy, waist, refl, absorb, pressure = (
         load[0],
         load[1],
         load[2],
@@ -156,11 +186,11 @@ def rhs_kernel(y, flat, mass, inertia, ta, tb, la, lb, gap, K, Dm, off, fol_tile
         local = round_gaussian_intensity(flat[k, 0] + y[b], flat[k, 1] + y[b + 1], peak, cx, cy, waist)
         # the normal R ẑ: its x, y components are the small entries of R − I
         f0, f1, f2 = net_facet_force(
-            RmI[k, 0, 2], RmI[k, 1, 2], R[k, 2, 2], local, mean_intensity, area_c, refl, absorb
+            RmI[k, 0, 2], RmI[k, 1, 2], R[k, 2, 2], local, mean_intensity, area[k] / light_speed, refl, absorb
         )
         F[k, 0] += f0
         F[k, 1] += f1
-        F[k, 2] += f2 + pressure_force
+        F[k, 2] += f2 + pressure * area[k]
         q0, q1, q2, q3 = y[b + 3], y[b + 4], y[b + 5], y[b + 6]
         w0, w1, w2 = y[b + 10], y[b + 11], y[b + 12]
         out[b] = y[b + 7]
@@ -170,16 +200,26 @@ def rhs_kernel(y, flat, mass, inertia, ta, tb, la, lb, gap, K, Dm, off, fol_tile
         out[b + 4] = 0.5 * (q0 * w0 + q2 * w2 - q3 * w1)
         out[b + 5] = 0.5 * (q0 * w1 + q3 * w0 - q1 * w2)
         out[b + 6] = 0.5 * (q0 * w2 + q1 * w1 - q2 * w0)
-        out[b + 7] = F[k, 0] / mass
-        out[b + 8] = F[k, 1] / mass
-        out[b + 9] = F[k, 2] / mass
+        out[b + 7] = F[k, 0] / mass[k]
+        out[b + 8] = F[k, 1] / mass[k]
+        out[b + 9] = F[k, 2] / mass[k]
         tb0 = R[k, 0, 0] * T[k, 0] + R[k, 1, 0] * T[k, 1] + R[k, 2, 0] * T[k, 2]
         tb1 = R[k, 0, 1] * T[k, 0] + R[k, 1, 1] * T[k, 1] + R[k, 2, 1] * T[k, 2]
         tb2 = R[k, 0, 2] * T[k, 0] + R[k, 1, 2] * T[k, 1] + R[k, 2, 2] * T[k, 2]
-        J0, J1, J2 = inertia[0], inertia[1], inertia[2]
-        out[b + 10] = (tb0 - (w1 * J2 * w2 - w2 * J1 * w1)) / J0
-        out[b + 11] = (tb1 - (w2 * J0 * w0 - w0 * J2 * w2)) / J1
-        out[b + 12] = (tb2 - (w0 * J1 * w1 - w1 * J0 * w0)) / J2
+        if diagonal[k]:
+            J0, J1, J2 = inertia[k, 0, 0], inertia[k, 1, 1], inertia[k, 2, 2]
+            out[b + 10] = (tb0 - (w1 * J2 * w2 - w2 * J1 * w1)) / J0
+            out[b + 11] = (tb1 - (w2 * J0 * w0 - w0 * J2 * w2)) / J1
+            out[b + 12] = (tb2 - (w0 * J1 * w1 - w1 * J0 * w0)) / J2
+        else:  # J ω̇ = τ − ω × J ω with the full tensor
+            h0 = inertia[k, 0, 0] * w0 + inertia[k, 0, 1] * w1 + inertia[k, 0, 2] * w2
+            h1 = inertia[k, 1, 0] * w0 + inertia[k, 1, 1] * w1 + inertia[k, 1, 2] * w2
+            h2 = inertia[k, 2, 0] * w0 + inertia[k, 2, 1] * w1 + inertia[k, 2, 2] * w2
+            r0 = tb0 - (w1 * h2 - w2 * h1)
+            r1 = tb1 - (w2 * h0 - w0 * h2)
+            r2 = tb2 - (w0 * h1 - w1 * h0)
+            for i in range(3):
+                out[b + 10 + i] = inverse[k, i, 0] * r0 + inverse[k, i, 1] * r1 + inverse[k, i, 2] * r2
 
 
 @njit(cache=True)
