@@ -11,6 +11,8 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
+from lightsail_mbs.model.materials import MATERIALS
+
 MODELS = ("rigid", "torsion", "tnt", "sheet")
 CHAIN_MODELS = ("rigid", "torsion", "tnt")
 # Supports of the chain's ends (validations, paper Appendices A–B): "free" (the sail, both ends free),
@@ -227,6 +229,12 @@ FIELDS = {
         "the initial shape turned counter-clockwise about the craft's centre of mass",
         "|tilt| < π/2",
         family="chain",
+    ),
+    "material": FieldInfo(
+        SAIL,
+        "",
+        "the film from the materials table: fills density and youngs_modulus (explicit values override)",
+        _choices(MATERIALS),
     ),
 }
 
