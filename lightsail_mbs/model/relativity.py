@@ -83,14 +83,14 @@ def proper_acceleration(beta, power: float, mass: float, reflectivity: float = 1
 
 class Trajectory:
     """The flat craft of constant rest mass m under constant intercepted power P from rest (module docstring):
-    t(β), x(β), β(t) and the right-hand side of du/dt (u = γβ), all in closed form."""
+    t(β), x(β), β(t) and the right-hand side of du/dt (u = γβ), all in closed form. coefficient: the momentum
+    the sail takes per unit of incident momentum at normal incidence (2R + α, :func:`momentum_coefficient`;
+    c_n(0) of an optical table)."""
 
-    def __init__(self, power: float, mass: float, reflectivity: float = 1.0, absorptivity: float = 0.0):
-        for name, value in (("power", power), ("mass", mass)):
+    def __init__(self, power: float, mass: float, coefficient: float = 2.0):
+        for name, value in (("power", power), ("mass", mass), ("coefficient", coefficient)):
             check(name, value, finite(name, value) > 0, "> 0")
-        self.power, self.mass = float(power), float(mass)
-        self.coefficient = momentum_coefficient(reflectivity, absorptivity)
-        check("reflectivity", reflectivity, self.coefficient > 0, "2R + α > 0 (the sail must take momentum)")
+        self.power, self.mass, self.coefficient = float(power), float(mass), float(coefficient)
         self.time_constant = self.mass * SPEED_OF_LIGHT**2 / (self.coefficient * self.power)  # K, s
 
     @staticmethod

@@ -67,6 +67,14 @@ def change_time_scale(proper_acceleration) -> np.ndarray:
     return SPEED_OF_LIGHT / (2.0 * np.asarray(proper_acceleration, float))
 
 
+def lag(thermal_time: float, change_time: float, temperature: float, environment: float = DEEP_SPACE) -> float:
+    """The fraction by which T trails its steady value when the beam changes on change_time: a first-order
+    relaxation dT/dτ = (T_eq − T)/τ_th following T_eq(τ) lags by δT ≈ τ_th dT_eq/dτ, and from
+    T_eq⁴ − T_env⁴ ∝ I' with |d ln I'/dτ| = 1/change_time, dT_eq/dτ = (T_eq⁴ − T_env⁴)/(4 T_eq³ change_time), so
+    δT/T = (τ_th/change_time) (1 − (T_env/T)⁴)/4."""
+    return float(thermal_time / change_time * (1.0 - (environment / temperature) ** 4) / 4.0)
+
+
 def conduction_length(conductance: float, emissivity: float, temperature: float) -> float:
     """√(k h / (4 ε σ T³)) (m): the distance over which conduction (sheet conductance k h, W/K) spreads a
     temperature difference before the faces radiate it (the linearised steady balance's decay length)."""

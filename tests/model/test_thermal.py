@@ -104,3 +104,22 @@ def test_the_change_time_scale_is_that_of_the_doppler_factor():
     rate = (np.log(g[1]) - np.log(g[0])) / (tau[1] - tau[0])
     g0 = float(trajectory.proper_acceleration(beta))
     assert -1.0 / rate == pytest.approx(float(thermal.change_time_scale(g0)), rel=1e-7)
+
+
+def test_the_lag_estimate_matches_a_film_following_a_falling_beam():
+    """The absorbed flux falls as exp(−τ/τ_c) (the Doppler factor's rate); after the start-up transient the
+    integrated film trails its steady temperature by the fraction thermal.lag gives, within 2 % of it."""
+    C, eps, q0, tc = 0.25, 0.2, 1e4, 5.0
+    element = thermal.Element(C, eps, q0)
+
+    def rhs(t, y):
+        q = q0 * np.exp(-t / tc)
+        return [(q - eps * SIGMA * (y[0] ** 4 - thermal.DEEP_SPACE**4)) / C]
+
+    t_end = 2.0
+    sol = solve_ivp(rhs, (0, t_end), [element.equilibrium], method="DOP853", rtol=1e-12, atol=1e-12)
+    steady = float(thermal.equilibrium_temperature(q0 * np.exp(-t_end / tc), eps))
+    measured = (sol.y[0, -1] - steady) / steady
+    tau = float(thermal.time_scale(C, eps, steady))
+    assert tau < 0.01 * tc
+    assert measured == pytest.approx(thermal.lag(tau, tc, steady), rel=0.02)
