@@ -21,7 +21,13 @@ table (:func:`fill`); options and case-file entries given explicitly override th
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 from typing import NamedTuple
+
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python 3.10
+    import tomli as tomllib
 
 from lightsail_mbs.base.validation import ParameterError
 
@@ -109,108 +115,21 @@ PROPERTIES = {  # property -> (symbol, unit) for the docs' table
 }
 _DISPLAY_SCALE = {"youngs_modulus": 1e-9, "thermal_expansion": 1e6}
 
-V = Value
-MATERIALS = {
-    m.name: m
-    for m in (
-        Material(
-            "silicon-nitride",
-            "LPCVD amorphous Si₃N₄ film, ~100–200 nm",
-            V(270e9, "flexsailsim"),
-            V(0.27, "flexsailsim"),
-            V(3100.0, "flexsailsim"),
-            V(2.3e-6, "flexsailsim"),
-            V(800.0, "flexsailsim"),
-            V(3.0, "flexsailsim"),
-            V(0.1, "flexsailsim"),
-            V(0.1, "flexsailsim"),
-            V(1e-5, "flexsailsim"),
-            V(1673.0, "flexsailsim"),
-            "ε per face 0.1 (FlexSailSim: 2 × 0.1, from C. Zhang et al.'s 0.116); A = 1e-5 FlexSailSim's SiNx film",
-        ),
-        Material(
-            "silicon",
-            "crystalline silicon film, ~100 nm",
-            V(169e9, "hopcroft2010"),
-            V(0.25, "flexsailsim"),
-            V(2329.0, "crc"),
-            V(2.6e-6, "okada1984"),
-            V(712.0, "crc"),
-            V(148.0, "crc"),
-            V(1e-3, "estimate"),
-            V(1e-3, "estimate"),
-            V(1e-4, "green2008"),
-            V(1300.0, "flexsailsim"),
-            "k is the bulk value (a 100 nm film conducts several times less); A = α_abs h with α_abs ≈ 10 /cm "
-            "and h = 100 nm; ε: an undoped sub-µm film barely emits in the mid-infrared (Ilic et al. 2018 pair "
-            "it with silica for that reason), 1e-3 per face assumed",
-        ),
-        Material(
-            "silica",
-            "fused silica (amorphous SiO₂) film, ~1 µm",
-            V(72.7e9, "corning7980"),
-            V(0.16, "corning7980"),
-            V(2201.0, "corning7980"),
-            V(0.52e-6, "corning7980"),
-            V(772.0, "corning7980"),
-            V(1.38, "corning7980"),
-            V(0.3, "estimate"),
-            V(0.3, "estimate"),
-            V(1e-9, "starshot_forum"),
-            V(1315.0, "corning7980"),
-            "ε: the Si–O phonon band near 9 µm makes a µm film a fair emitter (Ilic et al. 2018), 0.3 per face "
-            "assumed; T_lim is the annealing point",
-        ),
-        Material(
-            "mos2",
-            "2H-MoS₂ film (few-layer to ~100 nm)",
-            V(270e9, "bertolazzi2011"),
-            V(0.27, "estimate"),
-            V(5060.0, "crc"),
-            V(5e-6, "estimate"),
-            V(397.0, "crc"),
-            V(34.5, "yan2014"),
-            V(0.05, "estimate"),
-            V(0.05, "estimate"),
-            V(1e-4, "estimate"),
-            V(1000.0, "estimate"),
-            "Brewer et al. 2022 design MoS₂ photonic crystals for 1.064 µm; its absorptance there (near the "
-            "indirect gap, ~1.2 eV), its emissivity and its limit temperature in vacuum are not tabulated "
-            "here from a measurement: ν, α_T, ε, A and T_lim are estimates",
-        ),
-        Material(
-            "aluminium",
-            "aluminium film (opaque, ≥ 50 nm)",
-            V(70e9, "crc"),
-            V(0.35, "crc"),
-            V(2700.0, "crc"),
-            V(23.1e-6, "crc"),
-            V(897.0, "crc"),
-            V(237.0, "crc"),
-            V(0.03, "incropera"),
-            V(0.03, "incropera"),
-            V(0.06, "rakic1995"),
-            V(933.0, "crc"),
-            "A = 1 − R for an opaque film; T_lim the melting point",
-        ),
-        Material(
-            "kapton",
-            "Kapton HN polyimide film, ~25 µm",
-            V(2.5e9, "dupont_kapton"),
-            V(0.34, "dupont_kapton"),
-            V(1420.0, "dupont_kapton"),
-            V(20e-6, "dupont_kapton"),
-            V(1090.0, "dupont_kapton"),
-            V(0.12, "dupont_kapton"),
-            V(0.5, "sheldahl"),
-            V(0.5, "sheldahl"),
-            V(0.02, "estimate"),
-            V(673.0, "dupont_kapton"),
-            "A: the film is amber but transparent in the near infrared; 2 % assumed for 25 µm",
-        ),
-    )
-}
-del V
+DATA_FILE = Path(__file__).with_name("materials.toml")  # the table itself: one [name] table per film
+
+
+def _read(path: Path) -> dict:
+    """The materials of the data file: name -> Material (each property a [value, source] pair)."""
+    with path.open("rb") as handle:
+        data = tomllib.load(handle)
+    table = {}
+    for name, entry in data.items():
+        values = {prop: Value(float(entry[prop][0]), str(entry[prop][1])) for prop in PROPERTIES}
+        table[name] = Material(name, entry["description"], **values, note=entry.get("note", ""))
+    return table
+
+
+MATERIALS = _read(DATA_FILE)
 
 
 def get(name: str) -> Material:
