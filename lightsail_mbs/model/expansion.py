@@ -37,6 +37,25 @@ def thermal_strain(expansion: float, temperature, reference: float):
     return expansion * (np.asarray(temperature, float) - reference)
 
 
+def heated_case(p: SailParameters, strain: float) -> SailParameters:
+    """The free chain heated uniformly to the thermal strain ε_th = α_T ΔT: every length of the sail (L, W, h,
+    a₀, the roughness, the film's lengths, the payload's stem, the billow radius) grows by s = 1 + ε_th about
+    the sail's middle, and the density falls by s³ (the mass is kept); the beam is the beam's (its waist and
+    axis stay where they are). Its shape is the cold one scaled by s, and the paper's E_cr,max ∝ I' a₀ L²/h³
+    (Eq. 8) is unchanged by the scaling: uniform expansion alone does not move a free sail's criterion. A framed
+    sail is not scaled (the frame holds its length: :func:`remaining_tension`)."""
+    s = 1.0 + strain
+    changes = {name: getattr(p, name) * s for name in ("length", "width", "thickness", "defect_amplitude")}
+    changes["beam_center"] = p.beam_center + 0.5 * (s - 1.0) * p.length
+    changes.update(density=p.density / s**3, roughness=p.roughness * s, film_rms=p.film_rms * s)
+    changes.update(payload_stem=p.payload_stem * s, film_correlation_length=p.film_correlation_length * s)
+    if p.payload_inertia:  # J = m r²: the payload's own size grows by s too
+        changes["payload_inertia"] = p.payload_inertia * s**2
+    if p.billow_radius != float("inf"):
+        changes["billow_radius"] = p.billow_radius * s
+    return p.replace(**changes)
+
+
 def chain_tension_relief(p: SailParameters, expansion: float, mean_rise: float) -> float:
     """E h W α_T ⟨ΔT⟩ (N): the tension a TnT chain between rigid supports loses when heated by ⟨ΔT⟩."""
     return p.youngs_modulus * p.thickness * p.width * expansion * mean_rise

@@ -244,10 +244,11 @@ def _nan(value):
     return math.nan if value is None else float(value)
 
 
-def shape_run(p: SailParameters, row: dict, duration: float) -> dict:
-    """The snapshot's case solved for its shape in the sail's frame (the reduced solver, no uncertainty twins):
-    the intensity of the moment and, for a framed model, the tension left (a slack film: 0), for `duration`
-    finite-amplitude times t_c. Returns whether it failed and when (s of proper time from the snapshot)."""
+def shape_run(p: SailParameters, row: dict, duration: float, solver: str = "reduced") -> dict:
+    """The snapshot's case solved for its shape in the sail's frame (no uncertainty twins): the intensity of the
+    moment and, for a framed model, the tension left (a slack film: 0), a free chain expanded by the moment's
+    thermal strain (:func:`lightsail_mbs.model.expansion.heated_case`), for `duration` finite-amplitude times
+    t_c. Returns whether it failed and when (s of proper time from the snapshot)."""
     from lightsail_mbs.analysis.runs import solve
     from lightsail_mbs.base.settings import RunSettings
     from lightsail_mbs.model.theory import time_scale
@@ -258,7 +259,9 @@ def shape_run(p: SailParameters, row: dict, duration: float) -> dict:
     elif p.model == "sheet":
         changes["edge_tension"] = max(row["tension"], 0.0)
     case = p.replace(**changes)
-    result = solve(case, "reduced", RunSettings(t_final=duration * time_scale(case)), uncertainty=False)
+    if p.model in ("rigid", "torsion") and p.boundary == "free":
+        case = expansion.heated_case(case, row["thermal_strain"])
+    result = solve(case, solver, RunSettings(t_final=duration * time_scale(case)), uncertainty=False)
     summary = result.summary()
     return {"shape_failed": bool(summary["failed"]), "shape_failure_time": _nan(summary.get("failure_time"))}
 

@@ -50,3 +50,19 @@ def test_margins_are_the_papers_ratios_at_the_sail_frame_intensity():
     assert expansion.margin(q, q.intensity, None) == pytest.approx(q.youngs_modulus / theory.critical_modulus_max(q))
     assert expansion.margin(SailParameters(model="rigid"), 1e8, None) is None
     assert expansion.thermal_strain(2e-6, 1293.0, 293.0) == pytest.approx(2e-3)
+
+
+@pytest.mark.parametrize("model", ["torsion", "rigid"])
+def test_a_free_chain_heated_uniformly_keeps_its_shape_scaled(model):
+    """The heated case's initial hinge points are the cold ones times 1 + α_T ΔT (to 1e-12 of L), its mass is the
+    cold mass, and E_cr,max (Eq. 8) is unchanged."""
+    from lightsail_mbs.model.shapes import hinge_points
+
+    p = SailParameters(model=model, n=24, defect_amplitude=2e-3, defect_mode=2.5)
+    hot = expansion.heated_case(p, expansion.thermal_strain(2.3e-6, 1293.0, 293.0))
+    s = 1 + 2.3e-6 * 1000.0
+    assert np.max(np.abs(hinge_points(hot) - s * hinge_points(p))) < 1e-12 * p.length
+    assert hot.density * hot.thickness * hot.length * hot.width == pytest.approx(
+        p.density * p.thickness * p.length * p.width, rel=1e-14
+    )
+    assert theory.critical_modulus_max(hot) == pytest.approx(theory.critical_modulus_max(p), rel=1e-13)

@@ -89,3 +89,19 @@ def test_the_command_writes_csv_json_and_png(tmp_path, capsys):
     report = json.loads((out / "journey.json").read_text())
     assert report["verdict"]["verdict"] == "shape" and report["film"]["material"] == "silicon-nitride"
     assert (out / "journey.png").stat().st_size > 10000
+
+
+def test_both_solvers_agree_on_a_heated_doppler_shifted_snapshot_run_to_failure():
+    """The Starshot-class chain at β = 0.15 (I' = 0.74 I), pre-tensioned so that heating leaves half the
+    critical tension: both solvers' shape runs fail, at times within 1e-3 of each other."""
+    from lightsail_mbs.paper.journey import starshot_case
+    from lightsail_mbs.studies.journey import shape_run
+
+    p = starshot_case(10)
+    row = Journey(p, SETTINGS).snapshot(0.15)
+    p = p.replace(tension=p.tension - row["tension"] + 0.5 * row["critical"])
+    row = Journey(p, SETTINGS).snapshot(0.15)
+    assert row["margin"] == pytest.approx(0.5, rel=1e-9)
+    runs = [shape_run(p, row, 20.0, solver) for solver in ("reduced", "exudyn")]
+    assert all(r["shape_failed"] for r in runs)
+    assert runs[0]["shape_failure_time"] == pytest.approx(runs[1]["shape_failure_time"], rel=1e-3)
