@@ -79,7 +79,7 @@ def run(args) -> int:
     print(
         f"{verdict['text']}; at the start T max {first['temperature_max']:.4g} K "
         f"(limit {report['film']['limit_temperature']:.4g} K), margin {first['margin']:.4g}; "
-        f"thermal/beam time ratio ≤ {report['quasi_steady_ratio']:.2g}; wrote {out}/journey.{{csv,json,png}}"
+        f"T lags its steady field by ≤ {report['thermal_lag']:.2g} of T; wrote {out}/journey.{{csv,json,png}}"
     )
     for note in report["notes"]:
         print(f"note: {note}", file=sys.stderr)
