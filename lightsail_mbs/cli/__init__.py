@@ -46,6 +46,7 @@ COMMANDS = [
     "converge",
     "store",
     "optics",
+    "journey",
 ]
 
 

@@ -16,6 +16,7 @@ from pathlib import Path
 
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model import materials
 from lightsail_mbs.model.fields import FIELDS, number
 from lightsail_mbs.model.parameters import PAPER_CASES, SailParameters
 
@@ -113,9 +114,11 @@ def params_from_args(args: argparse.Namespace, base: SailParameters | None = Non
     if source is not None and base is not None:
         raise ParameterError(f"{args.case_file}: a case source is invalid together with --case (give one)")
     if source is not None:
-        params = merged(args.case_file, SailParameters, source.case, given)
+        params = merged(args.case_file, SailParameters, materials.fill(given, source.case), given)
+    elif base is not None:
+        params = base.replace(**materials.fill(given))
     else:
-        params = base.replace(**given) if base is not None else SailParameters(**given)
+        params = SailParameters(**materials.fill(given))
     if getattr(args, "save_case", None):
         run = {**(source.run if source else {}), **_given_run(args)}
         path = writable_file(args.save_case, "--save-case", ".toml")

@@ -12,6 +12,7 @@ import math
 from typing import NamedTuple
 
 from lightsail_mbs.model import planforms
+from lightsail_mbs.model.materials import MATERIALS
 
 MODELS = ("rigid", "torsion", "tnt", "sheet")
 CHAIN_MODELS = ("rigid", "torsion", "tnt")
@@ -237,6 +238,12 @@ FIELDS = {
         "the initial shape turned counter-clockwise about the craft's centre of mass",
         "|tilt| < π/2",
         family="chain",
+    ),
+    "material": FieldInfo(
+        SAIL,
+        "",
+        "the film from the materials table: fills density and youngs_modulus (explicit values override)",
+        _choices(MATERIALS),
     ),
 }
 

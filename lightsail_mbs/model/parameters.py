@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT  # noqa: F401 - re-exported
 from lightsail_mbs.base.validation import ParameterError, check, finite
-from lightsail_mbs.model import casefile, film, planforms
+from lightsail_mbs.model import casefile, film, materials, planforms
 from lightsail_mbs.model.derived import DerivedQuantities
 from lightsail_mbs.model.fields import (
     BENDING_REFERENCES,
@@ -108,6 +108,7 @@ class SailParameters(DerivedQuantities):
     payload_stem: float = 0.0  # d, m: the stem's length from the sail's middle towards the laser (−ŷ)
     billow_rest: bool = False  # torsion springs at rest on the billowed arc (a sail made curved); False: flat
     initial_tilt: float = 0.0  # rad: the initial shape turned counter-clockwise about the craft's centre of mass
+    material: str | None = None  # the film's name in model.materials (its density and E fill the case: materials.fill)
 
     def __post_init__(self):
         check("model", self.model, self.model in MODELS, f"one of {', '.join(MODELS)}")
@@ -208,6 +209,8 @@ class SailParameters(DerivedQuantities):
             not self.billow_rest or not math.isinf(float(self.billow_radius)),
             "False for a flat sail (billow_radius = inf)",
         )
+        if self.material is not None:
+            materials.get(self.material)  # one line naming the allowed materials
         self._check_sheet_fields()
         if self.bending is None:
             object.__setattr__(self, "bending", self.model in ("torsion", "sheet"))
@@ -422,12 +425,16 @@ PAPER_CASES = casefile.CaseFolder(
 
 def read_case_file(path) -> tuple[dict, dict]:
     """(the case's fields, the [run] table) of a case file, names and types checked
-    (:func:`lightsail_mbs.model.casefile.read`); ParameterError naming the file and the key."""
+    (:func:`lightsail_mbs.model.casefile.read`), a named material's values under the file's own
+    (:func:`lightsail_mbs.model.materials.fill`); ParameterError naming the file and the key."""
     fields = {f.name: (f.type, FIELDS[f.name].allowed) for f in dataclasses.fields(SailParameters)}
     try:
-        return casefile.read(path, fields)
+        case, run = casefile.read(path, fields)
+        return materials.fill(case), run
     except casefile.CaseFileError as exc:
         raise ParameterError(str(exc)) from None
+    except ParameterError as exc:
+        raise ParameterError(f"{path}: {exc}") from None
 
 
 def case_of(source, **fields) -> SailParameters:

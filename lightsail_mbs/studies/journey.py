@@ -1,0 +1,296 @@
+"""The whole acceleration of a sail: its trajectory to a target speed under constant beam power, and at snapshots
+along it the sail-frame beam, the temperature field, the thermal strain, the tension left and the margin to the
+paper's criteria, with a verdict (docs/journey.md).
+
+**What is quasi-static.** The trajectory is the closed form of a flat craft of constant rest mass m under
+constant intercepted power P (:class:`lightsail_mbs.model.relativity.Trajectory`, coefficient c_n(0) = 2R + α
+of the case). In the sail's rest frame the intensity I' = I (1 − β)/(1 + β), the acceleration g₀ ∝ I' and the
+wavelength λ' change on the proper-time scale c/(2g₀) (:func:`lightsail_mbs.model.thermal.change_time_scale`):
+minutes to hours for the cases in docs/journey.md. The film's thermal time ρ c_p h/(4εσT³) is milliseconds to
+seconds, so the temperature is the steady field of each moment (:func:`lightsail_mbs.model.thermal.steady_profile`;
+every snapshot reports both times and the lag they imply, :func:`lightsail_mbs.model.thermal.lag`; the journey
+refuses a case where T would lag its steady field by more than 1 %). The paper's
+shape criteria are quasi-static too (Eqs 8 and 10 at the intensity of the moment), and so is the optional
+shape run of each snapshot: the case at that moment's intensity and tension, solved in the sail's frame.
+
+**The snapshots** are spaced so that g₀ and I' change by the fraction `step` between neighbours (equal steps in
+ln I'), T ∝ I'^(1/4) by about step/4 and λ' by step/2 (the default 5 %: at most 1.3 % in T).
+
+**Not modelled here** (the solvers' kernels carry none of it yet): the temperature and Doppler factor as part of
+a time-domain run (rest lengths following T inside the run, a load that falls with β during it), the
+velocity-dependent (first-order in the element's own velocity) terms of the load, and a wavelength-dependent
+optical table (the absorptance and reflectivity are those at the laser's wavelength throughout).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from lightsail_mbs.base.validation import ParameterError, check, finite
+from lightsail_mbs.model import expansion, materials, relativity, thermal
+from lightsail_mbs.model.parameters import SailParameters
+
+LASER_WAVELENGTH = 1.064e-6  # m: the Starshot beam (Nd:YAG / Yb fibre lasers; Parkin 2018's 1.06 µm)
+QUASI_STEADY_LIMIT = 1e-2  # the largest lag of T behind its steady field (a fraction of T) the journey accepts
+
+
+@dataclass(frozen=True)
+class JourneySettings:
+    """How the journey runs: the beam power P the sail intercepts (W, lab frame), the target speed β, the
+    laser's wavelength, the thermal inputs that override the case's material (absorptance, emissivities),
+    the surroundings' and the reference (tensioning) temperatures, the snapshots' fractional step in g₀, and
+    whether each snapshot is run for its shape with the reduced solver (shape_time: its duration in units of
+    the finite-amplitude time t_c). carried_mass: mass the craft carries beyond the case's sail and payload
+    (kg; a payload the case's shape model does not hold, e.g. on an extensible TnT chain)."""
+
+    power: float
+    target_speed: float = 0.2
+    wavelength: float = LASER_WAVELENGTH
+    material: str | None = None
+    absorptance: float | None = None
+    emissivity_front: float | None = None
+    emissivity_back: float | None = None
+    environment: float = thermal.DEEP_SPACE
+    reference_temperature: float = 293.15
+    step: float = 0.05
+    shape_runs: bool = False
+    shape_time: float = 20.0
+    carried_mass: float = 0.0
+
+    def __post_init__(self):
+        for name in ("power", "wavelength", "step", "shape_time"):
+            check(name, getattr(self, name), finite(name, getattr(self, name)) > 0, "> 0")
+        v = finite("target_speed", self.target_speed)
+        check("target_speed", v, 0 < v < 1, "0 < β < 1 (a fraction of c)")
+        check("step", self.step, self.step <= 0.5, "0 < step ≤ 0.5 (the fractional change of g₀ between snapshots)")
+        for name in ("environment", "reference_temperature", "carried_mass"):
+            check(name, getattr(self, name), finite(name, getattr(self, name)) >= 0, "≥ 0 (K, kg)")
+        if self.absorptance is not None:
+            v = finite("absorptance", self.absorptance)
+            check("absorptance", v, 0 <= v <= 1, "0 ≤ A ≤ 1")
+        for name in ("emissivity_front", "emissivity_back"):
+            if getattr(self, name) is not None:
+                v = finite(name, getattr(self, name))
+                check(name, v, 0 <= v <= 1, "0 ≤ ε ≤ 1")
+        if self.material is not None:
+            materials.get(self.material)
+
+
+@dataclass(frozen=True)
+class Film:
+    """The thermal and elastic inputs of the journey: the material's values under the settings' overrides."""
+
+    material: str
+    absorptance: float
+    emissivity: float  # ε_f + ε_b
+    heat_capacity: float  # c_p, J/(kg·K)
+    conductivity: float  # k, W/(m·K)
+    expansion: float  # α_T, 1/K
+    poisson: float
+    limit_temperature: float  # K
+
+    @classmethod
+    def of(cls, p: SailParameters, s: JourneySettings) -> Film:
+        name = s.material or p.material
+        if name is None:
+            raise ParameterError(
+                f"material=None is invalid: allowed one of {', '.join(materials.MATERIALS)} (the journey needs "
+                "the film's thermal properties: --material NAME)"
+            )
+        m = materials.get(name)
+        front = m.emissivity_front.value if s.emissivity_front is None else s.emissivity_front
+        back = m.emissivity_back.value if s.emissivity_back is None else s.emissivity_back
+        check("emissivity_front", front, front + back > 0, "ε_f + ε_b > 0 (the film must radiate)")
+        return cls(
+            name,
+            m.absorptance.value if s.absorptance is None else s.absorptance,
+            front + back,
+            m.heat_capacity.value,
+            m.conductivity.value,
+            m.thermal_expansion.value,
+            m.poisson_ratio.value,
+            m.limit_temperature.value,
+        )
+
+
+def craft_mass(p: SailParameters, carried: float = 0.0) -> float:
+    """m = ρ h L W + m_p + carried (kg): the sail, its payload and what else the craft carries."""
+    return p.density * p.thickness * p.length * p.width + p.payload_mass + carried
+
+
+def lab_peak_intensity(p: SailParameters, power: float) -> float:
+    """I₀ (W/m², lab frame) of the case's beam profile that puts the power P on the sail: P/(L W) × I₀/Ī."""
+    return power / (p.length * p.width) * p.intensity / p.mean_intensity
+
+
+def snapshot_speeds(target: float, step: float) -> np.ndarray:
+    """β of the snapshots from rest to the target: equal steps in ln I' = ln((1 − β)/(1 + β)), each at most a
+    change of the fraction `step` in g₀ (and I')."""
+    drop = -math.log((1.0 - target) / (1.0 + target))
+    count = max(2, math.ceil(drop / -math.log(1.0 - step)))
+    factors = np.exp(-np.linspace(0.0, drop, count + 1))  # (1 − β)/(1 + β)
+    betas = (1.0 - factors) / (1.0 + factors)
+    betas[-1] = target
+    return betas
+
+
+class Journey:
+    """The journey of a case under the settings: snapshots (:meth:`snapshot`), the rows of all of them
+    (:meth:`run`), and the verdict (:meth:`verdict`)."""
+
+    def __init__(self, p: SailParameters, s: JourneySettings):
+        self.case, self.settings, self.film = p, s, Film.of(p, s)
+        self.mass = craft_mass(p, s.carried_mass)
+        self.trajectory = relativity.Trajectory(s.power, self.mass, p.normal_momentum)
+        self.peak = lab_peak_intensity(p, s.power)
+        self.edges = np.linspace(0.0, p.length, p.n + 1)
+        centres = 0.5 * (self.edges[1:] + self.edges[:-1])
+        profile = np.ones(p.n) if p.uniform_beam else thermal.gaussian_flux(centres, 1.0, p.beam_waist, p.beam_center)
+        self.profile = profile  # I(x)/I₀ along the slices (a sheet: through the beam's axis)
+
+    def temperatures(self, sail_peak: float) -> np.ndarray:
+        """The slices' steady temperatures (K) at the sail-frame peak intensity I'₀: radiative equilibrium
+        for a uniform beam, the conducting strip's field for a Gaussian one."""
+        f, p = self.film, self.case
+        flux = f.absorptance * sail_peak * self.profile
+        if p.uniform_beam:
+            return np.asarray(thermal.equilibrium_temperature(flux, f.emissivity, self.settings.environment))
+        conductance = f.conductivity * p.thickness
+        return thermal.steady_profile(self.edges, flux, conductance, f.emissivity, self.settings.environment)
+
+    def snapshot(self, beta: float) -> dict:
+        """Every number of the moment the sail reaches β (SI units; a row of journey.csv)."""
+        p, s, f, tr = self.case, self.settings, self.film, self.trajectory
+        factor = float(relativity.intensity_factor(beta))
+        sail_peak = self.peak * factor
+        T = self.temperatures(sail_peak)
+        mean = float(np.mean(T))
+        rise = mean - s.reference_temperature
+        tension = expansion.remaining_tension(p, f.expansion, f.poisson, rise)
+        limit = expansion.critical(p, sail_peak)
+        g0 = float(tr.proper_acceleration(beta))
+        thermal_time = float(thermal.time_scale(p.density * f.heat_capacity * p.thickness, f.emissivity, T.max()))
+        return {
+            "t": float(tr.time(beta)),
+            "tau": float(tr.proper_time(beta)),
+            "beta": float(beta),
+            "distance": float(tr.distance(beta)),
+            "intensity_sail": sail_peak,
+            "acceleration": g0,
+            "wavelength": s.wavelength * float(relativity.wavelength_factor(beta)),
+            "temperature_max": float(T.max()),
+            "temperature_mean": mean,
+            "thermal_strain": float(expansion.thermal_strain(f.expansion, mean, s.reference_temperature)),
+            "tension": math.nan if tension is None else tension,
+            "critical": _nan(limit),
+            "margin": _nan(expansion.margin(p, sail_peak, tension)),
+            # the pre-tension that would leave exactly the critical tension: the relief plus the criterion
+            "tension_needed": math.nan if tension is None else p.tension + p.edge_tension - tension + limit,
+            "thermal_time": thermal_time,
+            "change_time": float(thermal.change_time_scale(g0)),
+            "thermal_lag": thermal.lag(thermal_time, float(thermal.change_time_scale(g0)), T.max(), s.environment),
+        }
+
+    def run(self, progress: bool = False) -> list[dict]:
+        """The snapshots from rest to the target speed (and, with shape_runs, each one's shape run)."""
+        from tqdm import tqdm
+
+        betas = snapshot_speeds(self.settings.target_speed, self.settings.step)
+        rows = []
+        for beta in tqdm(betas, desc="journey", unit="snapshot", disable=not progress):
+            row = self.snapshot(float(beta))
+            if self.settings.shape_runs:
+                row.update(shape_run(self.case, row, self.settings.shape_time))
+            rows.append(row)
+        worst = max(r["thermal_lag"] for r in rows)
+        if worst > QUASI_STEADY_LIMIT:
+            raise ParameterError(
+                f"thickness={self.case.thickness!r} is invalid: allowed a film whose thermal time keeps its "
+                f"temperature within {QUASI_STEADY_LIMIT:g} of the steady field (here it lags by {worst:.3g} of "
+                "it): the quasi-steady journey would not describe it"
+            )
+        return rows
+
+    def verdict(self, rows: list[dict]) -> dict:
+        """The journey's outcome: 'temperature' (T_max exceeds T_lim), 'shape' (the margin falls below 1) or
+        'intact' (neither up to the target speed), at the first snapshot where it happens. (Under constant
+        power I' only falls along the way, and with it T, the tension's relief and the criterion: the first
+        violation is at the start or nowhere. A power that changes in time would need the moment located
+        between snapshots.)"""
+        limit = self.film.limit_temperature
+        for row in rows:
+            if row["temperature_max"] > limit:
+                what = f"exceeds the limit temperature {limit:.4g} K ({row['temperature_max']:.4g} K)"
+            elif row["margin"] < 1:  # NaN (no criterion) compares False
+                what = f"fails by shape (margin {row['margin']:.3g} < 1)"
+            else:
+                continue
+            kind = "temperature" if what.startswith("exceeds") else "shape"
+            moment = f"τ = {row['tau']:.4g} s (t = {row['t']:.4g} s, β = {row['beta']:.4g})"
+            return {
+                "verdict": kind,
+                "beta": row["beta"],
+                "t": row["t"],
+                "tau": row["tau"],
+                "text": f"{what} at {moment}",
+            }
+        return {"verdict": "intact", "text": f"reaches β = {self.settings.target_speed:g} intact"}
+
+
+def _nan(value):
+    return math.nan if value is None else float(value)
+
+
+def shape_run(p: SailParameters, row: dict, duration: float, solver: str = "reduced") -> dict:
+    """The snapshot's case solved for its shape in the sail's frame (no uncertainty twins): the intensity of the
+    moment and, for a framed model, the tension left (a slack film: 0), a free chain expanded by the moment's
+    thermal strain (:func:`lightsail_mbs.model.expansion.heated_case`), for `duration` finite-amplitude times
+    t_c. Returns whether it failed and when (s of proper time from the snapshot)."""
+    from lightsail_mbs.analysis.runs import solve
+    from lightsail_mbs.base.settings import RunSettings
+    from lightsail_mbs.model.theory import time_scale
+
+    changes = {"intensity": row["intensity_sail"]}
+    if p.model == "tnt":
+        changes["tension"] = max(row["tension"], 0.0)
+    elif p.model == "sheet":
+        changes["edge_tension"] = max(row["tension"], 0.0)
+    case = p.replace(**changes)
+    if p.model in ("rigid", "torsion") and p.boundary == "free":
+        case = expansion.heated_case(case, row["thermal_strain"])
+    result = solve(case, solver, RunSettings(t_final=duration * time_scale(case)), uncertainty=False)
+    summary = result.summary()
+    return {"shape_failed": bool(summary["failed"]), "shape_failure_time": _nan(summary.get("failure_time"))}
+
+
+def notes(p: SailParameters, film: Film) -> list[str]:
+    """Where the case's own values differ from its film's (materials.CASE_FIELDS): set on purpose, or a case
+    built without materials.fill (a bare SailParameters(material=…) keeps the defaults)."""
+    m = materials.get(film.material)
+    return [
+        f"the case's {field} {getattr(p, field):g} differs from {m.name}'s {m.value(prop):g}"
+        for field, prop in materials.CASE_FIELDS.items()
+        if getattr(p, field) != m.value(prop)
+    ]
+
+
+def run_journey(p: SailParameters, s: JourneySettings, progress: bool = False) -> dict:
+    """The journey's report: the case, the settings, the film, the snapshots, the verdict and the ratio of the
+    thermal to the beam's time scale (what makes the temperature quasi-steady)."""
+    journey = Journey(p, s)
+    rows = journey.run(progress)
+    return {
+        "case": p.to_dict(),
+        "settings": asdict(s),
+        "film": asdict(journey.film),
+        "mass": journey.mass,
+        "lab_peak_intensity": journey.peak,
+        "snapshots": rows,
+        "verdict": journey.verdict(rows),
+        "quasi_steady_ratio": max(r["thermal_time"] / r["change_time"] for r in rows),
+        "thermal_lag": max(r["thermal_lag"] for r in rows),
+        "notes": notes(p, journey.film),
+    }
