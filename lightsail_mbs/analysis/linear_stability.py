@@ -28,6 +28,7 @@ Appendices A–B), from each solver's own equations, are here too:
   null space of G for the pinned chain); ω² = −eig(Nᵀ A N).
 
 Two independent linearisations of the lit free sail, both at the flat state:
+
 * reduced solver: central-difference Jacobian of ẏ = (q̇, q̈(q, q̇)) (reduced_dynamics), all
   columns in one vectorised call;
 * Exudyn: M and the elastic/tension stiffness K from ``ComputeLinearizedSystem`` of the unlit

@@ -1,5 +1,5 @@
 """`lightsail-mbs optics`: optical force tables — a grating by RCWA, the built-in mirror and facet, and
-what a table file holds.
+what a table file holds::
 
     lightsail-mbs optics grating --design bigrating --out bigrating.npz
     lightsail-mbs optics grating --period 1.8e-6 --bar-height 0.4e-6 --bar-index Si --fill-factor 0.4 \\
@@ -89,7 +89,9 @@ def register(sub) -> None:
 
     i = osub.add_parser("info", help="what an optical table file holds and a few of its values")
     i.add_argument("table", help="a table written by `lightsail-mbs optics …`")
-    i.add_argument("--angles", default="0,1,2,5,10,20,40", help="angles (degrees) to print c_n, c_t at [default: %(default)s]")
+    i.add_argument(
+        "--angles", default="0,1,2,5,10,20,40", help="angles (degrees) to print c_n, c_t at [default: %(default)s]"
+    )
     i.add_argument("--json", action="store_true", help="print the summary and the values as one JSON object")
     i.set_defaults(func=run_info)
 

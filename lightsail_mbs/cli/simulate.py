@@ -17,8 +17,8 @@ def register(sub) -> None:
         "--rtol",
         type=float,
         default=None,
-        help="the solver's relative tolerance [default: exudyn 1e-7 (sets DOPRI5's tolerance or the generalized-α step), "
-        "reduced 1e-8 (DOP853) or 1e-6 (Radau)]",
+        help="the solver's relative tolerance [default: exudyn 1e-7 (sets DOPRI5's tolerance or the generalized-α "
+        "step), reduced 1e-8 (DOP853) or 1e-6 (Radau)]",
     )
     p.add_argument(
         "--no-uncertainty",
