@@ -112,3 +112,5 @@ sphinx_gallery_conf = {
 html_theme = "furo"
 html_title = f"lightsail-mbs {release}"
 html_theme_options = {"navigation_with_keys": True}
+html_static_path = ["_static"]
+html_css_files = ["docstrings.css"]  # the docstrings' indented formulas kept as written

@@ -54,7 +54,7 @@ def case_field_lines() -> list[str]:
         allowed = f" Allowed: {info.allowed}." if info.allowed else ""
         lines += [
             f"{field.name} : {field.type}",
-            f"    {info.help[0].upper()}{info.help[1:]}{unit}.{allowed} Default: {default}.",
+            f"    {info.help}{unit}.{allowed} Default: {default}.",
         ]
         if info.family in FAMILIES:
             lines.append(f"    {FAMILIES[info.family]}")

@@ -37,7 +37,7 @@ records = run_sweep(cases, tempfile.mkdtemp(), workers=1, progress=False)
 
 # %%
 # The numbers: the ideal sine's answer with its ±, then the films'.
-print(f"ideal sine defect: {ideal.answer_text()}")
+print(f"ideal sine defect: {ideal.answer_text()}; warnings: {ideal.warnings or 'none'}")
 print(
     f"{row.runs} films (σ = {base.film_rms:g} m): {row.failures} failed, "
     f"P(fail) = {row.probability:.2f} (95 % CI {row.probability_low:.2f}–{row.probability_high:.2f})"

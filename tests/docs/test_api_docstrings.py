@@ -23,7 +23,7 @@ def test_every_case_field_is_documented_with_its_help_and_unit():
         info = FIELDS[field.name]
         k = lines.index(f"{field.name} : {field.type}")
         text = lines[k + 1]
-        assert info.help[1:] in text and "Default: " in text
+        assert text.startswith(f"    {info.help}") and "Default: " in text
         assert (f"[{info.unit}]" in text) == bool(info.unit)
     youngs = lines[lines.index("youngs_modulus : float") + 1]
     assert youngs.endswith("Default: 4.5e+13.")  # as the command line writes it
