@@ -12,7 +12,7 @@ The gallery (``docs/examples/plot_*.py``, sphinx-gallery) is executed by the bui
 
 Set ``LIGHTSAIL_DOCS_SKIP_API=1`` to build the guides without the API reference (no autodoc imports,
 no autosummary stubs): the API page then holds a one-line placeholder.  The CLI page imports
-``lightsail_mbs.cli`` either way.
+``lightsail_mbs.cli`` and the gallery runs the package either way (``-D plot_gallery=0`` skips running it).
 """
 
 from __future__ import annotations
@@ -94,7 +94,7 @@ if SKIP_API:
 
 
 # -- gallery ---------------------------------------------------------------------------------------
-# docs/examples/plot_*.py run at every build (reduced solver, coarse cases: seconds each); their pages,
+# docs/examples/plot_*.py run at every build (reduced solver, small cases: seconds each); their pages,
 # figures and printed output go to docs/gallery/ (not committed). An example that raises fails the build.
 # `-D plot_gallery=0` builds the pages without running them.
 sphinx_gallery_conf = {
