@@ -7,9 +7,12 @@ Build from the repository root (warnings are errors, as in CI):
 Pages are MyST Markdown.  Figures and tables of the committed results are read from where the
 scripts write them (``../scenarios/figures/``, ``../validation/``), never copied into ``docs/``.
 
+The gallery (``docs/examples/plot_*.py``, sphinx-gallery) is executed by the build; its pages are written to
+``docs/gallery/``.
+
 Set ``LIGHTSAIL_DOCS_SKIP_API=1`` to build the guides without the API reference (no autodoc imports,
 no autosummary stubs): the API page then holds a one-line placeholder.  The CLI page imports
-``lightsail_mbs.cli`` either way.
+``lightsail_mbs.cli`` and the gallery runs the package either way (``-D plot_gallery=0`` skips running it).
 """
 
 from __future__ import annotations
@@ -19,7 +22,7 @@ import sys
 from pathlib import Path
 
 DOCS = Path(__file__).resolve().parent
-sys.path.insert(0, str(DOCS / "_ext"))  # local extensions (cli_reference)
+sys.path.insert(0, str(DOCS / "_ext"))  # local extensions (cli_reference, api_docstrings)
 
 SKIP_API = os.environ.get("LIGHTSAIL_DOCS_SKIP_API", "") not in ("", "0")
 
@@ -42,7 +45,9 @@ extensions = [
     "sphinx.ext.autosummary",
     "sphinx.ext.napoleon",
     "sphinx.ext.mathjax",
+    "sphinx_gallery.gen_gallery",
     "cli_reference",
+    "api_docstrings",
 ]
 
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}  # .rst: autosummary's generated stubs
@@ -54,6 +59,7 @@ exclude_patterns = [
     ".DS_Store",
     "NOTES.md",
     "README.front.md",  # notes for maintainers, not pages
+    "examples",  # the gallery's sources; sphinx-gallery writes their pages to gallery/
 ]
 templates_path = ["_templates"]
 
@@ -68,21 +74,11 @@ autosummary_imported_members = False
 # members defined in each module only (a package's re-exports are documented where they are defined)
 autodoc_default_options = {"members": True, "show-inheritance": True, "ignore-module-all": True}
 autodoc_member_order = "bysource"
-autodoc_typehints = "description"
+# types in the signature; the descriptions are the docstrings' own (numpydoc sections, napoleon)
+autodoc_typehints = "signature"
 napoleon_google_docstring = False
 napoleon_numpy_docstring = True
 napoleon_use_rtype = False
-
-SECTION_HEADERS = ("Parameters", "Returns", "Raises", "Attributes", "Examples", "Notes")
-
-
-def _plain_docstrings(app, what, name, obj, options, lines):
-    """Show docstrings written as plain text (Unicode equations, aligned formulas, indented lists) as
-    preformatted text; docstrings with numpydoc sections are left to napoleon."""
-    text = "\n".join(lines)
-    if not text.strip() or any(f"{h}\n{'-' * len(h)}" in text for h in SECTION_HEADERS):
-        return
-    lines[:] = ["::", ""] + ["    " + line for line in lines] + [""]
 
 
 if SKIP_API:
@@ -95,14 +91,26 @@ if SKIP_API:
 
     def setup(app):
         app.connect("source-read", _placeholder_api)
-        app.connect("autodoc-process-docstring", _plain_docstrings, priority=400)
-else:
 
-    def setup(app):
-        app.connect("autodoc-process-docstring", _plain_docstrings, priority=400)
 
+# -- gallery ---------------------------------------------------------------------------------------
+# docs/examples/plot_*.py run at every build (reduced solver, small cases: seconds each); their pages,
+# figures and printed output go to docs/gallery/ (not committed). An example that raises fails the build.
+# `-D plot_gallery=0` builds the pages without running them.
+sphinx_gallery_conf = {
+    "examples_dirs": "examples",
+    "gallery_dirs": "gallery",
+    "filename_pattern": r"/plot_",
+    "within_subsection_order": "FileNameSortKey",
+    "download_all_examples": False,
+    "remove_config_comments": True,
+    "show_memory": False,
+    "matplotlib_animations": False,
+}
 
 # -- output ----------------------------------------------------------------------------------------
 html_theme = "furo"
 html_title = f"lightsail-mbs {release}"
 html_theme_options = {"navigation_with_keys": True}
+html_static_path = ["_static"]
+html_css_files = ["docstrings.css"]  # the docstrings' indented formulas kept as written

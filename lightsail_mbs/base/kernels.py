@@ -80,7 +80,7 @@ def _checked() -> None:
 
 
 def njit(*args, **kwargs):
-    """numba.njit(*args, **kwargs), after the cache of the package's kernels has been checked against
+    """``numba.njit(*args, **kwargs)``, after the cache of the package's kernels has been checked against
     their sources (drop_stale_kernels, at the first call in a process)."""
     _checked()
     import numba

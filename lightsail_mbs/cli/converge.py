@@ -18,7 +18,7 @@ def register(sub) -> None:
         help="run a case at increasing n: failure time (or max amplitude ratio) vs n, fitted order, n for 1 %% "
         "(or 'not converging')",
     )
-    p.add_argument("--vary", choices=["n"], default="n", help="what is refined: the number of slices n [n]")
+    p.add_argument("--vary", choices=["n"], default="n", help="what is refined: the number of slices n [default: n]")
     p.add_argument(
         "--case",
         choices=sorted(PAPER_CASES),
@@ -31,17 +31,17 @@ def register(sub) -> None:
         help="comma-separated numbers of slices (a sheet: tiles along L, ny = n W/L across), increasing, "
         "e.g. 15,30,60,120",
     )
-    sizes.add_argument("--n-start", type=int, default=15, help="first n of a geometric sequence [15]")
-    sizes.add_argument("--n-max", type=int, default=960, help="largest n of the sequence [960]")
-    sizes.add_argument("--factor", type=float, default=2.0, help="ratio of successive n [2]")
+    sizes.add_argument("--n-start", type=int, default=15, help="first n of a geometric sequence [default: 15]")
+    sizes.add_argument("--n-max", type=int, default=960, help="largest n of the sequence [default: 960]")
+    sizes.add_argument("--factor", type=float, default=2.0, help="ratio of successive n [default: 2]")
     p.add_argument("--no-noise", dest="noise", action="store_false", help="skip the runs at rtol/10")
     p.add_argument("--budget", type=float, help="stop refining once one run takes over budget/4 CPU seconds")
-    p.add_argument("--rtol", type=float, help="reduced solver's relative tolerance [its default per method]")
+    p.add_argument("--rtol", type=float, help="reduced solver's relative tolerance [default: the method's own]")
     p.add_argument(
         "--method",
         choices=["auto", "DOP853", "Radau"],
         default="auto",
-        help="reduced solver's integrator [auto: from the stiffness]",
+        help="reduced solver's integrator [default: auto, from the stiffness]",
     )
     p.add_argument("--markdown", help="also write the table to this Markdown file")
     p.add_argument("--json", action="store_true", help="print the study as one JSON object")

@@ -18,12 +18,14 @@ def register(sub) -> None:
         choices=sorted(crosscheck.CASES),
         help=f"subset of cases [default: all: {', '.join(crosscheck.CASES)}]",
     )
-    p.add_argument("--out", default="validation", help="directory for crosscheck.md and the plots [validation]")
+    p.add_argument(
+        "--out", default="validation", help="directory for crosscheck.md and the plots [default: validation]"
+    )
     p.add_argument(
         "--exudyn-step-scale",
         type=float,
         default=1.0,
-        help="multiply Exudyn's default step by this factor ≤ 1 (convergence check) [1]",
+        help="multiply Exudyn's default step by this factor ≤ 1 (convergence check) [default: 1]",
     )
     p.add_argument("--quiet", action="store_true", help="no progress on stderr/stdout")
     p.set_defaults(func=run)

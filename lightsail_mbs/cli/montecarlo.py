@@ -7,7 +7,13 @@ import dataclasses
 import json
 
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.cli.options import add_case_options, params_from_args, settings_from_args, writable_folder
+from lightsail_mbs.cli.options import (
+    SOLVER_HELP,
+    add_case_options,
+    params_from_args,
+    settings_from_args,
+    writable_folder,
+)
 from lightsail_mbs.solvers import SOLVERS
 
 SWEEPABLE = ("youngs_modulus", "tension", "thickness", "intensity", "defect_amplitude")  # studies.montecarlo's
@@ -22,22 +28,24 @@ def register(sub) -> None:
         "--vary",
         choices=SWEEPABLE,
         default="youngs_modulus",
-        help="the parameter swept [default youngs_modulus]",
+        help="the parameter swept [default: youngs_modulus]",
     )
     p.add_argument(
-        "--values", default=None, help="comma-separated values of the swept parameter (SI) [the case's own value]"
+        "--values",
+        default=None,
+        help="comma-separated values of the swept parameter (SI) [default: the case's own value]",
     )
-    p.add_argument("--seeds", type=int, default=50, help="defects or films per value (seeds 0…N−1) [50]")
+    p.add_argument("--seeds", type=int, default=50, help="defects or films per value (seeds 0…N−1) [default: 50]")
     p.add_argument(
         "--over",
         choices=("defect", "film"),
         default="defect",
         help="what the seeds draw: the multi-mode defect (defect_seed), or the case's film (film_seed; needs "
-        "--film-rms > 0, the defect kept as the case states it) [defect]",
+        "--film-rms > 0, the defect kept as the case states it) [default: defect]",
     )
-    p.add_argument("--solver", choices=sorted(SOLVERS), default="exudyn")
+    p.add_argument("--solver", choices=sorted(SOLVERS), default="exudyn", help=f"{SOLVER_HELP} [default: exudyn]")
     p.add_argument("--store", required=True, help="folder of the per-case store (resumable)")
-    p.add_argument("--workers", type=int, default=None, help="local processes [all cores]")
+    p.add_argument("--workers", type=int, default=None, help="local processes [default: all cores]")
     p.add_argument("--scheduler", default=None, help="Dask scheduler address, e.g. tcp://host:8786")
     p.add_argument("--json", action="store_true", help="print the table as JSON")
     p.add_argument("--quiet", action="store_true", help="no progress bar on stderr")

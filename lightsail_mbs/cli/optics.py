@@ -1,5 +1,5 @@
 """`lightsail-mbs optics`: optical force tables — a grating by RCWA, the built-in mirror and facet, and
-what a table file holds.
+what a table file holds::
 
     lightsail-mbs optics grating --design bigrating --out bigrating.npz
     lightsail-mbs optics grating --period 1.8e-6 --bar-height 0.4e-6 --bar-index Si --fill-factor 0.4 \\
@@ -23,7 +23,7 @@ from lightsail_mbs.base.validation import ParameterError, check
 
 def register(sub) -> None:
     p = sub.add_parser("optics", help="optical force tables: a grating by RCWA, the mirror, the facet; table info")
-    osub = p.add_subparsers(dest="optics_command", required=True)
+    osub = p.add_subparsers(dest="optics_command", required=True, title="subcommands", metavar="SUBCOMMAND")
 
     g = osub.add_parser(
         "grating",
@@ -36,15 +36,17 @@ def register(sub) -> None:
     from lightsail_mbs.model.rcwa import GRATINGS
 
     geo.add_argument("--design", choices=sorted(GRATINGS), help="a named grating (the other options override it)")
-    geo.add_argument("--wavelength", type=float, help="vacuum wavelength λ (m) [design's, else 1.2e-6]")
-    geo.add_argument("--period", type=float, help="grating period Λ (m) [design's]")
+    geo.add_argument("--wavelength", type=float, help="vacuum wavelength λ (m) [default: design's, else 1.2e-6]")
+    geo.add_argument("--period", type=float, help="grating period Λ (m) [default: design's]")
     geo.add_argument("--bar-height", type=float, help="thickness of the bar layer (m)")
-    geo.add_argument("--bar-index", help="refractive index of the bars [3.48]")
-    geo.add_argument("--gap-index", default="1.0", help="refractive index between the bars [1.0]")
+    geo.add_argument("--bar-index", help="refractive index of the bars [default: 3.48]")
+    geo.add_argument("--gap-index", default="1.0", help="refractive index between the bars [default: 1.0]")
     geo.add_argument("--fill-factor", type=float, help="one centred bar of this fraction of the period")
     geo.add_argument("--bars", help="bars as START:END fractions of the period, comma separated (0.05:0.34,0.47:0.54)")
-    geo.add_argument("--film-thickness", type=float, default=0.0, help="uniform film under the bars (m) [0: none]")
-    geo.add_argument("--film-index", default="1.45", help="refractive index of the film [1.45]")
+    geo.add_argument(
+        "--film-thickness", type=float, default=0.0, help="uniform film under the bars (m) [default: 0, none]"
+    )
+    geo.add_argument("--film-index", default="1.45", help="refractive index of the film [default: 1.45]")
     geo.add_argument(
         "--layer",
         action="append",
@@ -52,19 +54,23 @@ def register(sub) -> None:
         help="a layer from the laser side, THICKNESS,BACKGROUND[,START:END=INDEX…]; repeat for a stack",
     )
     tab = g.add_argument_group("table")
-    tab.add_argument("--polarization", choices=("TE", "TM", "mean"), default="TE", help="TE, TM or mean [TE]")
-    tab.add_argument("--harmonics", type=int, default=60, help="orders −N…N kept in the RCWA [60]")
-    tab.add_argument("--theta-max", type=float, default=85.0, help="table range ±θ_max (degrees) [85]")
-    tab.add_argument("--step", type=float, default=0.25, help="largest node spacing (degrees) [0.25]")
+    tab.add_argument("--polarization", choices=("TE", "TM", "mean"), default="TE", help="TE, TM or mean [default: TE]")
+    tab.add_argument("--harmonics", type=int, default=60, help="orders −N…N kept in the RCWA [default: 60]")
+    tab.add_argument("--theta-max", type=float, default=85.0, help="table range ±θ_max (degrees) [default: 85]")
+    tab.add_argument("--step", type=float, default=0.25, help="largest node spacing (degrees) [default: 0.25]")
     tab.add_argument(
         "--tolerance",
         type=float,
         default=1e-4,
-        help="refine where an interval's midpoint is off the spline by more than this (0: no refinement) [1e-4]",
+        help="refine where an interval's midpoint is off the spline by more than this (0: none) [default: 1e-4]",
     )
-    tab.add_argument("--grade", type=int, default=12, help="nodes at step/2^k, k ≤ GRADE, beside each anomaly [12]")
-    tab.add_argument("--backend", choices=("meent", "grcwa"), default="meent", help="RCWA package [meent]")
-    tab.add_argument("--cache-dir", help="cache folder [$LIGHTSAIL_MBS_CACHE/optics or ~/.cache/lightsail-mbs/optics]")
+    tab.add_argument(
+        "--grade", type=int, default=12, help="nodes at step/2^k, k ≤ GRADE, beside each anomaly [default: 12]"
+    )
+    tab.add_argument("--backend", choices=("meent", "grcwa"), default="meent", help="RCWA package [default: meent]")
+    tab.add_argument(
+        "--cache-dir", help="cache folder [default: $LIGHTSAIL_MBS_CACHE/optics or ~/.cache/lightsail-mbs/optics]"
+    )
     tab.add_argument("--no-cache", action="store_true", help="neither read nor write the cache")
     tab.add_argument("--progress", action="store_true", help="a progress bar on stderr")
     g.add_argument("--out", required=True, help="the table file to write (.npz)")
@@ -77,13 +83,15 @@ def register(sub) -> None:
 
     f = osub.add_parser("facet", help="the specular, absorbing facet's table (model/loads.py's law)")
     f.add_argument("--reflectivity", type=float, required=True, help="specular reflectivity R")
-    f.add_argument("--absorptivity", type=float, default=0.0, help="absorptivity α [0]")
+    f.add_argument("--absorptivity", type=float, default=0.0, help="absorptivity α [default: 0]")
     f.add_argument("--out", required=True, help="the table file to write (.npz)")
     f.set_defaults(func=run_builtin)
 
     i = osub.add_parser("info", help="what an optical table file holds and a few of its values")
     i.add_argument("table", help="a table written by `lightsail-mbs optics …`")
-    i.add_argument("--angles", default="0,1,2,5,10,20,40", help="angles (degrees) to print c_n, c_t at")
+    i.add_argument(
+        "--angles", default="0,1,2,5,10,20,40", help="angles (degrees) to print c_n, c_t at [default: %(default)s]"
+    )
     i.add_argument("--json", action="store_true", help="print the summary and the values as one JSON object")
     i.set_defaults(func=run_info)
 

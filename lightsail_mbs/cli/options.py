@@ -32,6 +32,8 @@ RUN_OPTIONS = {
     ),
     "--failure-ratio": ("failure_ratio", float, "failure when amplitude ≥ ratio × initial"),
 }
+# the --solver option's help, before its default
+SOLVER_HELP = "the solver: exudyn (Exudyn's multibody model) or reduced (the reduced-Lagrangian solver)"
 # other spellings accepted for some options
 ALIASES = {
     "--defect-amplitude": ["--amplitude"],
@@ -148,8 +150,10 @@ def scenario_parser(doc: str, quick_help: str) -> argparse.ArgumentParser:
     """Options shared by the scenario scripts beyond the paper: --out (default ./results), --solver
     (default reduced), --quick (a smoke test, described by quick_help)."""
     parser = argparse.ArgumentParser(description=doc.splitlines()[0])
-    parser.add_argument("--out", default="results", help="output folder of PNG and CSV files [results]")
-    parser.add_argument("--solver", choices=("reduced", "exudyn"), default="reduced")
+    parser.add_argument("--out", default="results", help="output folder of PNG and CSV files [default: results]")
+    parser.add_argument(
+        "--solver", choices=("reduced", "exudyn"), default="reduced", help=f"{SOLVER_HELP} [default: reduced]"
+    )
     parser.add_argument("--quick", action="store_true", help=quick_help)
     return parser
 

@@ -19,30 +19,30 @@ def register(sub) -> None:
     p.add_argument("run", help="a Result saved by `lightsail-mbs simulate --out RUN.npz`")
     p.add_argument("--out", required=True, help="output folder: frame_0000.png, ... (and RUN.mp4 / RUN.gif)")
     which = p.add_mutually_exclusive_group()
-    which.add_argument("--frames", type=int, help="number of frames, evenly spaced in time [default 100]")
+    which.add_argument("--frames", type=int, help="number of frames, evenly spaced in time [default: 100]")
     which.add_argument("--every-seconds", type=float, help="one frame per this much simulated time (s)")
     p.add_argument(
-        "--size", default=None, help="WIDTHxHEIGHT in pixels [default 800x400; 800x800 with --compare; sheet 1000x450]"
+        "--size", default=None, help="WIDTHxHEIGHT in pixels [default: 800x400; 800x800 with --compare; sheet 1000x450]"
     )
     p.add_argument("--exaggeration", type=float, help="deflection factor [default: automatic, printed on each frame]")
     p.add_argument(
         "--renderer",
         choices=RENDERERS,
         default="auto",
-        help="exudyn (raytracer) or matplotlib (Agg); auto: the faster, exudyn [default auto]",
+        help="exudyn (raytracer) or matplotlib (Agg); auto: the faster, exudyn [default: auto]",
     )
     p.add_argument(
         "--color-by",
         choices=sorted(COLOR_CHOICES),
         default="curvature",
-        help="colour the slices by hinge curvature Δθ/l or bending moment k_T Δθ [default curvature]",
+        help="colour the slices by hinge curvature Δθ/l or bending moment k_T Δθ [default: curvature]",
     )
     p.add_argument(
         "--color-scale",
         choices=("frame", "run"),
         default=None,
         help="colour range: each frame its own (where it concentrates) or one for the run (growth) "
-        "[default frame; run for a sheet]",
+        "[default: frame; run for a sheet]",
     )
     p.add_argument(
         "--no-arrows", dest="arrows", action="store_false", help="omit the radiation-load and boundary-tension arrows"
@@ -50,7 +50,7 @@ def register(sub) -> None:
     p.add_argument("--compare", metavar="RUN2", help="a second run drawn below the first at the same times")
     p.add_argument("--labels", nargs=2, metavar=("LABEL1", "LABEL2"), help="panel labels with --compare")
     p.add_argument("--movie", choices=("mp4", "gif", "both"), help="also encode the frames into OUT/RUN.mp4/.gif")
-    p.add_argument("--fps", type=float, default=20.0, help="movie frame rate [default 20]")
+    p.add_argument("--fps", type=float, default=20.0, help="movie frame rate [default: 20]")
     p.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
     p.set_defaults(func=run)
 

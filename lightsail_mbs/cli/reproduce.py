@@ -14,7 +14,7 @@ from __future__ import annotations
 import time
 
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.cli.options import writable_folder
+from lightsail_mbs.cli.options import SOLVER_HELP, writable_folder
 from lightsail_mbs.paper import PIPELINES, SCENARIOS, pipeline
 from lightsail_mbs.solvers import SOLVERS
 
@@ -39,15 +39,15 @@ def register(sub) -> None:
         metavar="NAME",
         help="study beyond the paper (repeatable): " + ", ".join(SCENARIOS),
     )
-    p.add_argument("--out", default="results", help="output folder of PNG and CSV files [results]")
-    p.add_argument("--store", default=None, help="folder of the resumable case store [OUT/store]")
+    p.add_argument("--out", default="results", help="output folder of PNG and CSV files [default: results]")
+    p.add_argument("--store", default=None, help="folder of the resumable case store [default: OUT/store]")
     p.add_argument(
         "--solver",
         choices=sorted(SOLVERS),
         default=None,
-        help="[exudyn for the figures and the animations, reduced for the other scenarios]",
+        help=f"{SOLVER_HELP} [default: exudyn for the figures and the animations, reduced for the other scenarios]",
     )
-    p.add_argument("--workers", type=int, default=None, help="local processes [all cores]")
+    p.add_argument("--workers", type=int, default=None, help="local processes [default: all cores]")
     p.add_argument("--scheduler", default=None, help="Dask scheduler address, e.g. tcp://host:8786")
     p.add_argument(
         "--quick",

@@ -5,20 +5,20 @@ from __future__ import annotations
 import json
 import sys
 
-from lightsail_mbs.cli.options import add_case_options, params_from_args, settings_from_args, writable_file
+from lightsail_mbs.cli.options import SOLVER_HELP, add_case_options, params_from_args, settings_from_args, writable_file
 from lightsail_mbs.solvers import SOLVERS
 
 
 def register(sub) -> None:
     p = sub.add_parser("simulate", help="run one case (exudyn or reduced solver; a chain or, --model sheet, a sheet)")
     add_case_options(p)
-    p.add_argument("--solver", choices=sorted(SOLVERS), default="exudyn")
+    p.add_argument("--solver", choices=sorted(SOLVERS), default="exudyn", help=f"{SOLVER_HELP} [default: exudyn]")
     p.add_argument(
         "--rtol",
         type=float,
         default=None,
-        help="the solver's relative tolerance [exudyn 1e-7 (sets DOPRI5's tolerance or the generalized-α step), "
-        "reduced 1e-8 (DOP853) or 1e-6 (Radau)]",
+        help="the solver's relative tolerance [default: exudyn 1e-7 (sets DOPRI5's tolerance or the generalized-α "
+        "step), reduced 1e-8 (DOP853) or 1e-6 (Radau)]",
     )
     p.add_argument(
         "--no-uncertainty",

@@ -21,7 +21,7 @@ import math
 import time
 
 from lightsail_mbs.base.validation import check, finite
-from lightsail_mbs.cli.options import add_case_options, params_from_args
+from lightsail_mbs.cli.options import SOLVER_HELP, add_case_options, params_from_args
 
 
 def register(sub) -> None:
@@ -34,7 +34,7 @@ def register(sub) -> None:
         "--tau-final",
         type=float,
         default=8.0,
-        help="run length of each bisection run in units of t_c = 1/(k sqrt(g0 a0)) [default 8]",
+        help="run length of each bisection run in units of t_c = 1/(k sqrt(g0 a0)) [default: 8]",
     )
     p.add_argument(
         "--run-time",
@@ -44,16 +44,18 @@ def register(sub) -> None:
         "with runs of that length finds (e.g. the paper's 6)",
     )
     p.add_argument(
-        "--factor", type=float, default=None, help="bisect until hi/lo ≤ factor [default 1.05; 1.25 for a sheet]"
+        "--factor", type=float, default=None, help="bisect until hi/lo ≤ factor [default: 1.05; 1.25 for a sheet]"
     )
     g = p.add_argument_group("sheet (--model sheet): full runs of --run-time (default 6 s) through a store")
     g.add_argument(
         "--quantity",
         choices=("modulus", "edge-tension"),
         default="modulus",
-        help="the stiffness bisected: E/E_cr,max or the edge tension T/T_cr,max per metre [default modulus]",
+        help="the stiffness bisected: E/E_cr,max or the edge tension T/T_cr,max per metre [default: modulus]",
     )
-    g.add_argument("--solver", choices=("reduced", "exudyn"), default="reduced", help="[default reduced]")
+    g.add_argument(
+        "--solver", choices=("reduced", "exudyn"), default="reduced", help=f"{SOLVER_HELP} [default: reduced]"
+    )
     g.add_argument("--store", default=None, help="the store of the runs (resumable) [default: a temporary folder]")
     p.add_argument(
         "--linear",

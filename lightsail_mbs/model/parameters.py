@@ -438,7 +438,7 @@ def read_case_file(path) -> tuple[dict, dict]:
 
 
 def case_of(source, **fields) -> SailParameters:
-    """SailParameters(**fields), a ParameterError prefixed with source (the file the fields come from)."""
+    """``SailParameters(**fields)``, a ParameterError prefixed with source (the file the fields come from)."""
     try:
         return SailParameters(**fields)
     except ParameterError as exc:

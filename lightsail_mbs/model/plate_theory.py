@@ -3,8 +3,10 @@
 Kirchhoff plate of rigidity D under a uniform pressure q (Timoshenko & Woinowsky-Krieger, *Theory of
 Plates and Shells*, 2nd ed., 1959):
 
-* simply supported rectangle a × b (Navier's solution, Sec. 30, Eq. 133):
+* simply supported rectangle a × b (Navier's solution, Sec. 30, Eq. 133)::
+
       w(x, y) = (16 q/(π⁶ D)) Σ_{m,n odd} sin(mπx/a) sin(nπy/b) / (m n ((m/a)² + (n/b)²)²);
+
   square plate, centre: 0.00406 q a⁴/D (Table 8; the series converges to 0.0040624);
 * clamped square plate (Sec. 44, Table 35): centre 0.00126 q a⁴/D; the converged value of the
   superposition series is 0.00126532 (Taylor & Govindjee, Int. J. Numer. Meth. Eng. 60, 2004).

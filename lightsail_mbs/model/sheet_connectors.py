@@ -3,7 +3,7 @@ edge and per supported boundary edge, their stiffnesses and damping, their rest 
 the edge tension's follower forces.
 
 Edge connections (one per shared edge, at the edge midpoint)
------------------------------------------------------------
+------------------------------------------------------------
 Neighbours are joined at the midpoint of their shared edge by a linear 6-DOF spring acting on the
 relative displacement δ of the two edge-midpoint markers and on the relative rotation φ (Tait–Bryan
 xyz angles of R_Aᵀ R_B), both resolved in the frame of the first tile A (Exudyn's

@@ -2,10 +2,12 @@
 
 The paper's torsion sail (h = 1 µm, I₀ = 0.1 GW/m², a₀ = 10 µm, ν = 3/2, n = 30) at its stable modulus
 (E = 4.5e13 Pa, Fig. 6) and soft modulus (4.5e9 Pa, Fig. 7), 6 s or to failure, under
+
 * centred Gaussian beams of waist w = 2, 1, 0.5 m next to the uniform beam: the beam's curvature pushes the
   middle harder than the edges, a load the flat-sail frame does not cancel (50 ms runs, 10 µs samples);
 * a perfect mirror (R = 1), a partial one (R = 0.9, α = 0.1) and a black absorber (R = 0, α = 1):
   g₀ = (2R + α)Ī/(cρh) falls, so the defect grows more slowly;
+
 and, on a flat sail (a₀ = 0), beams of w = 1 m centred off the middle by 1–20 % of L (0.2 s runs, 0.1 ms
 samples, past failure): the torque turns the sail as a rigid plate; the time to turn by 1° is reported
 next to the estimate t = √(2 · 1° · J_sail / τ), τ = Σ f_j (x_j − L/2) (loads.radiation_forces at rest).

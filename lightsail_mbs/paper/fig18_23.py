@@ -4,9 +4,11 @@ I₀ = 0.1 GW/m², a₀ = 0.01 mm, n = 30, 6 s runs).
 Stable regime, T = 3.34e-3 N ≫ T_cr,max = 3.34e-6 N (frequency of θ by spectral.angle_frequency):
   Fig. 18 frequency vs tension (h = 1 µm, ν = 3/2); Fig. 19 frequency vs thickness (ν = 3/2);
   Fig. 20 angle oscillations vs mode (h = 1 µm).
+
 Unstable regime, T ≪ T_cr,max:
   Fig. 21 failure time vs tension (h = 1 µm, ν = 3/2); Fig. 22 vs mode (T = 3.34e-8 N, h = 1 µm);
   Fig. 23 vs thickness (T = 3.34e-8 N, ν = 3/2).
+
 Each figure: left, the time series (θ of one slice, or amplitude / a₀); right, the measured number
 against the varied parameter, with its log-log slope. Writes fig18.png … fig23.png,
 fig18_23_runs.csv (one row per run and figure), fig18_23_series.csv (the plotted time series) and

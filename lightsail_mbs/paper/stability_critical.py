@@ -12,6 +12,7 @@ bisected 6 s map boundary; run-length dependence and divergence of neighbouring 
   thicknesses of Figs 9 and 12 for 6 s and 12 s (next to the maps' own boundaries when their
   fig9_boundaries.csv / fig12_boundaries.csv are given);
 * paired runs: growth of a 1e-9 angle perturbation at r = 2, 10, 30.
+
 The scaled runs integrate the reduced equations (scipy's DOP853) in this process; only the map
 bisection goes through the solver and the sweep store (OUT/store/stability_critical/<model>).
 

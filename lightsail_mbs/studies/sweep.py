@@ -3,17 +3,19 @@
 A sweep is a list of :class:`Case` (parameters, solver name, solver options), each with a stable
 key (hash of the three). ``run_sweep`` skips every case whose record is already in the store, runs
 the rest in parallel and writes each record the moment its case finishes
-(:class:`~lightsail_mbs.store.CaseStore`), so a killed sweep restarted with the same cases
+(:class:`~lightsail_mbs.studies.store.CaseStore`), so a killed sweep restarted with the same cases
 recomputes nothing it had finished. A case whose solver raises, returns ``Result.error`` or kills
 its worker process is recorded with ``status="error"`` and the sweep goes on.
 
-Where the cases run (:mod:`lightsail_mbs.runners`):
-  * ``workers=1``: in this process, one after the other;
-  * default: a local process pool with one worker per core (``concurrent.futures``);
-  * ``scheduler="tcp://host:8786"`` (or a ``distributed.Client``): the same cases on a Dask cluster.
+Where the cases run (:mod:`lightsail_mbs.studies.runners`):
+
+* ``workers=1``: in this process, one after the other;
+* default: a local process pool with one worker per core (``concurrent.futures``);
+* ``scheduler="tcp://host:8786"`` (or a ``distributed.Client``): the same cases on a Dask cluster.
+
 Records are written by this (the submitting) process, so cluster workers need no shared disk.
 :class:`Sweep` is the live form: submit cases at any time and collect them as they finish (the
-stability bisections of :mod:`lightsail_mbs.bisection` choose each case from the previous ones).
+stability bisections of :mod:`lightsail_mbs.studies.bisection` choose each case from the previous ones).
 """
 
 from __future__ import annotations
@@ -93,13 +95,21 @@ class Sweep:
     the store (Result first if ``save_result``, then its record, atomically) before ``wait`` returns
     it. A case submitted again while it runs is run once and returned once per submission.
 
-    workers: local processes (default: all cores; 1 runs in this process). Ignored with a scheduler.
-    scheduler: a Dask scheduler address ("tcp://host:8786") or a ``distributed.Client``.
-    progress: a progress bar on stderr.
-    case_function: a module-level (picklable) function of a Case returning a Result or a summary
-        dict; default :func:`solve_case`.
-    retry_errors: also rerun cases recorded with status "error" (e.g. after fixing a solver).
-    label: the progress bar's name.
+    Parameters
+    ----------
+    workers
+        local processes (default: all cores; 1 runs in this process). Ignored with a scheduler.
+    scheduler
+        a Dask scheduler address ("tcp://host:8786") or a ``distributed.Client``.
+    progress
+        a progress bar on stderr.
+    case_function
+        a module-level (picklable) function of a Case returning a Result or a summary dict; default
+        :func:`solve_case`.
+    retry_errors
+        also rerun cases recorded with status "error" (e.g. after fixing a solver).
+    label
+        the progress bar's name.
     """
 
     def __init__(

@@ -34,7 +34,8 @@ def frame_indices(
 
     frames=N: the states nearest to N evenly spaced times from the first to the last stored time;
     every_seconds=Δt: nearest to t₀, t₀ + Δt, ...; neither: DEFAULT_FRAMES (or every state if fewer).
-    The state nearest the failure time replaces its nearest pick, so the failure moment has a frame.
+    With a failure time, the first state at or after it (the first that shows the failure) replaces its nearest
+    pick: the failure moment has a frame, and a run that stopped at failure ends on a frame that shows it.
     """
     time = np.asarray(time, float)
     count = time.size
@@ -55,7 +56,8 @@ def frame_indices(
         targets = np.linspace(time[0], time[-1], int(n))
     picks = _nearest(time, targets)
     if failure_time is not None:
-        k = int(_nearest(time, np.array([failure_time]))[0])
+        after = np.nonzero(time >= failure_time)[0]
+        k = int(after[0]) if after.size else count - 1
         if k not in picks:
             picks[np.argmin(np.abs(time[picks] - time[k]))] = k
     picks = np.unique(picks)

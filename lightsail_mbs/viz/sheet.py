@@ -155,6 +155,8 @@ def draw_frame(result: Result, index: int, size=(1000, 450), exaggeration: float
         fig.text(0.98, 0.95, "FAILED", color="red", fontsize=14, fontweight="bold", ha="right", va="top")
         fig.patch.set_edgecolor("red")
         fig.patch.set_linewidth(4)
+    if result.error and index == result.time.size - 1:
+        fig.text(0.98, 0.02, f"solver stopped: {result.error}"[:80], color="red", fontsize=9, ha="right")
     return fig
 
 

@@ -28,11 +28,27 @@ def sail_extent(image: np.ndarray) -> int:
 def test_frame_indices_even_distinct_and_include_failure(run):
     picks = frame_indices(run.time, frames=7, failure_time=run.failure_time)
     assert picks.size == 7 and np.all(np.diff(picks) > 0) and picks[0] == 0 and picks[-1] == run.time.size - 1
-    k_fail = np.argmin(np.abs(run.time - run.failure_time))
+    k_fail = np.nonzero(run.time >= run.failure_time)[0][0]  # the first state that shows the failure
     assert k_fail in picks
     every = frame_indices(run.time, every_seconds=0.25)
     np.testing.assert_allclose(run.time[every], [0, 0.25, 0.5, 0.75, 1.0])
     assert frame_indices(run.time, frames=run.time.size).size == run.time.size
+
+
+def test_a_run_stopped_at_failure_ends_on_a_frame_that_shows_it(tmp_path):
+    """Stopped at the first sample past the failure time t_f = ln 2 (0.6931…), which is nearer the sample
+    before it (0.69) than that last one (0.70): the last frame is the last state, and it is drawn as failed."""
+    run = growing_sine(steps=71, t_final=0.70)
+    assert run.time[-2] < run.failure_time < run.time[-1]
+    assert run.failure_time - run.time[-2] < run.time[-1] - run.failure_time
+    for picks in (
+        frame_indices(run.time, frames=5, failure_time=run.failure_time),
+        frame_indices(run.time, every_seconds=0.3, failure_time=run.failure_time),
+    ):
+        assert picks[-1] == run.time.size - 1
+    last = read_image(render_frames(run, tmp_path, frames=5, size=(320, 160), renderer="matplotlib")[-1])
+    red = (last[..., 0] > 180) & (last[..., 1] < 60) & (last[..., 2] < 60)
+    assert red[:3, :].any()  # the failure border
 
 
 @pytest.mark.parametrize(

@@ -1,6 +1,8 @@
 """Frames and movies of a sheet run (viz.sheet): count, size, colours where the sheet is up and down, the
 failure mark, and what it refuses."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -21,6 +23,13 @@ def test_frames_count_size_and_failure_mark(tmp_path):
     assert np.abs(first[1, 300].astype(int) - red).sum() > 200
     movie = make_movie(paths, tmp_path / "sheet.gif", fps=5)
     assert movie.stat().st_size > 1000
+
+
+def test_a_run_the_solver_stopped_says_so_on_its_last_frame():
+    run = dataclasses.replace(synthetic_sheet(), error="step size too small")
+    last = draw_frame(run, run.time.size - 1, size=(600, 300))
+    assert any("solver stopped: step size too small" in t.get_text() for t in last.texts)
+    assert not any("solver stopped" in t.get_text() for t in draw_frame(run, 0, size=(600, 300)).texts)
 
 
 def test_map_colours_crests_red_and_troughs_blue():

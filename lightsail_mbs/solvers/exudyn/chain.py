@@ -13,6 +13,7 @@ Supports and a tip load (params.boundary, params.tip_load: the classic validatio
 A–B) are added as Exudyn constraints and loads by solvers.exudyn.supports; the sail itself is free.
 
 Why this formulation:
+
 - in minimal coordinates the TnT spring extension z is itself a coordinate, exact to relative
   machine precision; in a redundant form (one rigid body per slice plus joints) it is a difference
   of hinge coordinates of order 1 m, and its Newton residual sits on a round-off floor;

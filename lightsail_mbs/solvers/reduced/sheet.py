@@ -10,8 +10,10 @@ tolerance; the plate and membrane validations then check the discrete model agai
 What is independent of Exudyn:
 
 * coordinates: per tile the centre displacement u from its flat grid point, a unit quaternion
-  (scalar first) and the body-frame angular velocity ω_b; first-order Newton–Euler equations
+  (scalar first) and the body-frame angular velocity ω_b; first-order Newton–Euler equations::
+
       u̇ = v,  q̇ = ½ q ⊗ (0, ω_b),  m v̇ = F,  J ω̇_b = τ_b − ω_b × J ω_b
+
   (Exudyn: Tait–Bryan angles, a second-order system with a state-dependent mass matrix). The springs'
   relative displacement is formed from small quantities only,
   p_b − p_a = gap + (u_b − u_a) + (R_b − I) l_b − (R_a − I) l_a (gap: the markers' small known

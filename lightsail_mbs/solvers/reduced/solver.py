@@ -14,7 +14,7 @@ Both run as numba-compiled step loops on the compiled right-hand side; RK45, BDF
 scipy's steppers on the same right-hand side.
 
 The method is chosen from the case's stiffness (`choose_method`) unless given. An explicit method's
-step is bounded by stability, h ≲ c/ω_max, with ω_max the chain's fastest spring mode:
+step is bounded by stability, h ≲ c/ω_max, with ω_max the chain's fastest spring mode::
 
     bending:  ω_T = 2 √(k_T/J)   (zig-zag mode: neighbouring slices turn in opposition about fixed
               centres, 4 k_T restoring torque on inertia J = m l²/12; ∝ n² at fixed E, h, ρ, L),
