@@ -11,7 +11,7 @@ from lightsail_mbs.cli.options import add_case_options, params_from_args, writab
 
 # option -> (JourneySettings field, type, help); the defaults are the settings class's
 JOURNEY_OPTIONS = {
-    "--power": ("power", float, "the beam power the sail intercepts (W, lab frame), constant [required]"),
+    "--power": ("power", float, "the beam power the sail intercepts (W, lab frame), constant (required)"),
     "--target-speed": ("target_speed", float, "the speed to reach, as a fraction β of c [default: 0.2]"),
     "--wavelength": ("wavelength", float, "the laser's wavelength (m) [default: 1.064e-6]"),
     "--absorptance": (
@@ -37,7 +37,7 @@ JOURNEY_OPTIONS = {
         float,
         "mass carried beyond the case's sail and payload (kg) [default: 0]",
     ),
-    "--shape-time": ("shape_time", float, "with --shape-runs: each run's duration in finite-amplitude times t_c [20]"),
+    "--shape-time": ("shape_time", float, "with --shape-runs: each run's duration in finite-amplitude times t_c [default: 20]"),
 }
 
 
