@@ -37,7 +37,11 @@ JOURNEY_OPTIONS = {
         float,
         "mass carried beyond the case's sail and payload (kg) [default: 0]",
     ),
-    "--shape-time": ("shape_time", float, "with --shape-runs: each run's duration in finite-amplitude times t_c [default: 20]"),
+    "--shape-time": (
+        "shape_time",
+        float,
+        "with --shape-runs: each run's duration in finite-amplitude times t_c [default: 20]",
+    ),
 }
 
 
