@@ -8,7 +8,8 @@ at φ₁ = ±π/2 for a sail that stays nearly flat), one ``ObjectConnectorRigid
 ``LoadForceVector(bodyFixed=True)`` follower loads for the edge tension. The closed loops of the grid
 rule out ``ObjectKinematicTree``.
 
-The load (radiation and frame force, net, model.sheet.tile_forces; dead pressure): one
+The load (the physics terms' numpy forms, model.terms.tile_forces: radiation and frame force, net; dead
+pressure): one
 ``ObjectGenericODE2`` spanning all tile nodes, whose constant ``forceVector`` (6N entries) is rewritten
 by a ``PreNewtonResidualUserFunction`` before every residual evaluation from the current Newton
 iterate, vectorised over the tiles with numpy. Exudyn calls that function before every residual,
@@ -46,7 +47,7 @@ import numpy as np
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import failure, sheet
+from lightsail_mbs.model import failure, sheet, terms
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.exudyn.console import silenced, solve_steps
@@ -186,7 +187,7 @@ class SheetSystem:
         """The load's generalised force (6N) at coordinates q: tile forces at the centres, no torques."""
         t0 = _time.perf_counter()
         q = np.asarray(q)[: 6 * self.tiles.count].reshape(-1, 6)
-        self.force.reshape(-1, 6)[:, :3] = sheet.tile_forces(self.p, self.flat + q[:, :3], sheet.normal_xyz(q[:, 3:]))
+        self.force.reshape(-1, 6)[:, :3] = terms.tile_forces(self.p, self.flat + q[:, :3], sheet.normal_xyz(q[:, 3:]))
         self.load_calls += 1
         self.load_time += _time.perf_counter() - t0
         return self.force

@@ -17,7 +17,8 @@ What is independent of Exudyn:
   p_b − p_a = gap + (u_b − u_a) + (R_b − I) l_b − (R_a − I) l_a (gap: the markers' small known
   mismatch on the flat grid, model.sheet.Connectors), so its
   round-off is ~1e-21 m where Exudyn's, formed from ~1 m positions, is ~1e-16 m;
-* the load: the compiled facet law (loads.net_facet_force) on the normal's components
+* the load: the physics terms' compiled forms (model/terms; the radiation's facet law,
+  loads.net_facet_force) on the normal's components
   (2(q₁q₃ + q₀q₂), 2(q₂q₃ − q₀q₁), …)/|q|², never a difference of O(1) numbers;
 * integrator: Radau IIA, order 5, adaptive (sheet_radau: velocity-reduced sparse solve, quantised
   steps), with a sparse Jacobian from graph-coloured finite differences: tiles (i, j) with equal
@@ -46,10 +47,9 @@ import time as _time
 import numpy as np
 import scipy.sparse as sp
 
-from lightsail_mbs.base.constants import SPEED_OF_LIGHT
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import failure, sheet
+from lightsail_mbs.model import failure, sheet, terms
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.progress import Progress
@@ -82,19 +82,7 @@ class SheetModel:
         self.off = np.ascontiguousarray(c.offset)
         ft, fp, ff = sheet.edge_followers(p)
         self.followers = (ft.astype(np.int64), np.ascontiguousarray(fp), np.ascontiguousarray(ff))
-        self.load = np.array(
-            [
-                p.mean_intensity,
-                self.tiles.area / SPEED_OF_LIGHT,
-                p.intensity,
-                p.beam_center,
-                p.sheet_beam_center_y,
-                p.beam_waist,
-                p.reflectivity,
-                p.absorptivity,
-                p.pressure * self.tiles.area,
-            ]
-        )
+        self.load = terms.pack(p, "sheet")  # the physics terms (model/terms)
         self.inertia = np.asarray(self.tiles.inertia, float)
         self.n = STATE * N
         self.calls = 0
