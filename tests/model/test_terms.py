@@ -15,16 +15,17 @@ from lightsail_mbs.solvers.reduced.kinematics import ChainModel, centre_velociti
 rng = np.random.default_rng(11)
 
 CHAINS = {
-    "facet-gaussian": SailParameters(
-        n=9, intensity=1e9, beam_waist=0.4, beam_center=0.3, reflectivity=0.7, absorptivity=0.2
+    "facet-gaussian-pushed": SailParameters(
+        n=9, intensity=1e9, beam_waist=0.4, beam_center=0.3, reflectivity=0.7, absorptivity=0.2, body_force=0.3
     ),
     "mirror-table": SailParameters(n=8, intensity=1e9, optics="mirror", optics_layout="mirrored-halves"),
     "payload": SailParameters(n=12, youngs_modulus=4.5e9, payload_mass=1e-4, payload_stem=0.2, beam_waist=0.8),
 }
+UNIFORM_SHEET = SailParameters(model="sheet", n=5, ny=4, youngs_modulus=4.5e9)
 SHEETS = {
-    "uniform": SailParameters(model="sheet", n=5, ny=4, youngs_modulus=4.5e9),
-    "gaussian-pressure": SailParameters(
-        model="sheet", n=5, ny=4, beam_waist=0.6, beam_center_y=0.7, reflectivity=0.7, absorptivity=0.2, pressure=0.3
+    "uniform": UNIFORM_SHEET,
+    "gaussian-pressure-pushed": UNIFORM_SHEET.replace(
+        beam_waist=0.6, beam_center_y=0.7, reflectivity=0.7, absorptivity=0.2, pressure=0.3, body_force=-0.2
     ),
 }
 
