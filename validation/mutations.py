@@ -49,9 +49,10 @@ MUTATIONS = [
         "exudyn-load",
         "paper-case tests' wide windows (1.5–2.3 s)",
         "lightsail_mbs/solvers/exudyn/tree.py",
-        "fx[j], fy[j] = net_slice_force(angle, c[j], s[j], local, mean, area_c, refl, absorb)",
-        "fx[j], fy[j] = net_slice_force(angle, c[j], s[j], local, mean, area_c, 0.95 * refl, absorb)",
-        "Exudyn's net slice force is handed a reflectivity 5 % low (a wrong constant in its load)",
+        "c, s, fx, fy = bodies[COS], bodies[SIN], forces[0], forces[1]",
+        "c, s, fx, fy = bodies[COS], bodies[SIN], 0.95 * forces[0], 0.95 * forces[1]",
+        "Exudyn's net slice forces enter its generalized forces 5 % low (for the mirror in a uniform beam, "
+        "a reflectivity 5 % low: a wrong constant in its load)",
         (
             "tests/solvers/exudyn/test_chain.py::test_soft_torsion_fails_near_two_seconds",
             "tests/test_references.py::test_soft_torsion_failure_time_exudyn",

@@ -248,7 +248,7 @@ def _shape(p: SailParameters, a: float):
 
 def one_mode_force(p: SailParameters, amplitudes: np.ndarray, step: float = 1e-3) -> np.ndarray:
     """Generalized force F(a) = Σ_j F_j·∂r_j/∂a + Σ_j τ_j ∂θ_j/∂a on the one-parameter family of
-    sine shapes a sin(kx): load and frame force (loads.applied_forces), end tension and bending
+    sine shapes a sin(kx): load and frame force (model.terms.chain_forces), end tension and bending
     torques of the chain, with the family's rigid translation removed (central differences, step·a₀)."""
     equations = reduced_equations(p)
     da = step * p.defect_amplitude

@@ -135,6 +135,12 @@ FIELDS = {
     "tip_load_time_constant": FieldInfo(
         SUPPORTS, "s", "ramp of the tip load, P(t) = P₀(1 − e^(−t/τ)); 0: P₀ from t = 0", "≥ 0", family="chain"
     ),
+    "body_force": FieldInfo(
+        SUPPORTS,
+        "N/kg",
+        "uniform in-plane body force per unit mass along the sail's length x, on every slice or tile (a test load)",
+        "finite; 0 with a payload",
+    ),
     "ny": FieldInfo(SHEET, "", "tiles across the width W", "an integer 1 ≤ ny ≤ 500", family="sheet"),
     "defect_mode_y": FieldInfo(
         SHEET,

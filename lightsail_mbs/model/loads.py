@@ -14,9 +14,8 @@ The intercepted power is I A cos θ; absorbed photons push along the beam, specu
 along the unit normal n with twice their normal momentum, transmitted ones not at all. For R = 1,
 α = 0 this is exactly Eq. (11). The law is the same for a slice of the chain (2-D: b̂ = ŷ,
 n = (−sin θ, cos θ)) and for a tile of the sheet (3-D: b̂ = ẑ, n = R_tile ẑ); :func:`facet_forces`
-is that one law for facets of any dimension (the sheet's tiles use it; the chain solvers'
-:func:`applied_forces` sums the radiation and the frame force in floating point, and the tests hold
-the two to each other).
+is that one law for facets of any dimension (the sheet's tiles use it; the chain's
+:func:`net_slice_forces` writes it with the half angle, and the tests hold the two to each other).
 
 The beam profile is uniform (the paper) or Gaussian: I₀ exp(−2(x − x_c)²/w²) across the chain's
 length, and the round I₀ exp(−2((x − x_c)² + (y − y_c)²)/w²) on the sheet.
@@ -46,8 +45,9 @@ physical O(f₀) force that no cancellation threatens. For the mirror in a unifo
 f_b = −f₀ (1 − cos θ)(1 + cos θ + cos²θ), f₀ = 2 I₀ A/c.
 
 :func:`net_facet_force` is the same formula for one facet, compiled (numba); the tests hold it to
-:func:`facet_forces`. For the chain, :func:`applied_forces` and its compiled twin :func:`net_slice_force`
-write it with n_⊥ = −sin θ and 1 − cos θ = 2 sin²(θ/2); every chain solver applies them.
+:func:`facet_forces`. For the chain, :func:`net_slice_forces` and its compiled twin :func:`net_slice_force`
+write it with n_⊥ = −sin θ and 1 − cos θ = 2 sin²(θ/2). The solvers apply these laws through the physics
+terms (:mod:`lightsail_mbs.model.terms`: the radiation term, and the frame term for a payload's share).
 """
 
 from __future__ import annotations
@@ -129,7 +129,7 @@ def facet_forces(
 def radiation_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(f_x, f_y) of the radiation alone on each slice centre at abscissa x and angle θ, inertial
     directions (N): f = (I A / c) cos θ [2R cos θ n + α ŷ] with n = (−sin θ, cos θ); Eq. (11) for R = 1,
-    α = 0. The chain solvers use :func:`applied_forces` (this load plus the frame force, their
+    α = 0. The chain solvers use :func:`net_slice_forces` (this load plus the frame force, their
     cancellation done analytically)."""
     c = np.cos(theta)
     s = np.sin(theta)
@@ -143,7 +143,7 @@ def radiation_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tup
 
 def frame_force(p: SailParameters) -> float:
     """y-component of the d'Alembert force −m g₀ on each slice in the accelerating frame (N); without a
-    payload −m g₀ = −(2R + α) Ī A/c, the form :func:`applied_forces` cancels analytically."""
+    payload −m g₀ = −(2R + α) Ī A/c, the form :func:`net_slice_forces` cancels analytically."""
     return -p.slice_mass * p.nominal_acceleration
 
 
@@ -156,9 +156,10 @@ def frame_force_excess(p: SailParameters) -> float:
     return p.normal_momentum * p.mean_intensity * p.slice_length * p.width / SPEED_OF_LIGHT + frame_force(p)
 
 
-def applied_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The net force on each slice centre in the accelerating frame, radiation load plus frame force (N),
-    with their cancellation done analytically (module docstring); the load every solver applies."""
+def net_slice_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The net force on each slice centre in the accelerating frame, radiation load plus the frame force
+    −(2R + α) Ī A/c ŷ, with their cancellation done analytically (module docstring); the numpy form of the
+    radiation term (model/terms/radiation.py)."""
     theta = np.asarray(theta, float)
     c = np.cos(theta)
     s = np.sin(theta)
@@ -170,7 +171,7 @@ def applied_forces(p: SailParameters, x: np.ndarray, theta: np.ndarray) -> tuple
     two_r = 2.0 * p.reflectivity
     fx = -push * two_r * c * c * s
     fy = -push * (two_r * one_minus_cos * (1.0 + c + c * c) + p.absorptivity * one_minus_cos)
-    fy = fy + (two_r + p.absorptivity) * area_c * (local - p.mean_intensity) + frame_force_excess(p)
+    fy = fy + (two_r + p.absorptivity) * area_c * (local - p.mean_intensity)
     return fx, fy
 
 
@@ -192,7 +193,7 @@ def net_facet_force(n1, n2, nb, local_intensity, mean_intensity, area_c, reflect
 
 @njit(cache=True)
 def net_slice_force(theta, cos_theta, sin_theta, local_intensity, mean_intensity, area_c, reflectivity, absorptivity):
-    """(f_x, f_y) of :func:`applied_forces` for one slice (compiled); area_c = l W / c."""
+    """(f_x, f_y) of :func:`net_slice_forces` for one slice (compiled); area_c = l W / c."""
     half = math.sin(0.5 * theta)
     one_minus_cos = 2.0 * half * half
     push = local_intensity * area_c

@@ -88,6 +88,7 @@ class SailParameters(DerivedQuantities):
     boundary: str = "free"  # end supports, one of BOUNDARIES
     tip_load: float = 0.0  # P₀, N: transverse (+y) dead load at the centre of slice n (Eq. 43)
     tip_load_time_constant: float = 0.0  # τ, s: P(t) = P₀(1 − e^(−t/τ)) (Eq. 43); 0: P₀ from t = 0
+    body_force: float = 0.0  # b, N/kg: uniform in-plane body force per unit mass along x (model/terms/body_force.py)
     # ---- the sheet (model="sheet": n × ny tiles; model.sheet) -------------------------------------
     ny: int = 1  # tiles across the width W (n tiles along L)
     defect_mode_y: float | None = None  # ν_y: w = a₀ sin(2πνx/L) sin(2πν_y y/W); None: uniform across W
@@ -179,6 +180,8 @@ class SailParameters(DerivedQuantities):
             "0 unless model='tnt' (boundary tension exists only in the TnT model; a sheet's is edge_tension, N/m)",
         )
         finite("tip_load", self.tip_load)
+        v = finite("body_force", self.body_force)
+        check("body_force", v, v == 0 or self.payload_mass == 0, "0 with a payload (it acts on the sail's bodies)")
         v = finite("tip_load_time_constant", self.tip_load_time_constant)
         check("tip_load_time_constant", v, v >= 0, "≥ 0 (0: the full load from t = 0)")
         ok_type = isinstance(self.billow_radius, (int, float)) and not isinstance(self.billow_radius, bool)

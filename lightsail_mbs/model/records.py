@@ -34,6 +34,7 @@ LATER_DEFAULTS = {
     "billow_radius": math.inf,
     "optics": None,
     "optics_layout": "uniform",
+    "body_force": 0.0,
     "payload_mass": 0.0,
     "payload_inertia": 0.0,
     "payload_stem": 0.0,

@@ -22,8 +22,8 @@ k_T = Σ D b/a = E (W h³/12)/l (paper Sec. III.B), and the stiff translational 
 chain's hinges. So 1-D defects use the chain's own exact-chord construction
 (:mod:`lightsail_mbs.model.shapes`).
 
-Loads (:func:`lightsail_mbs.model.loads.facet_forces`)
--------------------------------------------------------
+Loads (the physics terms, :mod:`lightsail_mbs.model.terms`)
+-------------------------------------------------------------
 Each tile carries at its centre the net force of the one facet law of every solver: radiation
 (I ab/c) cos θ [2R cos θ n + α ẑ] with n = R_tile ẑ, cos θ = n_z, minus the frame force
 (2R + α) Ī ab/c ẑ (the frame accelerates with the flat sail at g₀ = (2R + α)Ī/(cρh)), their
@@ -34,9 +34,7 @@ p·ab ẑ.
 
 from __future__ import annotations
 
-import numpy as np
-
-from lightsail_mbs.model import loads, planforms, shapes
+from lightsail_mbs.model import planforms, shapes
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.model.sheet_connectors import (
     SHEAR_CORRECTION,
@@ -99,30 +97,9 @@ __all__ = [
     "rotation_xyz",
     "static_loads",
     "tile_count",
-    "tile_forces",
     "tilt_quaternion",
     "tilt_rotation",
 ]
-
-
-# ---- loads ---------------------------------------------------------------------------------------
-def tile_forces(p: SailParameters, centres: np.ndarray, normals: np.ndarray) -> np.ndarray:
-    """(..., N, 3) applied force on each tile centre in the accelerating frame: the net radiation and
-    frame force (loads.facet_forces, cancellation done analytically) plus the dead pressure p·A ẑ (N).
-
-    normals: the tiles' unit normals R ẑ, their x and y components computed without cancellation."""
-    t = Tiles.of(p)
-    normals = np.asarray(normals, float)
-    centres = np.asarray(centres, float)
-    local = loads.sheet_intensity(p, centres[..., 0], centres[..., 1])
-    area = t.area if t.mesh.cell is not None else t.areas  # a grid's tiles are alike: any number of them
-    f_across, f_along = loads.facet_forces(
-        normals[..., :2], normals[..., 2], local, p.mean_intensity, area, p.reflectivity, p.absorptivity
-    )
-    out = np.empty(normals.shape)
-    out[..., :2] = f_across
-    out[..., 2] = f_along + p.pressure * area
-    return out
 
 
 # ---- the chain this sheet reduces to, and what the grid resolves ----------------------------------

@@ -5,11 +5,11 @@ import pytest
 
 from lightsail_mbs import ParameterError, RunSettings, SailParameters, paper_case, solve
 from lightsail_mbs.model.loads import (
-    applied_forces,
     frame_force,
     gaussian_intensity,
     intensity,
     net_slice_force,
+    net_slice_forces,
     radiation_forces,
 )
 
@@ -19,7 +19,7 @@ rng = np.random.default_rng(7)
 
 def test_flat_sail_is_balanced_by_frame_force():
     p = SailParameters(n=20)
-    fx, fy = applied_forces(p, np.linspace(0, 1, 20), np.zeros(20))
+    fx, fy = net_slice_forces(p, np.linspace(0, 1, 20), np.zeros(20))
     assert not fx.any()
     np.testing.assert_allclose(fy, 0.0, atol=1e-18 * p.flat_force)
 
@@ -39,7 +39,7 @@ def test_net_force_is_radiation_plus_frame_force(name):
     p = OPTICS[name]
     th = rng.uniform(-0.6, 0.6, p.n)
     x = np.sort(rng.uniform(0, 1, p.n))
-    fx, fy = applied_forces(p, x, th)
+    fx, fy = net_slice_forces(p, x, th)
     rx, ry = radiation_forces(p, x, th)
     np.testing.assert_allclose(fx, rx, rtol=1e-13, atol=1e-16 * p.flat_force)
     np.testing.assert_allclose(fy, ry + frame_force(p), rtol=0, atol=1e-14 * p.flat_force)
@@ -51,7 +51,7 @@ def test_net_force_keeps_its_digits_at_small_slopes(theta):
     """Mirror in a uniform beam: f_y = −f₀(1 − cos³θ) = −f₀(3θ²/2 − 7θ⁴/8 + …) to a few ulps, where the
     naive sum f₀cos³θ − m g₀ keeps about 16 + 2 log₁₀θ digits (none at θ = 1e-8)."""
     p = SailParameters(n=10)
-    fx, fy = applied_forces(p, np.array([0.5]), np.array([theta]))
+    fx, fy = net_slice_forces(p, np.array([0.5]), np.array([theta]))
     series = -p.flat_force * (1.5 * theta**2 - 0.875 * theta**4)
     assert fy[0] == pytest.approx(series, rel=4e-16 + theta**6)
     assert fx[0] == pytest.approx(-p.flat_force * np.cos(theta) ** 2 * np.sin(theta), rel=1e-15)
@@ -63,18 +63,18 @@ def test_net_force_of_a_facet_at_small_slopes():
     """R/α facet: f_y = −(IA/c)[2R(1 − cos³θ) + α(1 − cos θ)] ≈ −(IA/c)(3R + α/2)θ² to relative θ²."""
     p = OPTICS["facet"]
     theta = 1e-7
-    fy = applied_forces(p, np.array([0.5]), np.array([theta]))[1][0]
+    fy = net_slice_forces(p, np.array([0.5]), np.array([theta]))[1][0]
     push = p.intensity * p.slice_length * p.width / C
     assert fy == pytest.approx(-push * (3 * p.reflectivity + 0.5 * p.absorptivity) * theta**2, rel=1e-12)
 
 
 @pytest.mark.parametrize("name", OPTICS)
 def test_compiled_net_force_equals_the_load_model(name):
-    """loads.net_slice_force (compiled, called by both solvers) is applied_forces slice by slice."""
+    """loads.net_slice_force (compiled, called by both solvers) is net_slice_forces slice by slice."""
     p = OPTICS[name]
     th = np.concatenate([rng.uniform(-0.6, 0.6, p.n - 2), [1e-9, -3e-7]])
     x = rng.uniform(0, 1, p.n)
-    fx, fy = applied_forces(p, x, th)
+    fx, fy = net_slice_forces(p, x, th)
     area_c = p.slice_length * p.width / C
     for i in range(p.n):
         local = gaussian_intensity(x[i], p.intensity, p.beam_center, p.beam_waist)
@@ -123,7 +123,7 @@ def test_absorbing_facet_by_hand():
 
 def test_frame_force_follows_optics():
     p = SailParameters(reflectivity=0.5, absorptivity=0.5)
-    fx, fy = applied_forces(p, np.linspace(0, 1, 30), np.zeros(30))
+    fx, fy = net_slice_forces(p, np.linspace(0, 1, 30), np.zeros(30))
     np.testing.assert_allclose(fy, 0.0, atol=1e-15 * p.flat_force)
 
 
@@ -145,10 +145,10 @@ def test_off_centre_beam_torque_sign():
     """Beam centred right of the middle pushes the right half harder: counter-clockwise torque."""
     p = SailParameters(n=40, beam_waist=0.5, beam_center=0.7)
     x = (np.arange(40) + 0.5) / 40
-    fx, fy = applied_forces(p, x, np.zeros(40))
+    fx, fy = net_slice_forces(p, x, np.zeros(40))
     torque = np.sum((x - x.mean()) * fy)
     assert torque > 0
-    assert np.sum(applied_forces(p.replace(beam_center=0.3), x, np.zeros(40))[1] * (x - x.mean())) < 0
+    assert np.sum(net_slice_forces(p.replace(beam_center=0.3), x, np.zeros(40))[1] * (x - x.mean())) < 0
 
 
 @pytest.mark.parametrize(

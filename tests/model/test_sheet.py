@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from lightsail_mbs import ParameterError, SailParameters
-from lightsail_mbs.model import loads, shapes, sheet
+from lightsail_mbs.model import loads, shapes, sheet, terms
 
 C = 299_792_458.0
 rng = np.random.default_rng(11)
@@ -152,7 +152,7 @@ def test_tile_forces_are_the_facet_law_minus_the_frame_force():
     centres = sheet.flat_centres(p) + rng.normal(0, 0.02, (35, 3))
     normal = rng.normal(0, 0.3, (35, 3)) + [0, 0, 1]
     normal /= np.linalg.norm(normal, axis=1, keepdims=True)
-    f = sheet.tile_forces(p, centres, normal)
+    f = terms.tile_forces(p, centres, normal)
     local = p.intensity * np.exp(-2 * ((centres[:, 0] - 0.3) ** 2 + (centres[:, 1] - 0.7) ** 2) / 0.36)
     cos = normal[:, 2]
     expected = (local * t.area / C * cos)[:, None] * (2 * 0.7 * cos[:, None] * normal + [0, 0, 0.2])
@@ -169,7 +169,7 @@ def test_tile_force_keeps_its_digits_at_small_tilts(tilt):
     f0 = 2 * p.intensity / C * t.area
     axis = np.array([0.6, 0.8])
     normal = np.array([[math.sin(tilt) * axis[1], -math.sin(tilt) * axis[0], math.cos(tilt)]])
-    f = sheet.tile_forces(p, np.array([[0.5, 0.5, 0.0]]), normal)[0]
+    f = terms.tile_forces(p, np.array([[0.5, 0.5, 0.0]]), normal)[0]
     series = -f0 * (1.5 * tilt**2 - 0.875 * tilt**4)
     assert f[2] == pytest.approx(series, rel=8e-16 + tilt**4)
     np.testing.assert_allclose(f[:2], f0 * math.cos(tilt) ** 2 * normal[0, :2], rtol=1e-15)
@@ -181,7 +181,7 @@ def test_one_facet_law_for_chain_and_sheet():
     chain = SailParameters(n=10, intensity=1e9, reflectivity=0.6, absorptivity=0.3, beam_waist=0.5)
     theta = rng.uniform(-0.5, 0.5, 10)
     x = rng.uniform(0, 1, 10)
-    fx, fy = loads.applied_forces(chain, x, theta)
+    fx, fy = loads.net_slice_forces(chain, x, theta)
     across, along = loads.facet_forces(
         np.column_stack([-np.sin(theta), 0 * theta]),
         np.cos(theta),

@@ -8,7 +8,7 @@ params.bending, each hinge also slides along the preceding slice (spring-damper 
 to T/k_s) and the follower tension T acts at both ends along the end slices (Eq. 32); with
 params.axial_springs=False the slides are rigid (plain revolute joints + end tension).
 The frame accelerates at g₀: every slice carries −m g₀ ŷ, inside the net slice force of the shared
-load model (loads.applied_forces), and x, y are slice centres in that frame.
+load model (the physics terms, model/terms), and x, y are slice centres in that frame.
 Supports and a tip load (params.boundary, params.tip_load: the classic validations of Appendices
 A–B) are added as Exudyn constraints and loads by solvers.exudyn.supports; the sail itself is free.
 
@@ -192,7 +192,7 @@ def build(p: SailParameters, initial: shapes.ChainState | None = None):
     )
     tree = mbs.AddObject(
         ObjectKinematicTree(
-            nodeNumber=node, forceUserFunction=lambda mbs, t, i, q, q_t: load(q), **tree_arguments(p, layout, exu)
+            nodeNumber=node, forceUserFunction=lambda mbs, t, i, q, q_t: load(q, q_t), **tree_arguments(p, layout, exu)
         )
     )
     add_supports(p, mbs, node, tree, layout, q0)  # supports and tip load (validations; none for a sail)

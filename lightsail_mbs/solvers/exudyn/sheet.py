@@ -8,7 +8,8 @@ at φ₁ = ±π/2 for a sail that stays nearly flat), one ``ObjectConnectorRigid
 ``LoadForceVector(bodyFixed=True)`` follower loads for the edge tension. The closed loops of the grid
 rule out ``ObjectKinematicTree``.
 
-The load (radiation and frame force, net, model.sheet.tile_forces; dead pressure): one
+The load (the physics terms' numpy forms, model.terms.tile_forces: radiation and frame force, net; dead
+pressure): one
 ``ObjectGenericODE2`` spanning all tile nodes, whose constant ``forceVector`` (6N entries) is rewritten
 by a ``PreNewtonResidualUserFunction`` before every residual evaluation from the current Newton
 iterate, vectorised over the tiles with numpy. Exudyn calls that function before every residual,
@@ -46,8 +47,9 @@ import numpy as np
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import failure, sheet
+from lightsail_mbs.model import failure, sheet, terms
 from lightsail_mbs.model.parameters import SailParameters
+from lightsail_mbs.model.terms.bodies import VELOCITIES
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.exudyn.console import silenced, solve_steps
 from lightsail_mbs.solvers.progress import Progress
@@ -191,24 +193,32 @@ class SheetSystem:
             marker = mbs.AddMarker(MarkerBodyRigid(bodyNumber=self.bodies[tile], localPosition=list(point)))
             mbs.AddLoad(LoadForceVector(markerNumber=marker, loadVector=list(force), bodyFixed=True))
         self.force = np.zeros(6 * N)
+        self.reads_velocities = bool(terms.reads(terms.pack(p, "sheet")) & VELOCITIES)
         self.load_calls, self.load_time = 0, 0.0
         self.generic = mbs.AddObject(ObjectGenericODE2(nodeNumbers=self.nodes, forceVector=self.force.tolist()))
         mbs.Assemble()
         self.update_load()
         mbs.SetPreNewtonResidualUserFunction(lambda _mbs, _t, _iteration, _discontinuous: self.update_load())
 
-    def force_vector(self, q: np.ndarray) -> np.ndarray:
-        """The load's generalised force (6N) at coordinates q: tile forces at the centres, no torques."""
+    def force_vector(self, q: np.ndarray, q_t: np.ndarray | None = None) -> np.ndarray:
+        """The load's generalised force (6N) at coordinates q (velocities q_t, read where a physics term
+        reads them): the terms' tile forces at the centres, no torques."""
         t0 = _time.perf_counter()
         q = np.asarray(q)[: 6 * self.tiles.count].reshape(-1, 6)
-        self.force.reshape(-1, 6)[:, :3] = sheet.tile_forces(self.p, self.flat + q[:, :3], sheet.normal_xyz(q[:, 3:]))
+        rates = (None, None)
+        if q_t is not None:
+            q_t = np.asarray(q_t)[: 6 * self.tiles.count].reshape(-1, 6)
+            rates = (q_t[:, :3], angular_velocity_xyz(q[:, 3:], q_t[:, 3:]))
+        forces = terms.tile_forces(self.p, self.flat + q[:, :3], sheet.normal_xyz(q[:, 3:]), *rates)
+        self.force.reshape(-1, 6)[:, :3] = forces
         self.load_calls += 1
         self.load_time += _time.perf_counter() - t0
         return self.force
 
     def update_load(self) -> None:
-        q = self.mbs.systemData.GetODE2Coordinates()
-        self.mbs.SetObjectParameter(self.generic, "forceVector", self.force_vector(q))
+        data = self.mbs.systemData
+        q_t = data.GetODE2Coordinates_t() if self.reads_velocities else None
+        self.mbs.SetObjectParameter(self.generic, "forceVector", self.force_vector(data.GetODE2Coordinates(), q_t))
 
     def centres(self, q: np.ndarray) -> np.ndarray:
         """Tile centres (…, N, 3) of coordinate rows (…, 6N)."""

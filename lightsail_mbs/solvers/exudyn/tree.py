@@ -17,8 +17,8 @@ torsional spring-dampers k_T φ_k + c_T φ̇_k (Eq. 23) as the joint P/D control
 revolute joints (offset 0: the flat sail is stress-free) and axial spring-dampers k_s z_k +
 c_s ż_k (Eq. 29) as the P/D control of the sliding joints. The state-dependent loads — the net
 slice force in the accelerating frame (the radiation load of Eq. 11, or its generalisation, plus
-the frame force −m g₀ ŷ, with their cancellation done analytically: loads.applied_forces) at every
-slice centre and the follower tension T(−cos θ₁, −sin θ₁) at hinge 0 and T(cos θₙ, sin θₙ) at the
+the frame force −m g₀ ŷ, with their cancellation done analytically: the physics terms of
+model/terms) at every slice centre and the follower tension T(−cos θ₁, −sin θ₁) at hinge 0 and T(cos θₙ, sin θₙ) at the
 right end (Eq. 32) — enter through ONE compiled force user function returning the generalized
 forces Q = Σ_i (∂r_i/∂q)ᵀ F_i (virtual work). It is evaluated by Exudyn at the current Newton
 iterate or explicit stage, so the load is exact at the converged state (never lagged).
@@ -44,12 +44,24 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lightsail_mbs.base.constants import SPEED_OF_LIGHT
 from lightsail_mbs.base.kernels import njit
-from lightsail_mbs.model import loads, optics, payload, shapes
-from lightsail_mbs.model.loads import gaussian_intensity, net_slice_force
-from lightsail_mbs.model.optics import packed_net_force
+from lightsail_mbs.model import payload, shapes, terms
 from lightsail_mbs.model.parameters import SailParameters
+from lightsail_mbs.model.terms import chain_forces_into
+from lightsail_mbs.model.terms.bodies import (
+    CHAIN_ROWS,
+    COS,
+    OMEGA,
+    POSITIONS,
+    READS,
+    SIN,
+    THETA,
+    VELOCITIES,
+    VX,
+    VY,
+    X,
+    Y,
+)
 
 
 @dataclass(frozen=True)
@@ -128,16 +140,16 @@ def _exclusive_cumsum(a: np.ndarray) -> np.ndarray:
 
 
 def generalized_force(p: SailParameters, layout: ChainLayout):
-    """The force user function q ↦ Q: the net slice forces (radiation + frame force, loads.applied_forces)
-    and the follower tension, as generalized forces by virtual work (module docstring).
+    """The force user function (q, q̇) ↦ Q: the physics terms' forces on the slice centres (model/terms: the
+    radiation with the frame force netted analytically, a payload's share of the frame force) and the
+    follower tension, as generalized forces by virtual work (module docstring); q̇ (default 0) is read
+    only when a packed term reads velocities.
 
-    The frame force −m g₀ is part of the net slice force, with its cancellation against the load done
-    analytically (loads.net_slice_force, or optics.packed_net_force for an optical table); the tree's
-    gravity is off. With a payload the craft accelerates at g₀ < c_n(0) Ī/(c ρ h): every slice also carries
-    c_n(0) Ī l W/c − m g₀ (the net form's frame force minus the craft's), and the payload its frame force
-    −m_p g₀ ŷ at its position on the composite link. One compiled pass over the slices
-    (about 5 µs a call at n = 30): it runs at every Newton iterate or explicit stage. Returns the same
-    array, overwritten, at every call.
+    The tree's gravity is off. With a payload the craft accelerates at g₀ < c_n(0) Ī/(c ρ h): the terms add
+    c_n(0) Ī l W/c − m g₀ on every slice (the net form's frame force minus the craft's), and the payload
+    carries its frame force −m_p g₀ ŷ at its position on the composite link. One compiled pass over the
+    slices (about 5 µs a call at n = 30): it runs at every Newton iterate or explicit stage. Returns the
+    same array, overwritten, at every call.
     """
     attached = payload.attachment(p)
     angle_index = np.ascontiguousarray(layout.angle_index, dtype=np.int64)
@@ -146,70 +158,86 @@ def generalized_force(p: SailParameters, layout: ChainLayout):
         [
             layout.slice_length,
             p.tension,
-            p.intensity,
-            p.mean_intensity,
-            p.slice_length * p.width / SPEED_OF_LIGHT,
-            p.reflectivity,
-            p.absorptivity,
-            p.beam_center,
-            p.beam_waist,
-            p.normal_momentum,
-            loads.frame_force_excess(p),  # c_n(0) Ī l W/c − m g₀ on each slice (0 without a payload)
             -1.0 if attached is None else attached.slice_index,
             0.0 if attached is None else attached.along,
             0.0 if attached is None else attached.across,
             -p.payload_mass * p.nominal_acceleration,
         ]
     )
-    table = p.optical_table().packed() if p.optics is not None else np.zeros(0)
-    flags = optics.slice_flags(p) if p.optics is not None else np.zeros(p.n)
+    packed = terms.pack(p, "chain")
+    rates = terms.reads(packed) & VELOCITIES
     Q = np.zeros(layout.size)
+    rest = np.zeros(layout.size)
 
-    def force(q) -> np.ndarray:
-        _generalized_force_into(np.asarray(q, dtype=np.float64), angle_index, stretch_index, constants, table, flags, Q)
+    def force(q, q_t=None) -> np.ndarray:
+        q_t = np.asarray(q_t, dtype=np.float64) if rates and q_t is not None else rest
+        _generalized_force_into(np.asarray(q, dtype=np.float64), q_t, angle_index, stretch_index, constants, packed, Q)
         return Q
 
     return force
 
 
 @njit(cache=True)
-def _generalized_force_into(q, angle_index, stretch_index, k, table, flags, Q):
-    """Q of the net slice forces, the end tensions and a payload's frame force at coordinates q, written
-    into Q. Constants k: l, T, I₀, Ī, lW/c, R, α, x_c, w, c_n(0), the per-slice frame-force excess, the
-    payload's slice j (−1: none), its offsets along e_j and p_j from the slice centre, and −m_p g₀; table:
-    a packed optical table (empty: the R/α facet), flags: the slices carrying it turned over.
-
-        P_j = Σ_{k>j} f_k + T eₙ,  G_j = e_j^⊥ · [(l + z_j) P_j + (l/2) f_j],
-        Q_X, Q_Y = Σ_k f_k + T (eₙ − e₁),  Q_φk = Σ_{j≥k} G_j,  Q_zj = e_j · P_j.
-    """
-    l, tension, peak, mean, area_c, refl, absorb, center, waist = k[0], k[1], k[2], k[3], k[4], k[5], k[6], k[7], k[8]
-    momentum, excess, payload_slice, along, across, payload_fy = k[9], k[10], int(k[11]), k[12], k[13], k[14]
+def _slices_into(q, q_t, angle_index, stretch_index, l, reads, bodies):
+    """The slices as the physics terms read them (model/terms/bodies.py) at coordinates q, q̇: θ_j, cos, sin and
+    the centres' abscissae; heights, centre velocities and angular velocities when a term reads them."""
     n = angle_index.size
     extensible = stretch_index.size > 0
-    theta = np.empty(n)
-    c = np.empty(n)
-    s = np.empty(n)
-    fx = np.empty(n)
-    fy = np.empty(n)
     half = 0.5 * l
     angle = 0.0
     x = q[0]
     for j in range(n):
         angle += q[angle_index[j]]
-        theta[j] = angle
-        c[j] = math.cos(angle)
-        s[j] = math.sin(angle)
+        bodies[THETA, j] = angle
+        bodies[COS, j] = math.cos(angle)
+        bodies[SIN, j] = math.sin(angle)
         if j > 0:  # centre of slice j from the centre of slice j − 1
             seg = l + q[stretch_index[j - 1]] if extensible else l
-            x += (seg - half) * c[j - 1] + half * c[j]
+            x += (seg - half) * bodies[COS, j - 1] + half * bodies[COS, j]
         else:
-            x += half * c[0]
-        local = gaussian_intensity(x, peak, center, waist)
-        if table.size:
-            fx[j], fy[j] = packed_net_force(table, local, mean, area_c, c[j], s[j], angle, flags[j] != 0.0, momentum)
-        else:
-            fx[j], fy[j] = net_slice_force(angle, c[j], s[j], local, mean, area_c, refl, absorb)
-        fy[j] += excess
+            x += half * bodies[COS, 0]
+        bodies[X, j] = x
+    if reads & POSITIONS:
+        y = q[1] + half * bodies[SIN, 0]
+        bodies[Y, 0] = y
+        for j in range(1, n):
+            seg = l + q[stretch_index[j - 1]] if extensible else l
+            y += (seg - half) * bodies[SIN, j - 1] + half * bodies[SIN, j]
+            bodies[Y, j] = y
+    if reads & VELOCITIES:
+        c, s, omega = bodies[COS], bodies[SIN], bodies[OMEGA]
+        rate = 0.0
+        for j in range(n):
+            rate += q_t[angle_index[j]]
+            omega[j] = rate
+        bodies[VX, 0] = q_t[0] - half * omega[0] * s[0]
+        bodies[VY, 0] = q_t[1] + half * omega[0] * c[0]
+        for j in range(1, n):
+            seg = l + q[stretch_index[j - 1]] if extensible else l
+            stretch = q_t[stretch_index[j - 1]] if extensible else 0.0
+            turn = (seg - half) * omega[j - 1]
+            bodies[VX, j] = bodies[VX, j - 1] + stretch * c[j - 1] - turn * s[j - 1] - half * omega[j] * s[j]
+            bodies[VY, j] = bodies[VY, j - 1] + stretch * s[j - 1] + turn * c[j - 1] + half * omega[j] * c[j]
+
+
+@njit(cache=True)
+def _generalized_force_into(q, q_t, angle_index, stretch_index, k, packed, Q):
+    """Q of the physics terms' slice forces, the end tensions and a payload's frame force at coordinates q
+    (velocities q̇), written into Q. Constants k: l, T, the payload's slice j (−1: none), its offsets along
+    e_j and p_j from the slice centre, and −m_p g₀; packed: the chain's physics terms (terms.pack).
+
+        P_j = Σ_{k>j} f_k + T eₙ,  G_j = e_j^⊥ · [(l + z_j) P_j + (l/2) f_j],
+        Q_X, Q_Y = Σ_k f_k + T (eₙ − e₁),  Q_φk = Σ_{j≥k} G_j,  Q_zj = e_j · P_j.
+    """
+    l, tension, payload_slice, along, across, payload_fy = k[0], k[1], int(k[2]), k[3], k[4], k[5]
+    n = angle_index.size
+    extensible = stretch_index.size > 0
+    half = 0.5 * l
+    bodies = np.zeros((CHAIN_ROWS, n))
+    forces = np.empty((2, n))
+    _slices_into(q, q_t, angle_index, stretch_index, l, int(packed[READS]), bodies)
+    chain_forces_into(packed, bodies, forces)
+    c, s, fx, fy = bodies[COS], bodies[SIN], forces[0], forces[1]
     px = tension * c[n - 1]  # P_j, carried across joint j, built from the free end
     py = tension * s[n - 1]
     torque = 0.0

@@ -30,11 +30,12 @@ The result is exactly M⁻¹(Q − c) (tested against the dense form of kinemati
 How one right-hand side is evaluated (`rhs_into`: three sweeps over the slices, no allocation; the
 caller owns a `workspace(n)`):
 
-1. Slices: cos θ_i, sin θ_i, the arms a_i and the abscissae x_i of the centres; the net applied force
-   F_i on every slice from ONE function, `slice_forces_into` (angles and abscissae → forces: the
-   radiation load of model/loads.py, Eq. 11 generalised to Gaussian beams and partial reflectors, plus
-   the frame force −m g₀ ŷ, with their near-cancellation done analytically: loads.applied_forces, whose
-   compiled twin loads.net_slice_force is called here); then the follower end tensions −T e₁, T eₙ (Eq. 32), the torsion
+1. Slices: θ_i, cos θ_i, sin θ_i, the arms a_i, and the centres and their velocities where a term reads
+   them (`slice_states_into`); the net applied force F_i on every slice from the physics terms
+   (model/terms: `chain_forces_into` over the packed terms — the radiation load of model/loads.py, Eq. 11
+   generalised to Gaussian beams, partial reflectors and optical tables, with the frame force −m g₀ ŷ
+   netted analytically, and a payload's share of the frame force); then the follower end tensions −T e₁,
+   T eₙ (Eq. 32), the torsion
    spring/damper torques on θ_{i+1} − θ_i (Eq. 23), the prescribed axial joint forces s_i e_i
    (extensible chain) and from them the unconstrained accelerations A⁰_i = (F_i, τ_i)/(m, J).
 2. Joints, forward: the right-hand side −g_i(Λ⁰) from A⁰ and w_i, assembled and eliminated in the
@@ -53,32 +54,27 @@ import math
 import numpy as np
 
 from lightsail_mbs.base.kernels import njit
-from lightsail_mbs.model.loads import net_slice_force
-from lightsail_mbs.model.optics import packed_net_force
+from lightsail_mbs.model.terms import chain_forces_into
+from lightsail_mbs.model.terms.bodies import CHAIN_ROWS, POSITIONS, READS, VELOCITIES
 from lightsail_mbs.solvers.reduced.chain_constants import (
     ABSCISSA,
-    ABSORB,
     AL,
-    AREA_C,
     ARM,
     AX,
     AY,
     C_S,
     C_T,
-    CENTER,
     COS,
     EXTENSIBLE,
     FRAME,
-    FRAME_EXCESS,
     HALF,
+    HEIGHT,
     INERTIA,
-    INTENSITY,
     K_S,
     K_T,
     MASS,
-    MEAN_INTENSITY,
-    MOMENTUM,
     N_CONSTANTS,
+    OMEGA,
     PAY_CE,
     PAY_CP,
     PAY_INERTIA,
@@ -88,12 +84,12 @@ from lightsail_mbs.solvers.reduced.chain_constants import (
     PAY_SLICE,
     R_X,
     R_Y,
-    REFL,
     REST_TURN,
     SIN,
     TENSION,
-    UNIFORM,
-    WAIST,
+    THETA,
+    VX,
+    VY,
     WORK_ROWS,
     N,
     constants,
@@ -109,57 +105,51 @@ def workspace(n):
 
 
 @njit(cache=True)
-def slice_forces_into(theta, cth, sth, x, k, fx, fy):
-    """Net applied force on every slice centre (N), in inertial directions: the load model of
-    model/loads.py (loads.applied_forces), compiled.
-
-    theta, cth, sth: slice angles θ_i and their cosines and sines; x: abscissae of the centres (read
-    only by the Gaussian beam). Radiation f_i = (I(x_i) l W / c) cos θ_i [2R cos θ_i n_i + α ŷ]
-    (Eq. 11 for R = 1, α = 0; I = I₀ or I₀ exp(−2(x − x_c)²/w²)) plus the frame force
-    −(2R + α) Ī l W/c ŷ = −m g₀ ŷ, summed analytically by loads.net_slice_force: the two nearly cancel
-    (their sum is O(θ²) of each), and summing them in floating point would leave a round-off of
-    ε·m g₀ that the short waves of the chain amplify. With an optical table after the constants
-    (case.optics), its law in the same net form (optics.packed_net_force, frame force −c_n(0) Ī l W/c ŷ).
-    With a payload the craft accelerates at g₀ < c_n(0) Ī/(c ρ h); the difference of the frame forces,
-    c_n(0) Ī l W/c − m g₀ per slice (k[FRAME_EXCESS], a physical O(f₀) push the stem carries), is added.
-    """
-    inten0, area_c, refl, absorb, mean = k[INTENSITY], k[AREA_C], k[REFL], k[ABSORB], k[MEAN_INTENSITY]
-    uniform = k[UNIFORM] != 0.0
-    excess, momentum = k[FRAME_EXCESS], k[MOMENTUM]
-    n = theta.size
-    table = k[N_CONSTANTS + n :]  # an optical table (model/optics.py), after the n slices' mirrored flags
-    for i in range(n):
-        inten = inten0
-        if not uniform:
-            dx = (x[i] - k[CENTER]) / k[WAIST]
-            inten *= math.exp(-2.0 * dx * dx)
-        if table.size:
-            mirrored = k[N_CONSTANTS + i] != 0.0
-            fx[i], fy[i] = packed_net_force(table, inten, mean, area_c, cth[i], sth[i], theta[i], mirrored, momentum)
-        else:
-            fx[i], fy[i] = net_slice_force(theta[i], cth[i], sth[i], inten, mean, area_c, refl, absorb)
-        fy[i] += excess
-
-
-@njit(cache=True)
-def _free_accelerations(q, qd, k, work, extensible):
-    """Sweep 1: cos/sin, arms, abscissae, and A⁰ = the accelerations under the applied forces, end
-    tensions, springs and dampers (plus the prescribed axial joint forces of the extensible chain)."""
+def slice_states_into(q, qd, k, work, extensible):
+    """The slices as the physics terms read them (model/terms/bodies.py, the first CHAIN_ROWS rows of work):
+    θ_i, cos θ_i, sin θ_i, and the arms a_i; the centres r_i and their velocities ṙ_i, ω_i only when a packed
+    term reads them (r₁ = (q₀, q₁), r_{i+1} = r_i + a_i e_i + b e_{i+1} and its derivative)."""
     n = int(k[N])
-    m, J, b = k[MASS], k[INERTIA], k[HALF]
-    cth, sth, arm, x = work[COS], work[SIN], work[ARM], work[ABSCISSA]
-    ax, ay, al = work[AX], work[AY], work[AL]
-    inv_m, inv_j = 1.0 / m, 1.0 / J
+    b = k[HALF]
+    cth, sth, arm, x, y = work[COS], work[SIN], work[ARM], work[ABSCISSA], work[HEIGHT]
     for i in range(n):
+        work[THETA, i] = q[2 + i]
         cth[i] = math.cos(q[2 + i])
         sth[i] = math.sin(q[2 + i])
     for i in range(n - 1):
         arm[i] = b + q[n + 2 + i] if extensible else b
-    if k[UNIFORM] == 0.0:  # abscissae: only the Gaussian beam's intensity depends on them
+    reads = int(k[N_CONSTANTS + READS])
+    if reads & POSITIONS:
         x[0] = q[0]
+        y[0] = q[1]
         for i in range(1, n):
             x[i] = x[i - 1] + arm[i - 1] * cth[i - 1] + b * cth[i]
-    slice_forces_into(q[2 : n + 2], cth, sth, x, k, ax, ay)
+            y[i] = y[i - 1] + arm[i - 1] * sth[i - 1] + b * sth[i]
+    if reads & VELOCITIES:
+        vx, vy, omega = work[VX], work[VY], work[OMEGA]
+        vx[0] = qd[0]
+        vy[0] = qd[1]
+        for i in range(n):
+            omega[i] = qd[2 + i]
+        for i in range(1, n):
+            rate = qd[n + 1 + i] if extensible else 0.0  # ż_{i−1}
+            turn = arm[i - 1] * omega[i - 1]
+            vx[i] = vx[i - 1] + rate * cth[i - 1] - turn * sth[i - 1] - b * omega[i] * sth[i]
+            vy[i] = vy[i - 1] + rate * sth[i - 1] + turn * cth[i - 1] + b * omega[i] * cth[i]
+
+
+@njit(cache=True)
+def _free_accelerations(q, qd, k, work, extensible):
+    """Sweep 1: the slices' states, the applied forces of the physics terms, and A⁰ = the accelerations under
+    them, the end tensions, springs and dampers (plus the prescribed axial joint forces of the extensible
+    chain)."""
+    n = int(k[N])
+    m, J, b = k[MASS], k[INERTIA], k[HALF]
+    cth, sth = work[COS], work[SIN]
+    ax, ay, al = work[AX], work[AY], work[AL]
+    inv_m, inv_j = 1.0 / m, 1.0 / J
+    slice_states_into(q, qd, k, work, extensible)
+    chain_forces_into(k[N_CONSTANTS:], work[:CHAIN_ROWS], work[AX : AY + 1])  # the physics terms (model/terms)
     tension = k[TENSION]
     if tension != 0.0:
         ax[0] -= tension * cth[0]

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lightsail_mbs.model import loads
+from lightsail_mbs.model import terms
 from lightsail_mbs.model.parameters import SailParameters
 
 
@@ -168,10 +168,10 @@ def axial_forces(model: ChainModel, z: np.ndarray, zd: np.ndarray) -> np.ndarray
 
 
 def body_forces(model: ChainModel, x: np.ndarray, theta: np.ndarray):
-    """Forces on the slice centres: the shared load model (loads.applied_forces: radiation, Eq. 11,
+    """Forces on the slice centres: the physics terms' numpy forms (terms.chain_forces: radiation, Eq. 11,
     and the frame force −m g₀) plus the follower end tensions −T e₁ on slice 1 and T eₙ on slice n
     (Eq. 32; applied at the slice ends along the slice, they have no moment about the centres)."""
-    fx, fy = loads.applied_forces(model.params, x, theta)
+    fx, fy = terms.chain_forces(model.params, x, theta)
     if model.tension:
         fx = fx.copy()
         fy = fy.copy()

@@ -19,7 +19,8 @@ What is independent of Exudyn:
   p_b − p_a = gap + (u_b − u_a) + (R_b − I) l_b − (R_a − I) l_a (gap: the markers' small known
   mismatch on the flat grid, model.sheet.Connectors), so its
   round-off is ~1e-21 m where Exudyn's, formed from ~1 m positions, is ~1e-16 m;
-* the load: the compiled facet law (loads.net_facet_force) on the normal's components
+* the load: the physics terms' compiled forms (model/terms; the radiation's facet law,
+  loads.net_facet_force) on the normal's components
   (2(q₁q₃ + q₀q₂), 2(q₂q₃ − q₀q₁), …)/|q|², never a difference of O(1) numbers;
 * integrator: Radau IIA, order 5, adaptive (sheet_radau: velocity-reduced sparse solve, quantised
   steps), with a sparse Jacobian from graph-coloured finite differences: tiles of one colour of a
@@ -49,10 +50,9 @@ import time as _time
 import numpy as np
 import scipy.sparse as sp
 
-from lightsail_mbs.base.constants import SPEED_OF_LIGHT
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import failure, sheet
+from lightsail_mbs.model import failure, sheet, terms
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.progress import Progress
@@ -86,25 +86,12 @@ class SheetModel:
         self.framed = ~np.all(c.frame == np.eye(3), axis=(1, 2))
         ft, fp, ff = sheet.edge_followers(p)
         self.followers = (ft.astype(np.int64), np.ascontiguousarray(fp), np.ascontiguousarray(ff))
-        self.load = np.array(
-            [
-                p.mean_intensity,
-                SPEED_OF_LIGHT,
-                p.intensity,
-                p.beam_center,
-                p.sheet_beam_center_y,
-                p.beam_waist,
-                p.reflectivity,
-                p.absorptivity,
-                p.pressure,
-            ]
-        )
+        self.load = terms.pack(p, "sheet")  # the physics terms (model/terms)
         self.masses = np.ascontiguousarray(self.tiles.masses)
         self.inertia = np.ascontiguousarray(self.tiles.inertias)
         self.inverse = np.linalg.inv(self.inertia)
         off_diagonal = self.inertia - np.einsum("kii->ki", self.inertia)[:, :, None] * np.eye(3)
         self.diagonal = ~np.any(off_diagonal != 0, axis=(1, 2))
-        self.areas = np.ascontiguousarray(self.tiles.areas)
         self.n = STATE * N
         self.calls = 0
         self._pattern()
@@ -125,7 +112,6 @@ class SheetModel:
             self.inertia,
             self.inverse,
             self.diagonal,
-            self.areas,
             self.ta,
             self.tb,
             self.la,

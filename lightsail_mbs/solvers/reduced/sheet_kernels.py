@@ -13,7 +13,8 @@ import math
 import numpy as np
 
 from lightsail_mbs.base.kernels import njit
-from lightsail_mbs.model.loads import net_facet_force, round_gaussian_intensity
+from lightsail_mbs.model.terms import tile_forces_into
+from lightsail_mbs.model.terms.bodies import N1, N2, NB, TILE_ROWS, TVX, TWX, TX, TY, TZ
 
 STATE = 13  # u(3) q(4) v(3) ω_b(3) per tile
 
@@ -41,7 +42,6 @@ def rhs_kernel(
     inertia,
     inverse,
     diagonal,
-    area,
     ta,
     tb,
     la,
@@ -55,12 +55,12 @@ def rhs_kernel(
     fol_tile,
     fol_point,
     fol_force,
-    load,
+    packed,
     out,
 ):
     """dy/dt of the sheet (solvers.reduced.sheet). Per tile: mass, inertia (3, 3) and its inverse, diagonal
-    (its inertia is diagonal), area; per connector: frame (3, 3), a support's axes where framed.
-    load = (Ī, c, I₀, x_c, y_c, w, R, α, p)."""
+    (its inertia is diagonal); per connector: frame (3, 3), a support's axes where framed; packed: the
+    sheet's physics terms (model/terms: terms.pack)."""
     N = flat.shape[0]
     R = np.empty((N, 3, 3))
     RmI = np.empty((N, 3, 3))
@@ -170,27 +170,25 @@ def rhs_kernel(
         T[k, 0] += ra[1] * fg[2] - ra[2] * fg[1]
         T[k, 1] += ra[2] * fg[0] - ra[0] * fg[2]
         T[k, 2] += ra[0] * fg[1] - ra[1] * fg[0]
-    mean_intensity, light_speed, peak, cx, cy, waist, refl, absorb, pressure = (
-        load[0],
-        load[1],
-        load[2],
-        load[3],
-        load[4],
-        load[5],
-        load[6],
-        load[7],
-        load[8],
-    )
+    bodies = np.zeros((TILE_ROWS, N))  # the tiles as the physics terms read them (model/terms/bodies.py)
     for k in range(N):
         b = STATE * k
-        local = round_gaussian_intensity(flat[k, 0] + y[b], flat[k, 1] + y[b + 1], peak, cx, cy, waist)
-        # the normal R ẑ: its x, y components are the small entries of R − I
-        f0, f1, f2 = net_facet_force(
-            RmI[k, 0, 2], RmI[k, 1, 2], R[k, 2, 2], local, mean_intensity, area[k] / light_speed, refl, absorb
-        )
-        F[k, 0] += f0
-        F[k, 1] += f1
-        F[k, 2] += f2 + pressure * area[k]
+        bodies[TX, k] = flat[k, 0] + y[b]
+        bodies[TY, k] = flat[k, 1] + y[b + 1]
+        bodies[TZ, k] = flat[k, 2] + y[b + 2]
+        bodies[N1, k] = RmI[k, 0, 2]  # the normal R ẑ: its x, y components are the small entries of R − I
+        bodies[N2, k] = RmI[k, 1, 2]
+        bodies[NB, k] = R[k, 2, 2]
+        for i in range(3):
+            bodies[TVX + i, k] = y[b + 7 + i]
+            bodies[TWX + i, k] = W[k, i]
+    loads = np.empty((3, N))
+    tile_forces_into(packed, bodies, loads)
+    for k in range(N):
+        b = STATE * k
+        F[k, 0] += loads[0, k]
+        F[k, 1] += loads[1, k]
+        F[k, 2] += loads[2, k]
         q0, q1, q2, q3 = y[b + 3], y[b + 4], y[b + 5], y[b + 6]
         w0, w1, w2 = y[b + 10], y[b + 11], y[b + 12]
         out[b] = y[b + 7]

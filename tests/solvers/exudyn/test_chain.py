@@ -7,7 +7,7 @@ import pytest
 exu = pytest.importorskip("exudyn")
 
 from lightsail_mbs import ParameterError, RunSettings, SailParameters, analysis, paper_case, paper_settings, solve  # noqa: E402
-from lightsail_mbs.model import loads, shapes  # noqa: E402
+from lightsail_mbs.model import shapes, terms  # noqa: E402
 from lightsail_mbs.solvers.exudyn import chain as exudyn_chain  # noqa: E402
 from lightsail_mbs.solvers.exudyn.tree import ChainLayout  # noqa: E402
 from tests.references import assert_held  # noqa: E402
@@ -62,7 +62,7 @@ def exudyn_state(p, q):
 
 
 def virtual_work_forces(p, layout, q, eps=1e-7):
-    """Q_j = Σ F·∂r/∂q_j of applied_forces at the centres and the end tensions (central differences),
+    """Q_j = Σ F·∂r/∂q_j of terms.chain_forces at the centres and the end tensions (central differences),
     minus the springs' −k q."""
 
     def points(q):
@@ -73,7 +73,7 @@ def virtual_work_forces(p, layout, q, eps=1e-7):
         return x, y, left, right
 
     x, y, th, _ = layout.positions(q)
-    fx, fy = loads.applied_forces(p, x, th)
+    fx, fy = terms.chain_forces(p, x, th)
     e1 = np.array([np.cos(th[0]), np.sin(th[0])])
     en = np.array([np.cos(th[-1]), np.sin(th[-1])])
     Q = np.zeros(layout.size)
@@ -101,8 +101,8 @@ def test_kinematics_match_exudyn_links(name):
 
 
 @pytest.mark.parametrize("name", CASES)
-def test_exudyn_load_equals_applied_forces(name):
-    """Exudyn's generalized forces at a random state are the virtual work of loads.applied_forces
+def test_exudyn_load_equals_the_terms_forces(name):
+    """Exudyn's generalized forces at a random state are the virtual work of terms.chain_forces
     (radiation + frame force), the follower tensions and the springs."""
     p = CASES[name]
     q = random_coordinates(ChainLayout.of(p))

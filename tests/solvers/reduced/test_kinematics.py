@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from lightsail_mbs import SailParameters
-from lightsail_mbs.model import loads
+from lightsail_mbs.model import terms
 from lightsail_mbs.solvers.reduced.kinematics import (
     ChainModel,
     centres,
@@ -124,7 +124,7 @@ def fd_generalized_forces(model, q, qd, eps=1e-7):
     p, n = model.params, model.n
     x, _ = centres(model, q)
     th = q[2 : n + 2]
-    fx, fy = loads.applied_forces(p, x, th)
+    fx, fy = terms.chain_forces(p, x, th)
     gen = np.einsum("jai,ja->i", fd_jacobian(model, q, centre_points(model)), np.stack([fx, fy], axis=1))
     tension = model.tension * np.array([[-np.cos(th[0]), -np.sin(th[0])], [np.cos(th[-1]), np.sin(th[-1])]])
     gen += np.einsum("jai,ja->i", fd_jacobian(model, q, end_points(model)), tension)

@@ -1,0 +1,57 @@
+"""A uniform in-plane body force per unit mass b along the sail's length (x̂): m b x̂ on every body.
+
+A test load of the physics-term seam with a closed form: it acts on every body in proportion to its mass
+and does not depend on the shape, so on a free sail in a uniform beam it only translates the sail,
+x(t) = x_b=0(t) + b t²/2 for every body, and leaves its shape, its angles and the failure time as they are
+(tests/model/test_body_force.py, both solvers of both families). The frame stays the one accelerating
+along the beam at g₀; the body force is in-plane, so it changes no load of the beam's direction.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from lightsail_mbs.base.kernels import njit
+from lightsail_mbs.model.sheet_grid import Tiles
+
+ID = 4
+FAMILIES = ("chain", "sheet")
+
+
+def active(p) -> bool:
+    return p.body_force != 0
+
+
+def reads(p) -> int:
+    return 0
+
+
+def constants(p, family: str) -> np.ndarray:
+    """m b: the force on each slice (m = ρ h W l, one value) or on each tile k (m_k = ρ h A_k, N values), N."""
+    if family == "chain":
+        return np.array([p.slice_mass * p.body_force])
+    return Tiles.of(p).masses * p.body_force
+
+
+def chain(p, bodies: np.ndarray, forces: np.ndarray) -> None:
+    """Adds m b x̂ on every slice (numpy form)."""
+    forces[0] += constants(p, "chain")[0]
+
+
+def tiles(p, bodies: np.ndarray, forces: np.ndarray) -> None:
+    """Adds m_k b x̂ on every tile (numpy form)."""
+    forces[0] += constants(p, "sheet")
+
+
+@njit(cache=True)
+def chain_into(block, bodies, forces):
+    """Adds m b x̂ on every slice (compiled form)."""
+    for i in range(forces.shape[1]):
+        forces[0, i] += block[0]
+
+
+@njit(cache=True)
+def tiles_into(block, bodies, forces):
+    """Adds m_k b x̂ on every tile (compiled form)."""
+    for k in range(forces.shape[1]):
+        forces[0, k] += block[k]

@@ -1,0 +1,101 @@
+"""The registered physics terms, the one packer of their constants, and the sums every solver calls.
+
+Registering a term (the package's rule 6): its module in :data:`TERMS`, and its compiled form called by its
+ID, for each family it declares, in the dispatcher ``_add_term``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from lightsail_mbs.base.kernels import njit
+from lightsail_mbs.model.terms import body_force, frame, pressure, radiation
+from lightsail_mbs.model.terms.bodies import COUNT, ENTRY, HEADER, READS, chain_bodies, tile_bodies
+
+# the order of summation: the forces of every body are added in this order (rule 4)
+TERMS = (radiation, frame, pressure, body_force)
+
+
+def active_terms(p, family: str) -> tuple:
+    """The registered terms that act on case p of `family` ("chain" or "sheet"), in summation order."""
+    return tuple(t for t in TERMS if family in t.FAMILIES and t.active(p))
+
+
+def pack(p, family: str) -> np.ndarray:
+    """The constants every kernel of `family` reads for case p: [count, reads, then per active term its ID,
+    its block's size and its block] (rule 3)."""
+    terms = active_terms(p, family)
+    entries, reads = [], 0
+    for term in terms:
+        block = np.asarray(term.constants(p, family), dtype=float)
+        entries += [np.array([term.ID, block.size], dtype=float), block]
+        reads |= term.reads(p)
+    return np.concatenate([np.array([len(terms), reads], dtype=float), *entries])
+
+
+def reads(packed: np.ndarray) -> int:
+    """What the packed terms read beyond angles or normals (bodies.POSITIONS | bodies.VELOCITIES)."""
+    return int(packed[READS])
+
+
+def chain_forces(p, x, theta, y=None, vx=None, vy=None, omega=None) -> tuple[np.ndarray, np.ndarray]:
+    """(f_x, f_y), each (…, n): the sum of the active terms' numpy forms on slices at abscissae x, angles θ
+    (and heights y, velocities where a term reads them), N."""
+    bodies = chain_bodies(x, theta, y, vx, vy, omega)
+    forces = np.full((2, *bodies.shape[1:]), -0.0)
+    for term in active_terms(p, "chain"):
+        term.chain(p, bodies, forces)
+    return forces[0], forces[1]
+
+
+def tile_forces(p, centres, normals, velocities=None, angular_velocities=None) -> np.ndarray:
+    """(…, N, 3): the sum of the active terms' numpy forms on tiles at `centres` with unit `normals` (their
+    x, y components without cancellation) and velocities where a term reads them, N."""
+    bodies = tile_bodies(centres, normals, velocities, angular_velocities)
+    forces = np.full((3, *bodies.shape[1:]), -0.0)
+    for term in active_terms(p, "sheet"):
+        term.tiles(p, bodies, forces)
+    return np.moveaxis(forces, 0, -1)
+
+
+@njit(cache=True)
+def _add_term(term, block, bodies, forces, tiles):
+    """The registrations: the compiled form of the term with this ID, for the chain or (tiles) the sheet."""
+    if term == radiation.ID and not tiles:
+        radiation.chain_into(block, bodies, forces)
+    elif term == radiation.ID:
+        radiation.tiles_into(block, bodies, forces)
+    elif term == frame.ID and not tiles:
+        frame.chain_into(block, bodies, forces)
+    elif term == pressure.ID and tiles:
+        pressure.tiles_into(block, bodies, forces)
+    elif term == body_force.ID and not tiles:
+        body_force.chain_into(block, bodies, forces)
+    elif term == body_force.ID:
+        body_force.tiles_into(block, bodies, forces)
+    else:
+        raise ValueError("a packed term without a compiled form for this family")
+
+
+@njit(cache=True)
+def _sum_into(packed, bodies, forces, tiles):
+    """forces = −0.0, then each packed term's compiled form added in the packed order (rules 3–4)."""
+    forces[:, :] = -0.0
+    at = HEADER
+    for _ in range(int(packed[COUNT])):
+        size = int(packed[at + 1])
+        block = packed[at + ENTRY : at + ENTRY + size]
+        _add_term(packed[at], block, bodies, forces, tiles)
+        at += ENTRY + size
+
+
+@njit(cache=True)
+def chain_forces_into(packed, bodies, forces):
+    """forces (2, n) = the sum of the packed terms' compiled forms on the slices `bodies` (CHAIN_ROWS, n)."""
+    _sum_into(packed, bodies, forces, False)
+
+
+@njit(cache=True)
+def tile_forces_into(packed, bodies, forces):
+    """forces (3, N) = the sum of the packed terms' compiled forms on the tiles `bodies` (TILE_ROWS, N)."""
+    _sum_into(packed, bodies, forces, True)
