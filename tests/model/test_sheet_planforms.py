@@ -8,7 +8,7 @@ import pytest
 
 from lightsail_mbs import RunSettings, SailParameters, solve
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import planforms, plate_theory, sheet
+from lightsail_mbs.model import planforms, plate_theory, sheet, terms
 from lightsail_mbs.solvers.exudyn import sheet as exudyn_sheet
 from lightsail_mbs.solvers.reduced import sheet as reduced_sheet
 
@@ -120,7 +120,7 @@ def test_mean_intensity_is_the_tiles_mean():
         model="sheet", planform="disc", n=9, ny=12, length=1.0, width=1.0, beam_waist=0.4, beam_center=0.6
     )
     centres = sheet.flat_centres(p)
-    forces = sheet.tile_forces(p, centres, np.tile([0.0, 0.0, 1.0], (len(centres), 1)))
+    forces = terms.tile_forces(p, centres, np.tile([0.0, 0.0, 1.0], (len(centres), 1)))
     assert abs(forces[:, 2].sum()) < 1e-12 * np.abs(forces[:, 2]).sum()
 
 
