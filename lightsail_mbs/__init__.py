@@ -18,7 +18,7 @@ from lightsail_mbs.base.constants import VERSION
 _PUBLIC = {
     "ParameterError": "lightsail_mbs.base.validation",
     "SailParameters": "lightsail_mbs.model.parameters",
-    "paper_case": "lightsail_mbs.model.parameters",
+    "paper_case": "lightsail_mbs.model.cases",
     "RunSettings": "lightsail_mbs.base.settings",
     "paper_settings": "lightsail_mbs.solvers.settings",
     "Result": "lightsail_mbs.result",
@@ -30,7 +30,8 @@ if TYPE_CHECKING:
     from lightsail_mbs.analysis.runs import solve
     from lightsail_mbs.base.settings import RunSettings
     from lightsail_mbs.base.validation import ParameterError
-    from lightsail_mbs.model.parameters import SailParameters, paper_case
+    from lightsail_mbs.model.cases import paper_case
+    from lightsail_mbs.model.parameters import SailParameters
     from lightsail_mbs.result import Result
     from lightsail_mbs.solvers.settings import paper_settings
 

@@ -13,7 +13,7 @@ import pathlib
 from lightsail_mbs import solve
 from lightsail_mbs.analysis import prediction
 from lightsail_mbs.base.settings import RunSettings
-from lightsail_mbs.model.parameters import paper_case
+from lightsail_mbs.model.cases import paper_case
 
 SETTINGS = RunSettings(t_final=6.0)
 CASES = [  # (E (Pa), n, film RMS (m), film seed)

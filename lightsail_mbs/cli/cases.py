@@ -15,7 +15,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from lightsail_mbs.model.casefile import case_fields
-from lightsail_mbs.model.parameters import PAPER_CASES, ParameterError, SailParameters, case_of, read_case_file
+from lightsail_mbs.model.cases import PAPER_CASES
+from lightsail_mbs.model.parameters import ParameterError, SailParameters, case_of, read_case_file
 from lightsail_mbs.model.records import current_names
 
 

@@ -9,7 +9,7 @@ import sys
 
 from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.cli.options import add_case_options, params_from_args, settings_from_args, writable_file
-from lightsail_mbs.model.parameters import PAPER_CASES
+from lightsail_mbs.model.cases import PAPER_CASES
 
 
 def register(sub) -> None:
@@ -50,7 +50,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from lightsail_mbs.model.parameters import paper_case
+    from lightsail_mbs.model.cases import paper_case
     from lightsail_mbs.solvers.settings import paper_settings
     from lightsail_mbs.studies import convergence
 

@@ -17,8 +17,9 @@ from pathlib import Path
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import materials
+from lightsail_mbs.model.cases import PAPER_CASES
 from lightsail_mbs.model.fields import FIELDS, number
-from lightsail_mbs.model.parameters import PAPER_CASES, SailParameters
+from lightsail_mbs.model.parameters import SailParameters
 
 # the options whose name is not --field-name
 OPTION_NAMES = {"youngs_modulus": "--modulus", "defect_mode_y": "--mode-y"}

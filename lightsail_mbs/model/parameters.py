@@ -412,20 +412,6 @@ class SailParameters(DerivedQuantities):
         return cls(**known)
 
 
-def paper_case(name: str, **changes) -> SailParameters:
-    """The paper's cases by name (Sec. IV): 'rigid' (Fig. 5), 'torsion-stable' (Fig. 6),
-    'torsion-soft' (Fig. 7), 'tnt-stable' (Fig. 10), 'tnt-soft' (Fig. 11). Their runs:
-    :func:`lightsail_mbs.solvers.settings.paper_settings`."""
-    if name not in PAPER_CASES:
-        raise ParameterError(f"case={name!r} is invalid: allowed one of {', '.join(PAPER_CASES)}")
-    return SailParameters(**{**PAPER_CASES[name], **changes})
-
-
-PAPER_CASES = casefile.CaseFolder(
-    ("rigid", "torsion-stable", "torsion-soft", "tnt-stable", "tnt-soft"), lambda path: read_case_file(path)[0]
-)  # name -> the fields its case file (model/cases/NAME.toml) sets
-
-
 def read_case_file(path) -> tuple[dict, dict]:
     """(the case's fields, the [run] table) of a case file, names and types checked
     (:func:`lightsail_mbs.model.casefile.read`), a named material's values under the file's own

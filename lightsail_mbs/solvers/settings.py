@@ -10,9 +10,9 @@ __all__ = ["FIELDS", "MAX_SAMPLES", "RunSettings", "paper_settings"]
 
 
 def paper_settings(name: str, **changes) -> RunSettings:
-    """The run of the paper's named case (lightsail_mbs.model.parameters.paper_case): 10 ms for the
+    """The run of the paper's named case (lightsail_mbs.model.cases.paper_case): 10 ms for the
     rigid sail (Fig. 5), 6 s for the torsion and TnT sails (Figs 6–8, 10–11)."""
-    from lightsail_mbs.model.parameters import PAPER_CASES
+    from lightsail_mbs.model.cases import PAPER_CASES
 
     if name not in PAPER_CASES:
         raise ParameterError(f"case={name!r} is invalid: allowed one of {', '.join(PAPER_CASES)}")

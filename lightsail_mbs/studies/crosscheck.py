@@ -26,7 +26,8 @@ import numpy as np
 from lightsail_mbs import analysis
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model.parameters import SailParameters, paper_case
+from lightsail_mbs.model.cases import paper_case
+from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result, with_uncertainty
 from lightsail_mbs.solvers import solve
 from lightsail_mbs.solvers.contract import lookup

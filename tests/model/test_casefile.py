@@ -10,8 +10,9 @@ from hypothesis import given
 from lightsail_mbs import ParameterError, RunSettings, SailParameters, paper_case, paper_settings
 from lightsail_mbs.model import casefile
 from lightsail_mbs.model.casefile import tomllib  # the standard library's, or tomli on Python 3.10
+from lightsail_mbs.model.cases import PAPER_CASES
 from lightsail_mbs.model.fields import FIELDS, number
-from lightsail_mbs.model.parameters import PAPER_CASES, read_case_file
+from lightsail_mbs.model.parameters import read_case_file
 from tests.strategies import EXAMPLES, case_kwargs, check_property
 
 

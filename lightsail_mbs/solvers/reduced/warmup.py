@@ -95,7 +95,7 @@ def compile_all() -> float:
     import numpy as np
 
     from lightsail_mbs.base.settings import RunSettings
-    from lightsail_mbs.model.parameters import paper_case
+    from lightsail_mbs.model.cases import paper_case
     from lightsail_mbs.solvers import solve
     from lightsail_mbs.solvers.reduced.dynamics import ChainDynamics
     from lightsail_mbs.solvers.reduced.kinematics import ChainModel
