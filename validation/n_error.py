@@ -5,9 +5,9 @@ verdict, lightsail_mbs.analysis.resolvedness), an estimate E_n of the distance o
 continuum answer (lightsail_mbs.analysis.n_error). This script measures the candidates on cases whose
 converged answer `converge` finds (studies.convergence.converge, reduced solver, n doubling up to N_MAX):
 
-- **twins n/2 and n/4, × 2** (the package's rule, lightsail_mbs.analysis.n_error.estimate): 2 |q(n) − q(n/2)|
-  when the three answers are monotone with the last change at most half the one before, else twice the larger
-  of the two changes;
+- **the package's rule** (lightsail_mbs.analysis.n_error: twins at n/2 and, where it draws the defect, n/4):
+  2 |q(n) − q(n/2)| where the three answers shrink as a power law of order 1–8 or there is no twin at n/4, else
+  twice the larger of the two changes; for a failure time at the grid scale at least the spectrum's estimate;
 - **twin n/2, order 1**: E_n = |q(n) − q(n/2)| / (2^p − 1), p = 1 (Richardson's estimate alone);
 - **twin 2n/3, order 1**: E_n = |q(n) − q(⌊2n/3⌋)| / ((n/⌊2n/3⌋)^p − 1), p = 1;
 - **twin n/2, order 2**: the same at p = 2 (the order the soft sail reaches from n ≈ 120);
@@ -72,8 +72,9 @@ def run_value(p, settings) -> tuple[float | None, str]:
     return value_of(solve(p, "reduced", settings, uncertainty=False))
 
 
-def candidates(row: dict) -> dict:
-    """E_n of every candidate (module docstring) from a row's answer and its twins' ({size: (value, kind)})."""
+def candidates(row: dict, p) -> dict:
+    """E_n of every candidate (module docstring) from a row's answer and its twins' ({size: (value, kind)}); `p`:
+    the case (the package's rule runs the twin at n/4 only where it draws the defect)."""
     q, n, kind = row["value"], row["n"], row["kind"]
     out = {}
     for name, size, order in (("half_p1", n // 2, 1.0), ("two_thirds_p1", (2 * n) // 3, 1.0), ("half_p2", n // 2, 2.0)):
@@ -84,9 +85,12 @@ def candidates(row: dict) -> dict:
     if half is None or half_kind != kind:
         out["package"] = math.inf
     else:
-        out["package"] = n_error.estimate(
-            q, half, quarter if quarter_kind == kind and n // 4 >= n_error.MIN_COARSE else None
-        )
+        usable = quarter_kind == kind and n // 4 in n_error.twin_sizes(p.replace(n=n))
+        estimate = n_error.estimate(q, half, quarter if usable else None, ratio=kind == "max_amplitude_ratio")
+        if "slices_per_wavelength" not in row:
+            row["slices_per_wavelength"] = resolvedness.assess(p.replace(n=n)).slices_per_wavelength
+        verdict = {"slices_per_wavelength": row["slices_per_wavelength"], "relative_n_error": row["spectrum"]}
+        out["package"] = max(estimate, n_error.spectral_floor(verdict, q, kind == "failure_time"))
     out["spectrum"] = q * row["spectrum"] if row["spectrum"] is not None and kind == "failure_time" else None
     return out
 
@@ -121,6 +125,7 @@ def run_case(key: str, label: str, p, settings, sizes_at) -> dict:
                 "well_posed": verdict.well_posed,
                 "error": q - reference,
                 "spectrum": verdict.relative_n_error,
+                "slices_per_wavelength": verdict.slices_per_wavelength,
                 "twins": {str(size): answers[size] for size in (n // 4, n // 2, (2 * n) // 3)},
             }
         )
@@ -159,7 +164,7 @@ def covered(row: dict, name: str) -> bool | None:
 
 
 NAMES = {
-    "package": "twins n/2, n/4, × 2 (package)",
+    "package": "package rule",
     "half_p1": "twin n/2, p = 1",
     "two_thirds_p1": "twin 2n/3, p = 1",
     "half_p2": "twin n/2, p = 2",
@@ -175,11 +180,12 @@ def fmt(value, spec=".3g") -> str:
     return format(value, spec)
 
 
-def markdown(cases: list[dict], wall: float) -> str:
+def markdown(cases: list[dict], wall: float, params: dict) -> str:
+    """The report; `params`: each case's SailParameters by key."""
     for case in cases:
         for row in case["rows"]:
             if not row.get("skipped"):
-                row["candidates"] = candidates(row)
+                row["candidates"] = candidates(row, params[case["key"]])
     rows = [(case, row) for case in cases for row in case["rows"] if not row.get("skipped") and row["well_posed"]]
     lines = [
         "# The n-error of a single run against converged answers",
@@ -270,7 +276,7 @@ def main() -> None:
         cases.append(case)
         for row in case["rows"]:
             print(key, row, flush=True)
-    text = markdown(cases, time.perf_counter() - start)
+    text = markdown(cases, time.perf_counter() - start, {key: p for key, _, p, *_ in all_cases()})
     if args.only:
         print(text)
     else:

@@ -1,4 +1,4 @@
-"""The error in n of a single run: two coarser twins and Richardson's estimate, folded into the run's ±.
+"""The error in n of a single run: coarser twins and Richardson's estimate, folded into the run's ±.
 
 A chain of n slices answers q(n) (the failure time, or the largest amplitude ratio of a sail that survives).
 Where the case is well posed in n (:mod:`lightsail_mbs.analysis.resolvedness`), q(n) tends to a continuum
@@ -10,19 +10,28 @@ For a halved n and p = 1 this is the last change d₂ = q(n) − q(n/2). The ord
 `converge` measures p = 0.92–1.00 on the paper's stiff and stable torsion sails and at E = E_cr,max, 2.2 on
 the soft one (docs/convergence.md). Below the asymptotic regime the answers need not be monotone in n (at
 E = E_cr,max the answer rises to a peak near n = 60 and then falls at first order: 2.771, 2.791, 2.788, 2.784 s at
-n = 30, 60, 120, 240), and a single change can be small by accident. So two twins are run, at ⌊n/2⌋ and
-⌊n/4⌋ (the base run's solver, options and run; no twins of their own), with d₁ = q(n/2) − q(n/4), and
+n = 30, 60, 120, 240), and a single change can be small by accident. So the twins are run at ⌊n/2⌋ and, where
+it still draws the defect (SLICES_PER_WAVE = 8 slices per wavelength of its shortest wave, L/ν), at ⌊n/4⌋ (the
+base run's solver, options and run; no twins of their own), with d₁ = q(n/2) − q(n/4), and
 
-    E_n = SAFETY · abs(d₂)                   when d₁ d₂ > 0 and abs(d₂) ≤ abs(d₁)/2 (monotone, order ≥ 1),
-    E_n = SAFETY · max(abs(d₁), abs(d₂))     otherwise (not monotone, or slower than first order),
+    E_n = SAFETY · abs(d₂)                   when d₁ d₂ > 0 and 1 ≤ log₂(d₁/d₂) ≤ MAX_ORDER (a power law of
+                                             order 1 to 8: the changes shrink as the asymptotic regime's do),
+    E_n = SAFETY · max(abs(d₁), abs(d₂))     otherwise (not monotone, slower than first order, a collapse of
+                                             the last change too sudden for a power law, or an amplitude
+                                             ratio of exactly 1 — the initial amplitude never exceeded — in
+                                             one of the three),
+    E_n = SAFETY · abs(d₂)                   without the twin at n/4,
 
-SAFETY = 2 as in the uncertainty's numerical part. In the first-order regime E_n is twice Richardson's estimate;
-where the order is higher it overstates the error by 2 (2^p − 1). The twin at n/4 is run only where it carries
-SLICES_PER_WAVE = 8 slices per wavelength of the defect's shortest wave (L/ν; a coarser chain does not draw the
-defect, and its answer says nothing of the run's: the soft sail at n = 7 fails at 2.23 s); without it, and where
-⌊n/4⌋ is below MIN_COARSE slices, E_n = SAFETY · abs(d₂) from the twin at n/2 alone. Measured against
-`converge`'s answers (validation/n_error.md: the paper's well-posed chains at n = 30–240 and seeded random cases
-at their own n), and against runs at 2n sampled 4× finer (validation/accuracy.md).
+SAFETY = 2 as in the uncertainty's numerical part: in the first-order regime E_n is twice Richardson's estimate.
+For a failure time whose fastest-growing wave sits at the grid scale (at most GRID_SCALE_SLICES slices per
+wavelength, a case the verdict still calls well posed) E_n is at least the verdict's spectral estimate
+t_f · abs(σ(n) − σ(2n))/σ(2n): there the coarser twins carry even fewer of the waves that grow.
+
+Measured (validation/n_error.md, validation/accuracy.md): against `converge`'s converged answers on the paper's
+well-posed chains at n = 30–240 and seeded random cases at their own n, and against runs at 2n sampled 4× finer
+on the 96 seeded cases of the accuracy report. The twin at n/4 is left out where it does not draw the defect
+(the soft sail at n = 7 fails at 2.23 s, at n = 15 at 2.03 s, at n = 30 at 2.11 s: its answer says nothing of
+the run's).
 
 The estimate is added to the run's uncertainty, U = SAFETY · (E_int + S) + E_s + E_n
 (:mod:`lightsail_mbs.solvers.uncertainty`), and recorded in ``Result.uncertainty["n_error"]``. It is made only
@@ -46,9 +55,12 @@ from lightsail_mbs.model import shapes
 SAFETY = 2.0  # E_n = SAFETY · (the change the twins show), as U's numerical part
 MIN_COARSE = 4  # a twin of fewer slices is not run
 SLICES_PER_WAVE = 2 * shapes.MIN_SLICES_PER_HALF_WAVE  # the twin at n/4: at least this many per defect wave
+MAX_ORDER = 8.0  # a faster collapse of the last change is no power law (studies.convergence.ORDER_MAX)
+GRID_SCALE_SLICES = 2.5  # a fastest wave this short is the grid-scale zig-zag: the spectral estimate applies
 RULE = (
-    "; + E_n where well posed in n: 2 |q(n) − q(n/2)| when q(n/4), q(n/2), q(n) are monotone with the last change at "
-    "most half the one before, else 2 max(|q(n) − q(n/2)|, |q(n/2) − q(n/4)|)"
+    "; + E_n where well posed in n: 2 |q(n) − q(n/2)| when q(n/4), q(n/2), q(n) shrink as a power law of order 1–8 "
+    "(or without the twin at n/4), else 2 max(|q(n) − q(n/2)|, |q(n/2) − q(n/4)|); for a failure time at the grid "
+    "scale, at least t_f δσ/σ"
 )
 
 
@@ -63,15 +75,26 @@ def twin_sizes(params) -> list[int]:
     return [half]
 
 
-def estimate(value: float, half: float, quarter: float | None = None) -> float:
-    """E_n from q(n), q(n/2) and, if run and of the same kind, q(n/4) (module docstring)."""
+def estimate(value: float, half: float, quarter: float | None = None, ratio: bool = False) -> float:
+    """E_n from q(n), q(n/2) and, if run and of the same kind, q(n/4) (module docstring); `ratio`: the answers
+    are largest amplitude ratios (one of exactly 1 is clipped, not a power law's)."""
     last = value - half
     if quarter is None:
         return SAFETY * abs(last)
     before = half - quarter
-    if last * before > 0 and abs(last) <= abs(before) / 2:
+    clipped = ratio and 1.0 in (value, half, quarter)
+    if not clipped and last * before > 0 and abs(before) / 2**MAX_ORDER <= abs(last) <= abs(before) / 2:
         return SAFETY * abs(last)
     return SAFETY * max(abs(last), abs(before))
+
+
+def spectral_floor(verdict: dict, value: float, failed: bool) -> float:
+    """The verdict's spectral n-error t_f δσ/σ for a failure time whose fastest wave is at the grid scale (at most
+    GRID_SCALE_SLICES slices per wavelength), else 0 (module docstring)."""
+    slices, relative = verdict.get("slices_per_wavelength"), verdict.get("relative_n_error")
+    if not failed or slices is None or relative is None or slices > GRID_SCALE_SLICES:
+        return 0.0
+    return value * relative
 
 
 def why_not(params, result) -> str | None:
@@ -115,7 +138,8 @@ def fold(params, solver: str, settings, options: dict, result, progress: bool = 
         error = math.inf
     else:
         usable = quarter is not None and quarter[1] == base["failed"]
-        error = estimate(base["value"], half, quarter[0] if usable else None)
+        error = estimate(base["value"], half, quarter[0] if usable else None, ratio=not base["failed"])
+        error = max(error, spectral_floor(result.info["resolvedness"], base["value"], base["failed"]))
     record["n_error"] = {
         "estimated": True,
         "value": error,

@@ -36,6 +36,14 @@ def test_estimate_of_a_sequence_that_is_not_monotone_takes_the_larger_change():
     assert n_error.estimate(2.11, 2.03) == pytest.approx(2 * 0.08)  # no twin at n/4: the last change alone
 
 
+def test_estimate_distrusts_a_collapse_and_a_clipped_ratio():
+    """A last change far below any power law's (a seeded torsion case: 0.74061, 0.75629, 0.75630 s at n = 23, 47,
+    95, then 0.75449 s at 190) and an amplitude ratio of exactly 1 take the larger change."""
+    assert n_error.estimate(0.75630, 0.75629, 0.74061) == pytest.approx(2 * 0.01568)
+    assert n_error.estimate(1.0, 1.0002, 1.0042, ratio=True) == pytest.approx(2 * 0.004)
+    assert n_error.estimate(1.0001, 1.0002, 1.0042, ratio=True) == pytest.approx(2 * 0.0001)
+
+
 def test_twin_sizes_carry_the_defect():
     """The twin at n/4 only with 8 slices per defect wavelength (ν = 1.5: from 12 slices), none below 4 slices."""
     p = paper_case("torsion-soft")
