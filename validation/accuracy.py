@@ -36,6 +36,7 @@ from lightsail_mbs.result import with_uncertainty
 
 CASES = 96
 DESIGN_CASES = 64  # the uncertainty rule was settled looking at cases 0–63; 64–95 were run once, after
+HOLDOUT = range(96, 128)  # the n-error rule was settled on the reduced solver's cases 0–95; these ran once, after
 MODELS = ("rigid", "torsion", "tnt-ext", "tnt-inext")
 TAU_FINAL = 4.0  # run length in units of t_c
 SAMPLES = 400
@@ -44,7 +45,7 @@ AGREEMENT = 1e-3  # required relative agreement on well-conditioned cases
 COVERAGE = 0.95  # required fraction of cases whose difference lies within the combined uncertainty
 REFINE_N = 2  # the reference run: n × REFINE_N slices …
 REFINE_SAMPLING = 4  # … sampled REFINE_SAMPLING × finer
-ROW_VERSION = 7  # rows of another version are recomputed by --resume
+ROW_VERSION = 8  # rows of another version are recomputed by --resume
 
 
 def random_case(seed: int) -> tuple[SailParameters, RunSettings]:
@@ -230,7 +231,7 @@ def ref_coverage(rows: list[dict], solver: str) -> tuple[int, int]:
     return sum(r[f"{solver}_ref_covered"] for r in judged), len(judged)
 
 
-def markdown(all_rows: list[dict], wall: float) -> str:
+def markdown(all_rows: list[dict], wall: float, holdout: list[dict] = ()) -> str:
     rows = [r for r in all_rows if ran(r, "exudyn") and ran(r, "reduced")]  # both solvers: the comparisons
     total = len(rows)
     covered = sum(r["covered"] for r in rows)
@@ -277,7 +278,7 @@ def markdown(all_rows: list[dict], wall: float) -> str:
         ),
         f"- **Agreement on well-conditioned cases** (both solvers say so): {len(agree)} of {len(well)} agree to "
         f"≤ {AGREEMENT:g} relative (largest difference {worst:.2g}).",
-        f"- **Coverage**: in {covered} of {total} cases ({covered / total:.0%}) the solvers' difference lies "
+        f"- **Coverage**: in {covered} of {total} cases ({covered / max(total, 1):.0%}) the solvers' difference lies "
         f"within their combined uncertainty U_exudyn + U_reduced without the n-error (the two solve the same chain; "
         f"required ≥ {COVERAGE:.0%}).",
         *(
@@ -299,6 +300,20 @@ def markdown(all_rows: list[dict], wall: float) -> str:
                 ("Exudyn", ref_coverage(all_rows, "exudyn")),
                 ("reduced", ref_coverage(all_rows, "reduced")),
             )
+        ),
+        "- **How the n-error rule was settled**: on the reduced solver's runs of these cases against their refined "
+        "runs. Its first form (twice the last change; the twin at n/4 only where it draws the defect, its larger "
+        "change where the three answers are not monotone) missed cases 5, 18, 49, 59 and 65 (48 of 53); the rule "
+        "now also takes the larger change after a collapse of the last one too sudden for a power law (49) or an "
+        "amplitude ratio of exactly 1 (5), and, without the twin at n/4, the spectrum's estimate for a failure time "
+        "at the grid scale (65). "
+        f"Cases {HOLDOUT.start}–{HOLDOUT.stop - 1}, run once after, with the reduced solver alone: "
+        + (
+            "the distance to the refined run lies within U + U_reference in {} of {} cases well posed in n.".format(
+                *ref_coverage(list(holdout), "reduced")
+            )
+            if holdout
+            else "not run."
         ),
         f"- Ill-posed in n (no E_n; the refined run is another answer, not a check): "
         f"{sum(r.get('reduced_well_posed') is False for r in all_rows)} cases; of them the reduced solver's ± "
@@ -511,8 +526,19 @@ def main() -> None:
     compact.write_text("".join(json.dumps(finished[case]) + "\n" for case in sorted(finished)))
     compact.replace(ROWS)
     if args.cases == CASES and args.first == 0:
+        holdout = []
+        for seed in HOLDOUT:
+            row = done.get(seed)
+            if row is None or row.get("version") != ROW_VERSION or not ran(row, "reduced"):
+                row = run_case(seed, None, solvers=("reduced",))
+                with ROWS.open("a") as out:
+                    out.write(json.dumps(row) + "\n")
+            holdout.append(row)
+        finished.update({row["case"]: row for row in holdout})
+        compact.write_text("".join(json.dumps(finished[case]) + "\n" for case in sorted(finished)))
+        compact.replace(ROWS)
         path = Path(__file__).with_name("accuracy.md")
-        path.write_text(markdown(rows, time.perf_counter() - start))
+        path.write_text(markdown(rows, time.perf_counter() - start, holdout))
         print(f"wrote {path}")
     else:
         print(markdown(rows, time.perf_counter() - start))

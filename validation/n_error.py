@@ -7,7 +7,8 @@ converged answer `converge` finds (studies.convergence.converge, reduced solver,
 
 - **the package's rule** (lightsail_mbs.analysis.n_error: twins at n/2 and, where it draws the defect, n/4):
   2 |q(n) − q(n/2)| where the three answers shrink as a power law of order 1–8 or there is no twin at n/4, else
-  twice the larger of the two changes; for a failure time at the grid scale at least the spectrum's estimate;
+  twice the larger of the two changes; without the twin at n/4, for a failure time at the grid scale, at least
+  the spectrum's estimate;
 - **twin n/2, order 1**: E_n = |q(n) − q(n/2)| / (2^p − 1), p = 1 (Richardson's estimate alone);
 - **twin 2n/3, order 1**: E_n = |q(n) − q(⌊2n/3⌋)| / ((n/⌊2n/3⌋)^p − 1), p = 1;
 - **twin n/2, order 2**: the same at p = 2 (the order the soft sail reaches from n ≈ 120);
@@ -90,7 +91,8 @@ def candidates(row: dict, p) -> dict:
         if "slices_per_wavelength" not in row:
             row["slices_per_wavelength"] = resolvedness.assess(p.replace(n=n)).slices_per_wavelength
         verdict = {"slices_per_wavelength": row["slices_per_wavelength"], "relative_n_error": row["spectrum"]}
-        out["package"] = max(estimate, n_error.spectral_floor(verdict, q, kind == "failure_time"))
+        floor = 0.0 if usable else n_error.spectral_floor(verdict, q, kind == "failure_time")
+        out["package"] = max(estimate, floor)
     out["spectrum"] = q * row["spectrum"] if row["spectrum"] is not None and kind == "failure_time" else None
     return out
 
