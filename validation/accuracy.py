@@ -246,7 +246,7 @@ def markdown(all_rows: list[dict], wall: float, holdout: list[dict] = ()) -> str
         + f"{sum(r.get('exudyn_cpu', 0) + r['reduced_cpu'] + r['reference_cpu'] for r in all_rows) / 60:.0f} "
         "min of CPU time "
         "on the shared 2-core machine). "
-        f"{total} seeded cases (`random_case(seed)`), the models in turn (rigid, torsion, extensible TnT, "
+        f"{len(all_rows)} seeded cases (`random_case(seed)`), the models in turn (rigid, torsion, extensible TnT, "
         "inextensible TnT), over n = 10–100, ν = ½–5, h = 0.05–5 µm, ρ = 500–3000 kg/m³, I₀ = 1e7–1e10 W/m², "
         "a₀ = 1e-6–1e-3 L and E/E_cr,max or T/T_cr,max = 0.01–100, each run for "
         + f"{TAU_FINAL:g} t_c with both solvers at "
@@ -352,7 +352,7 @@ def markdown(all_rows: list[dict], wall: float, holdout: list[dict] = ()) -> str
         "",
         "CPU times include the twin runs of each solver's uncertainty estimate (3–4 base runs for the adaptive "
         "methods, 8 for generalized-α) and, where the case is well posed in n, the twins at n/2 and n/4 "
-        f"({twin_cost(rows)}).",
+        f"({twin_cost(all_rows)}).",
         *(
             [
                 "- **Not covered by the refined run** (well posed): "
