@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from lightsail_mbs.base.files import write_atomically
-from lightsail_mbs.base.formatting import with_uncertainty
+from lightsail_mbs.base.formatting import n_error_clause, with_uncertainty
 from lightsail_mbs.base.provenance import (  # noqa: F401 - re-exported: what made a Result
     LIBRARIES,
     PACKAGE,
@@ -237,8 +237,9 @@ class Result:
 
     def answer_text(self) -> str:
         """The answer with its error bar: 'FAILED at t = 2.1112 ± 0.0001 s' or 'not failed (max amplitude
-        ratio 1.2460 ± 0.0005)', with '(ill-conditioned)' when it is; a ratio of exactly 1 in every run (the
-        largest amplitude is the initial one) says so instead of '1 ± 0'."""
+        ratio 1.2460 ± 0.0005)', with '(ill-conditioned)' when it is and the n-error's clause
+        (base.formatting.n_error_clause); a ratio of exactly 1 in every run (the largest amplitude is the
+        initial one) says so instead of '1 ± 0'."""
         u = self.uncertainty or {}
         location = (self.info.get("sampling") or {}).get("location_error")
         if self.failed and self.failure_time_uncertainty is None and location is not None:
@@ -252,7 +253,8 @@ class Result:
             text = f"not failed (max amplitude ratio {ratio})"
         if u.get("estimated") and not u.get("well_conditioned"):
             text += " (ill-conditioned)"
-        return text
+        clause = n_error_clause(u.get("n_error"), " s" if self.failed else "")
+        return f"{text} ({clause})" if clause else text
 
     @property
     def dissipated_energy(self) -> np.ndarray:

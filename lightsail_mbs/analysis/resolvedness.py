@@ -28,7 +28,9 @@ state its springs carry only the pre-tension, and the trough compression builds 
 crossing (L/√(E/ρ), about 1e-4 s), far faster than any growth; the inextensible chain carries it at once.
 
 Where the case is well posed, the discretisation error of the fastest growth rate, δσ = abs(σ(n) − σ(2n)), gives a
-rough n-error of a failure time that scales as ln(ratio)/σ: δt_f ≈ t_f δσ/σ(2n) (``relative_n_error``).
+rough n-error of a failure time that scales as ln(ratio)/σ: δt_f ≈ t_f δσ/σ(2n) (``relative_n_error``). The n-error
+a run's ± holds is :mod:`lightsail_mbs.analysis.n_error`'s (coarser twins; this estimate only as its floor for a
+grid-scale fastest wave).
 
 Cost: two Jacobians by central differences (2·dof vectorised right-hand-side calls each) and the eigenproblem
 of the dof × dof block; about 5 ms at n = 30, 0.8 s at n = 240 (with 480 for the twin). Above MAX_SLICES, on

@@ -4,19 +4,24 @@ analysis makes of its case.
 :func:`lightsail_mbs.solvers.solve` runs a case (failure located by event, the uncertainty twins); this
 adds what only analysis can say, from the case's linear growth-rate spectrum: whether the answer has a
 continuum limit in n (:mod:`lightsail_mbs.analysis.resolvedness`), recorded in ``Result.info`` and, when
-the case is ill-posed in n, one line in ``Result.warnings``. Sweeps call the template alone.
+the case is ill-posed in n, one line in ``Result.warnings``; where it is well posed and the uncertainty is
+estimated, the error in n from a twin at n/2, added to the ± (:mod:`lightsail_mbs.analysis.n_error`). Sweeps
+call the template alone.
 """
 
 from __future__ import annotations
 
 from lightsail_mbs import solvers
-from lightsail_mbs.analysis import resolvedness
+from lightsail_mbs.analysis import n_error, resolvedness
 
 
 def solve(
     params, solver: str = "exudyn", settings=None, *, progress: bool = False, uncertainty: bool = True, **options
 ):
-    """:func:`lightsail_mbs.solvers.solve` (same arguments), then the resolvedness verdict of the case."""
+    """:func:`lightsail_mbs.solvers.solve` (same arguments), then the resolvedness verdict of the case and, with
+    the uncertainty estimated, the n-error folded into its ± (:mod:`lightsail_mbs.analysis.n_error`)."""
     result = solvers.solve(params, solver, settings, progress=progress, uncertainty=uncertainty, **options)
     resolvedness.annotate(params, result)
+    if uncertainty:
+        n_error.fold(params, solver, settings, options, result, progress=progress)
     return result

@@ -30,3 +30,21 @@ def with_uncertainty(value: float | None, uncertainty: float | None, digits: int
     if decimals:
         return f"{value:.{decimals}f} ± {shown:.{decimals}f}"
     return f"{round(value / step) * step:.0f} ± {shown:.0f}"
+
+
+def n_error_clause(record: dict | None, unit: str = "") -> str:
+    """A run's n-error record (Result.uncertainty["n_error"], lightsail_mbs.analysis.n_error) as a clause of its
+    one-line answer: 'of which n-error 0.16 s, from a twin at n = 15', or why the ± holds none ('no n-error:
+    ill-posed in n', 'n-error not estimated: …', 'n-error unbounded: …'); empty without a record."""
+    if not record:
+        return ""
+    if not record["estimated"]:
+        if record["reason"].startswith("ill-posed"):
+            return "no n-error: ill-posed in n"
+        return f"n-error not estimated: {record['reason']}"
+    if not math.isfinite(record["value"]):
+        verdict = "fails" if record["coarse_failed"] else "survives"
+        return f"n-error unbounded: the twin at n = {record['n_coarse']} {verdict}"
+    sizes = " and ".join(f"n = {size}" for size in record["twins"])
+    twins = "twins" if len(record["twins"]) > 1 else "a twin"
+    return f"of which n-error {record['value']:.2g}{unit}, from {twins} at {sizes}"

@@ -24,7 +24,8 @@ def register(sub) -> None:
         "--no-uncertainty",
         dest="uncertainty",
         action="store_false",
-        help="skip the twin runs that give the answer's uncertainty and conditioning (the base run is reported)",
+        help="skip the twin runs that give the answer's uncertainty, conditioning and n-error (the base run is "
+        "reported)",
     )
     p.add_argument("--out", help="write the Result to this .npz (and its .json summary)")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object on stdout")

@@ -1,15 +1,17 @@
 """The uncertainty and conditioning of a run (solvers.uncertainty): both solvers agree where the question is
-well posed, flag it where it is not, and the error bar covers the run's own discretisation error."""
+well posed, flag it where it is not, and the error bar covers the run's own discretisation error in time. The
+solver template's runs (lightsail_mbs.solvers.solve): the n-error that lightsail_mbs.solve adds is
+tests/analysis/test_n_error.py's."""
 
 import math
 
 import numpy as np
 import pytest
 
-from lightsail_mbs import RunSettings, SailParameters, paper_case, solve
+from lightsail_mbs import RunSettings, SailParameters, paper_case
 from lightsail_mbs.model import theory
 from lightsail_mbs.result import Result, with_uncertainty
-from lightsail_mbs.solvers import uncertainty
+from lightsail_mbs.solvers import solve, uncertainty
 
 exudyn = pytest.importorskip("exudyn")
 
