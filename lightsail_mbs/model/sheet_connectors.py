@@ -62,7 +62,9 @@ Bending and twist springs are at rest flat (bending_reference="flat", as in the 
 defect is an elastically loaded initial shape) or in the initial shape ("initial": a stress-free,
 manufactured defect). The translational springs are at rest in the initial shape
 (membrane_reference="initial": a doubly curved defect laid down free of membrane stress; for a 1-D
-defect nothing changes) or flat ("flat"). The initial rest state is realised by the marker positions,
+defect nothing changes) or flat ("flat"). A billowed sheet (billow_radius, model.sheet_shapes.cap) counts its
+cap as part of the initial shape, and with billow_rest its "flat" springs rest in the cap without the defect
+(sheet_shapes.rest_quaternions). The initial rest state is realised by the marker positions,
 not by an offset in the spring law: B's marker is moved by the (~1e-10 m) mismatch of the two edge
 midpoints in the initial shape (Connectors.gap). The connector law applies +f at p_a and −f at p_b;
 with markers δ₀ apart at rest, an offset δ₀ in the law would make that pair a couple δ₀ × f that no
