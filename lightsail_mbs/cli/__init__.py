@@ -47,6 +47,7 @@ COMMANDS = [
     "store",
     "optics",
     "journey",
+    "export",
 ]
 
 

@@ -47,6 +47,12 @@ def register(sub) -> None:
     p.add_argument(
         "--no-arrows", dest="arrows", action="store_false", help="omit the radiation-load and boundary-tension arrows"
     )
+    p.add_argument(
+        "--frame",
+        default="inertial",
+        help="a sheet run: inertial (the run's own) or rotating (about the sail's normal through its centre of "
+        "mass at the tiles' mean spin rate) [default: inertial]",
+    )
     p.add_argument("--compare", metavar="RUN2", help="a second run drawn below the first at the same times")
     p.add_argument("--labels", nargs=2, metavar=("LABEL1", "LABEL2"), help="panel labels with --compare")
     p.add_argument("--movie", choices=("mp4", "gif", "both"), help="also encode the frames into OUT/RUN.mp4/.gif")
@@ -56,12 +62,15 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from lightsail_mbs.base.validation import ParameterError
     from lightsail_mbs.result import Result
     from lightsail_mbs.viz.frames import check_fps, make_movie, parse_size, render_comparison, render_frames
 
     result = Result.load(args.run)
     if result.is_sheet:
         return run_sheet(args, result)
+    if args.frame != "inertial":
+        raise ParameterError(f"--frame={args.frame!r} is invalid for a chain run: allowed inertial (sheet runs only)")
     other = Result.load(args.compare) if args.compare else None
     size = parse_size(args.size or ("800x800" if args.compare else "800x400"))
     if args.movie:
@@ -95,17 +104,19 @@ def run_sheet(args, result) -> int:
     from lightsail_mbs.base.validation import ParameterError
     from lightsail_mbs.viz.frames import check_fps, make_movie, parse_size
     from lightsail_mbs.viz.sheet import render_sheet_frames
+    from lightsail_mbs.viz.spin_frame import check_frame, in_frame
 
     if args.compare:
         raise ParameterError("--compare is invalid for a sheet run: allowed for chain runs only")
     if args.renderer == "exudyn":
         raise ParameterError("--renderer=exudyn is invalid for a sheet run: allowed auto or matplotlib")
+    check_frame(args.frame)
     size = parse_size(args.size or "1000x450")
     if args.movie:
         check_fps(args.fps)
     writable_folder(args.out, "--out")
     paths = render_sheet_frames(
-        result,
+        in_frame(result, args.frame),
         args.out,
         frames=args.frames,
         every_seconds=args.every_seconds,
@@ -114,7 +125,8 @@ def run_sheet(args, result) -> int:
         color_scale=args.color_scale or "run",
         progress=not args.quiet,
     )
-    print(f"wrote {len(paths)} frames of {size[0]}x{size[1]} px to {args.out}/ (deflection map and 3-D view)")
+    views = f"deflection map and 3-D view, {args.frame} frame"
+    print(f"wrote {len(paths)} frames of {size[0]}x{size[1]} px to {args.out}/ ({views})")
     kinds = {"mp4": ["mp4"], "gif": ["gif"], "both": ["mp4", "gif"], None: []}[args.movie]
     for kind in kinds:
         movie = make_movie(paths, Path(args.out) / f"{Path(args.run).stem}.{kind}", fps=args.fps)

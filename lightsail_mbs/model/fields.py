@@ -205,9 +205,9 @@ FIELDS = {
     "billow_radius": FieldInfo(
         SAIL,
         "m",
-        "initial circular arc R_c: > 0 concave to the laser, < 0 convex; inf: flat",
-        "|R_c| ≥ l/(2 sin(π/2n))",
-        family="chain",
+        "initial circular arc (chain) or spherical cap (sheet) of radius R_c: > 0 concave to the laser, < 0 "
+        "convex; inf: flat",
+        "|R_c| ≥ l/(2 sin(π/2n)) (chain), ≥ 2/π × the farthest corner's distance from the middle (sheet)",
     ),
     "optics": FieldInfo(
         BEAM,
@@ -234,9 +234,9 @@ FIELDS = {
     "billow_rest": FieldInfo(
         SAIL,
         "",
-        "torsion springs at rest on the billowed arc (a sail made curved); off: at rest flat",
+        "springs at rest on the billowed arc or cap (a sail made curved: a chain's torsion springs, a sheet's "
+        "springs whose reference is flat); off: at rest flat",
         "",
-        family="chain",
     ),
     "initial_tilt": FieldInfo(
         SUPPORTS,

@@ -186,13 +186,17 @@ class SailParameters(DerivedQuantities):
         check("tip_load_time_constant", v, v >= 0, "≥ 0 (0: the full load from t = 0)")
         ok_type = isinstance(self.billow_radius, (int, float)) and not isinstance(self.billow_radius, bool)
         R = float(self.billow_radius) if ok_type else math.nan
-        r_min = self.slice_length / (2.0 * math.sin(math.pi / (2 * self.n)))
+        if self.model == "sheet":  # the cap reaches the sail's farthest corner at most 90° from its apex
+            reach = 0.5 * (math.hypot(self.length, self.width) if self.planform == "rectangle" else self.length)
+            r_min, why = 2.0 * reach / math.pi, "the cap reaches at most 90° from its apex to the farthest corner"
+        else:
+            r_min = self.slice_length / (2.0 * math.sin(math.pi / (2 * self.n)))
+            why = "the arc of n chords of length l subtends at most 180°"
         check(
             "billow_radius",
             self.billow_radius,
             not math.isnan(R) and abs(R) >= r_min,
-            f"|R_c| ≥ {r_min:.4g} m (the arc of n chords of length l subtends at most 180°), > 0 concave to the "
-            "laser, < 0 convex, inf for a flat sail",
+            f"|R_c| ≥ {r_min:.4g} m ({why}), > 0 concave to the laser, < 0 convex, inf for a flat sail",
         )
         check(
             "billow_radius",
@@ -253,8 +257,6 @@ class SailParameters(DerivedQuantities):
             f"one of {', '.join(SHEET_BOUNDARIES)} for a sheet",
         )
         check("tip_load", self.tip_load, self.tip_load == 0, "0 for a sheet (a chain validation)")
-        check("billow_radius", self.billow_radius, self.billow_radius == math.inf, "inf (flat) for a sheet")
-        check("billow_rest", self.billow_rest, self.billow_rest is False, "False for a sheet")
         check("initial_tilt", self.initial_tilt, self.initial_tilt == 0, "0 for a sheet")
         check("roughness", self.roughness, self.roughness == 0, "0 for a sheet (its film: film_rms, model.film)")
         check("optics", self.optics, self.optics is None, "None for a sheet (its tiles: reflectivity, absorptivity)")

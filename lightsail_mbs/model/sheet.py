@@ -61,6 +61,7 @@ from lightsail_mbs.model.sheet_grid import (
 )
 from lightsail_mbs.model.sheet_shapes import (
     PERTURBATION_SEED,
+    cap,
     defect_surface,
     initial_quaternions,
     initial_state,
@@ -78,6 +79,7 @@ __all__ = [
     "Tiles",
     "angles_xyz",
     "as_strip",
+    "cap",
     "connectors",
     "defect_surface",
     "defect_warnings",

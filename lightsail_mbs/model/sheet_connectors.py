@@ -62,7 +62,9 @@ Bending and twist springs are at rest flat (bending_reference="flat", as in the 
 defect is an elastically loaded initial shape) or in the initial shape ("initial": a stress-free,
 manufactured defect). The translational springs are at rest in the initial shape
 (membrane_reference="initial": a doubly curved defect laid down free of membrane stress; for a 1-D
-defect nothing changes) or flat ("flat"). The initial rest state is realised by the marker positions,
+defect nothing changes) or flat ("flat"). A billowed sheet (billow_radius, model.sheet_shapes.cap) counts its
+cap as part of the initial shape, and with billow_rest its "flat" springs rest in the cap without the defect
+(sheet_shapes.rest_quaternions). The initial rest state is realised by the marker positions,
 not by an offset in the spring law: B's marker is moved by the (~1e-10 m) mismatch of the two edge
 midpoints in the initial shape (Connectors.gap). The connector law applies +f at p_a and −f at p_b;
 with markers δ₀ apart at rest, an offset δ₀ in the law would make that pair a couple δ₀ × f that no
@@ -103,7 +105,7 @@ from lightsail_mbs.model.sheet_grid import (
     quaternion_rotation,
     rotation_minus_identity,
 )
-from lightsail_mbs.model.sheet_shapes import initial_quaternions
+from lightsail_mbs.model.sheet_shapes import initial_quaternions, rest_quaternions
 
 SHEAR_CORRECTION = 5.0 / 6.0  # Mindlin's κ on the transverse-shear penalty
 
@@ -231,27 +233,27 @@ def connectors(
     local_pre = np.einsum("kji,kj->ki", frame[:, :2, :2], pre)
     offset[:, :2] = -np.where(_identity(frame)[:, None], pre, local_pre) / K[:, :2]
     gap = np.zeros((len(ta), 3))
-    if (p.defect_amplitude > 0 or p.film_rms > 0) and "initial" in (p.membrane_reference, p.bending_reference):
-        if centres is None or quaternions is None:
-            centres, quaternions = initial_quaternions(p)
-        rotations = quaternion_rotation(quaternions)
+    if centres is None or quaternions is None:
+        centres, quaternions = initial_quaternions(p)
+    membrane_rest = rest_quaternions(p, p.membrane_reference, centres, quaternions)
+    if membrane_rest is not None:
+        # the rest state of the translational springs is that shape: B's marker moves by the markers'
+        # mismatch there (~1e-10 m for a₀ = 10 µm), so that the force pair of every spring acts at
+        # coincident points at rest (an offset in the spring law instead would apply ±f at points δ₀
+        # apart: a couple no potential produces, a circulatory stiffness ∝ E_m |δ₀|, module docstring)
+        rotations = quaternion_rotation(membrane_rest[1])
         ra = frames_a(ta, frame, rotations)
-        if p.membrane_reference == "initial":
-            # the rest state of the translational springs is the initial shape: B's marker moves by the
-            # markers' mismatch there (~1e-10 m for a₀ = 10 µm), so that the force pair of every spring acts
-            # at coincident points at rest (an offset in the spring law instead would apply ±f at points
-            # δ₀ apart: a couple no potential produces, a circulatory stiffness ∝ E_m |δ₀|, module docstring)
-            mismatch = relative_displacement(ta, tb, la, lb, centres, quaternions, flat_centres(p), gap, frame)
-            gap = -np.einsum("kji,kj->ki", rotations[tb], np.einsum("kij,kj->ki", ra, mismatch))
-            lb = lb + gap
-        if p.bending_reference == "initial":
-            offset[:, 3:] = angles_xyz(relative_rotation(ta, tb, frame, rotations))
+        mismatch = relative_displacement(ta, tb, la, lb, *membrane_rest, flat_centres(p), gap, frame)
+        gap = -np.einsum("kji,kj->ki", rotations[tb], np.einsum("kij,kj->ki", ra, mismatch))
+        lb = lb + gap
+    bending_rest = rest_quaternions(p, p.bending_reference, centres, quaternions)
+    if bending_rest is not None:
+        rotations = quaternion_rotation(bending_rest[1])
+        offset[:, 3:] = angles_xyz(relative_rotation(ta, tb, frame, rotations))
     damping = p.stiffness_damping * K
     damping[:, [0, 1, 2, 5]] += t.membrane_damping * K[:, [0, 1, 2, 5]]
     out = Connectors(ta, tb, la, lb, K, damping, offset, kind, gap, frame)
     if p.initial_equilibrium:
-        if centres is None or quaternions is None:
-            centres, quaternions = initial_quaternions(p)
         out.offset = equilibrium_offsets(p, out, centres, quaternions)
     return out
 

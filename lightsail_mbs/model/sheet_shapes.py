@@ -1,6 +1,7 @@
 """The sheet's defects and initial state (model "sheet", :mod:`lightsail_mbs.model.sheet`): the 1-D sine on
-the chain's exact-chord construction, the doubly sinusoidal and the seeded random 2-D defects, the
-tiles' initial centres and orientations (with the case's film, model.film), and the seeded offsets of a perturbed start.
+the chain's exact-chord construction, the doubly sinusoidal and the seeded random 2-D defects, the billowed
+start on a spherical cap, the tiles' initial centres and orientations (with the case's film, model.film), the
+shapes the springs rest in, and the seeded offsets of a perturbed start.
 """
 
 from __future__ import annotations
@@ -98,18 +99,19 @@ def initial_quaternions(p: SailParameters) -> tuple[np.ndarray, np.ndarray]:
     surface, (−(w_x + h_x), −h_y, 1) with w_x the chain's chord slope tan θ_i for a 1-D defect. A strip
     (ny = 1) carries one tile across its width, as the chain carries one slice: it sees the film's line
     scan along x (film_profile, the chain's), so that a strip with a 1-D defect starts exactly as the
-    torsion chain of the same sail and film (as_strip); a 2-D defect on a strip adds the line scan h(x)."""
+    torsion chain of the same sail and film (as_strip); a 2-D defect on a strip adds the line scan h(x).
+
+    Billowed (billow_radius finite): the tiles on the spherical cap (cap), the defect and film as a surface
+    over the flat x, y displaced along the cap's normal (billowed_quaternions); a strip's columns are then
+    not the chain's exact chords."""
     require_sheet(p)
     flat = flat_centres(p)
     spectrum = film.of_case(p)
+    if not math.isinf(p.billow_radius):
+        return billowed_quaternions(p, flat, spectrum)
     if p.defect_amplitude == 0 and spectrum is None:
         return flat, np.tile([1.0, 0.0, 0.0, 0.0], (flat.shape[0], 1))
-    if p.defect_mode_y is None and planforms.mesh_of(p).grid is None:
-        w, wx = line_defect(p)
-        x = flat[:, 0]
-        centres = np.column_stack([x, flat[:, 1], w(x)])
-        slope_x, slope_y = wx(x), np.zeros(len(x))
-    elif p.defect_mode_y is None:
+    if p.defect_mode_y is None and planforms.mesh_of(p).grid is not None:
         strip = p.ny == 1  # the chain's construction carries the line scan itself
         chain = shapes.initial_state(p if strip or spectrum is None else p.replace(film_rms=0.0))
         i = np.tile(np.arange(p.n), p.ny)
@@ -118,16 +120,88 @@ def initial_quaternions(p: SailParameters) -> tuple[np.ndarray, np.ndarray]:
             half = 0.5 * chain.theta[i]
             return centres, np.column_stack([np.cos(half), 0 * half, -np.sin(half), 0 * half])
         slope_x, slope_y = np.tan(chain.theta[i]), np.zeros(centres.shape[0])
-    else:
-        w, wx, wy = defect_surface(p)
-        x, y = flat[:, 0], flat[:, 1]
-        centres = np.column_stack([x, y, w(x, y)])
-        slope_x, slope_y = wx(x, y), wy(x, y)
-    if spectrum is not None:
         heights, film_x, film_y = film_field(p, spectrum, centres[:, 0], centres[:, 1])
         centres[:, 2] += heights
         slope_x, slope_y = slope_x + film_x, slope_y + film_y
+    else:
+        w, slope_x, slope_y = surface_defect(p, flat, spectrum)
+        centres = np.column_stack([flat[:, 0], flat[:, 1], w])
     return centres, tilt_quaternion(np.column_stack([-slope_x, -slope_y, np.ones_like(slope_x)]))
+
+
+def surface_defect(p: SailParameters, flat: np.ndarray, spectrum) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(w, ∂w/∂x, ∂w/∂y) at the flat centres (N, 3) of the defect as a surface: the 1-D defect w(x)
+    (line_defect), or the 2-D one (defect_surface), zero without a defect; plus the film (film_field)."""
+    x, y = flat[:, 0], flat[:, 1]
+    if p.defect_amplitude == 0:
+        w, slope_x, slope_y = np.zeros(len(x)), np.zeros(len(x)), np.zeros(len(x))
+    elif p.defect_mode_y is None:
+        f, fx = line_defect(p)
+        w, slope_x, slope_y = f(x), fx(x), np.zeros(len(x))
+    else:
+        f, fx, fy = defect_surface(p)
+        w, slope_x, slope_y = f(x, y), fx(x, y), fy(x, y)
+    if spectrum is not None:
+        heights, film_x, film_y = film_field(p, spectrum, x, y)
+        w, slope_x, slope_y = w + heights, slope_x + film_x, slope_y + film_y
+    return w, slope_x, slope_y
+
+
+def cap(p: SailParameters, flat: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(points (N, 3), unit normals (N, 3)): the flat centres laid on the spherical cap of radius R_c
+    (billow_radius), the strip's billowed arc (model.shapes) one dimension up.
+
+    The middle m = (L/2, W/2) is the apex; a point at distance r from it in the direction d̂ goes to geodesic
+    distance r from the apex along the meridian d̂ (lengths along the meridians kept, the parallels
+    shortened by sin(κr)/(κr)), at polar angle ψ = κr, κ = 1/R_c:
+
+        P = m + d sinc(κr) + (cos ψ − 1)/κ ẑ,   ν = (κ d sinc(κr), cos ψ),   sinc t = sin t / t,
+
+    with (cos ψ − 1)/κ = −2 sin²(ψ/2)/κ. R_c > 0 is concave towards the laser (the beam travels along +z;
+    the edges lie upstream of the apex, as the strip's arc), its centre at m − R_c ẑ: |P − (m − R_c ẑ)| = |R_c|."""
+    kappa = 1.0 / float(p.billow_radius)
+    middle = np.array([0.5 * p.length, 0.5 * p.width])
+    d = flat[:, :2] - middle
+    psi = kappa * np.hypot(d[:, 0], d[:, 1])
+    shrink = np.sinc(psi / np.pi)
+    sag = -2.0 * np.sin(0.5 * psi) ** 2 / kappa
+    points = np.column_stack([middle + d * shrink[:, None], sag])
+    normals = np.column_stack([kappa * d * shrink[:, None], np.cos(psi)])
+    return points, normals
+
+
+def billowed_quaternions(p: SailParameters, flat: np.ndarray, spectrum) -> tuple[np.ndarray, np.ndarray]:
+    """Tile centres (N, 3) and unit quaternions (N, 4) of the billowed sheet: on the cap (cap; each tile turned
+    by the twist-free rotation from ẑ to the cap's normal), displaced along the normal by the defect and film
+    (surface_defect, as functions of the flat x, y) and turned from the cap's tangent plane to their slope:
+    q = q_cap ⊗ q_defect, q_defect the twist-free tilt to (−w_x, −w_y, 1)."""
+    points, normals = cap(p, flat)
+    q_cap = tilt_quaternion(normals)
+    if p.defect_amplitude == 0 and spectrum is None:
+        return points, q_cap
+    w, slope_x, slope_y = surface_defect(p, flat, spectrum)
+    q_defect = tilt_quaternion(np.column_stack([-slope_x, -slope_y, np.ones_like(w)]))
+    return points + w[:, None] * normals, quaternion_product(q_cap, q_defect)
+
+
+def quaternion_product(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a ⊗ b of quaternions (..., 4), scalar first: the rotation b, then a."""
+    a0, av = a[..., :1], a[..., 1:]
+    b0, bv = b[..., :1], b[..., 1:]
+    return np.concatenate([a0 * b0 - np.sum(av * bv, axis=-1, keepdims=True), a0 * bv + b0 * av + np.cross(av, bv)], -1)
+
+
+def rest_quaternions(p: SailParameters, reference: str, centres: np.ndarray, quaternions: np.ndarray):
+    """The shape (centres, quaternions) in which springs of the given reference are at rest, or None for the
+    flat sheet: "initial" the initial shape (given) when it is not flat; "flat" flat, or the cap without the
+    defect for a billowed sheet made curved (billow_rest)."""
+    billowed = not math.isinf(p.billow_radius)
+    if reference == "initial":
+        return (centres, quaternions) if (p.defect_amplitude > 0 or p.film_rms > 0 or billowed) else None
+    if billowed and p.billow_rest:
+        points, normals = cap(p, flat_centres(p))
+        return points, tilt_quaternion(normals)
+    return None
 
 
 def line_defect(p: SailParameters):

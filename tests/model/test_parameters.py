@@ -209,7 +209,7 @@ def test_sheet_fields_round_trip_and_defaults():
         (dict(optics="mirror"), "optics", "None for a sheet"),
         (dict(payload_mass=1e-3), "payload_mass", "0 for a sheet"),
         (dict(initial_tilt=0.1), "initial_tilt", "0 for a sheet"),
-        (dict(billow_radius=2.0), "billow_radius", "inf (flat) for a sheet"),
+        (dict(billow_radius=0.2), "billow_radius", "90° from its apex"),
     ],
 )
 def test_bad_sheet_values_name_the_parameter(changes, name, words):

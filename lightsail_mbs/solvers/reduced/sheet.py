@@ -241,10 +241,15 @@ def distance2_colouring(neighbours: list) -> np.ndarray:
 
 def state_scales(p: SailParameters) -> np.ndarray:
     """Absolute-tolerance scales per state component: a₀ for u, the defect slope for q, and both over the
-    instability time √(L/g₀) for the rates."""
+    instability time √(L/g₀) for the rates; a billowed sheet's at least its cap's sag and largest slope (the
+    round-off of its tilted springs' forces, ~1e-16 of them, must sit below the tolerance)."""
     a0 = p.displacement_scale
     mode = p.defect_mode if p.defect_mode_y is None else max(p.defect_mode, p.defect_mode_y)
     slope = max(2 * math.pi * mode * p.defect_amplitude / p.length, a0 / p.length)
+    if not math.isinf(p.billow_radius):
+        points, normals = sheet.cap(p, sheet.flat_centres(p))
+        a0 = max(a0, float(np.ptp(points[:, 2])))
+        slope = max(slope, float(np.max(np.hypot(normals[:, 0], normals[:, 1]))))
     tc = math.sqrt(p.length / p.nominal_acceleration) if p.nominal_acceleration > 0 else 1.0
     return np.tile(np.r_[[a0] * 3, [slope] * 4, [a0 / tc] * 3, [slope / tc] * 3], sheet.tile_count(p))
 
