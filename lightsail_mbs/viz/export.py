@@ -13,7 +13,7 @@ Cell fields, per tile (SI units):
   what the failure rule measures); the same in either frame;
 * ``z`` (m): the tile centre's coordinate along the beam;
 * ``velocity`` (m/s) and ``angular_velocity`` (rad/s): the tile's, in the frame chosen;
-* ``load`` (N): the net applied force on the tile, model.sheet.tile_forces — radiation minus the frame
+* ``load`` (N): the net applied force on the tile, model.terms.tile_forces — radiation minus the frame
   force of the accelerating frame, plus a dead pressure's — not the connectors' forces or the edge tension;
   computed in the inertial frame, then turned into the frame chosen.
 
@@ -36,7 +36,7 @@ import numpy as np
 
 from lightsail_mbs.base.files import write_atomically
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import planforms, sheet
+from lightsail_mbs.model import planforms, sheet, terms
 from lightsail_mbs.result import Result
 from lightsail_mbs.viz.spin_frame import check_frame, frame_rotation, in_frame, require_sheet_run, turn
 
@@ -94,7 +94,7 @@ def tile_geometry(result: Result, frame: str = "inertial") -> tuple[np.ndarray, 
     rotations = sheet.rotation_xyz(shown.tile_angles)
     points = shown.tile_centres[:, owner] + np.einsum("tpij,pj->tpi", rotations[:, owner], offsets)
     Q, _ = frame_rotation(result, frame)
-    load = sheet.tile_forces(result.params, result.tile_centres, sheet.normal_xyz(result.tile_angles))
+    load = terms.tile_forces(result.params, result.tile_centres, sheet.normal_xyz(result.tile_angles))
     fields = {
         "deflection": result.deflection(),
         "z": shown.tile_centres[..., 2],

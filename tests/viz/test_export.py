@@ -10,7 +10,7 @@ import pytest
 
 from lightsail_mbs import ParameterError, Result, RunSettings, SailParameters
 from lightsail_mbs.cli import main
-from lightsail_mbs.model import planforms, sheet
+from lightsail_mbs.model import planforms, sheet, terms
 from lightsail_mbs.viz.export import export, tile_geometry
 from lightsail_mbs.viz.spin_frame import in_frame, spin
 from tests.helpers import growing_sine
@@ -51,7 +51,7 @@ def test_xdmf_read_back_by_meshio_equals_the_result(tmp_path, planform):
     run = spinning_dish(planform)
     path = export(run, tmp_path / "run.xdmf")[0]
     count = planforms.mesh_of(run.params).count
-    loads = sheet.tile_forces(run.params, run.tile_centres, sheet.normal_xyz(run.tile_angles))
+    loads = terms.tile_forces(run.params, run.tile_centres, sheet.normal_xyz(run.tile_angles))
     assert np.ptp(loads[..., 2]) > 0.1 * np.max(np.abs(loads[..., 2]))  # the beam's profile shows in the load
     with meshio.xdmf.TimeSeriesReader(path) as reader:
         points, cells = reader.read_points_cells()
@@ -109,7 +109,7 @@ def test_a_spinning_dish_stands_still_in_the_rotating_frame(tmp_path):
     points, _, fields = tile_geometry(run, "rotating")
     np.testing.assert_allclose(points, np.broadcast_to(points[0], points.shape), atol=1e-14)
     np.testing.assert_allclose(fields["deflection"], run.deflection())  # the same in either frame
-    inertial = sheet.tile_forces(run.params, run.tile_centres, sheet.normal_xyz(run.tile_angles))
+    inertial = terms.tile_forces(run.params, run.tile_centres, sheet.normal_xyz(run.tile_angles))
     np.testing.assert_allclose(np.linalg.norm(fields["load"], axis=-1), np.linalg.norm(inertial, axis=-1))
 
 
