@@ -55,4 +55,5 @@ REDUCED_CHAIN_OPTIONS = (
     PERTURBATION,
 )
 register(Solver("reduced", "chain", "reduced.solver", REDUCED_CHAIN_OPTIONS))
-register(Solver("reduced", "sheet", "reduced.sheet", (RTOL, MAX_STEP, PERTURBATION), SHEET_CAPABILITIES))
+REDUCED_SHEET_CAPABILITIES = {**SHEET_CAPABILITIES, "linearise": "linearise"}
+register(Solver("reduced", "sheet", "reduced.sheet", (RTOL, MAX_STEP, PERTURBATION), REDUCED_SHEET_CAPABILITIES))
