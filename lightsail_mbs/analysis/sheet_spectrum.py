@@ -285,6 +285,28 @@ def _deflection(p: SailParameters, xi: np.ndarray) -> np.ndarray:
     return (w / (peak if peak else 1.0)).reshape(p.ny, p.n)
 
 
+def run_state(result, k: int) -> np.ndarray:
+    """The solver's 13N state of sample k of a sheet run (a Result), at rest: centre displacements from the flat
+    grid and unit quaternions of the xyz angles, q = q_x(φ₀) ⊗ q_y(φ₁) ⊗ q_z(φ₂) (R = R_x R_y R_z), to linearise
+    the sheet frozen in the state the run has reached."""
+    half = 0.5 * np.asarray(result.tile_angles[k], float)
+    c, s = np.cos(half), np.sin(half)
+    q = np.column_stack([c[:, 0], s[:, 0], np.zeros_like(c[:, 0]), np.zeros_like(c[:, 0])])
+    for axis in (1, 2):
+        r = np.zeros_like(q)
+        r[:, 0], r[:, 1 + axis] = c[:, axis], s[:, axis]
+        q = np.column_stack(
+            [
+                q[:, 0] * r[:, 0] - np.sum(q[:, 1:] * r[:, 1:], axis=1),
+                q[:, 0:1] * r[:, 1:] + r[:, 0:1] * q[:, 1:] + np.cross(q[:, 1:], r[:, 1:]),
+            ]
+        )
+    state = np.zeros((q.shape[0], 13))
+    state[:, 0:3] = result.tile_centres[k] - sheet.flat_centres(result.params)
+    state[:, 3:7] = q
+    return state.ravel()
+
+
 def deflection_families(p: SailParameters, centres: np.ndarray, a0: float | None = None) -> dict[str, np.ndarray]:
     """Each family's part of the deflection u_z of tile centres (..., N, 3) (a run's samples), as half its
     peak-to-peak spread (m, or in units of a0): u_z projected exactly (signed permutations, no round-off

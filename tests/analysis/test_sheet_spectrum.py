@@ -149,3 +149,18 @@ def test_deflection_families_of_known_fields():
 def test_families_need_a_square_sheet():
     with pytest.raises(ParameterError, match="n = ny"):
         ss.generators(doubly().replace(ny=GRID + 1))
+
+
+def test_run_state_is_the_solvers_state():
+    """A run's first sample rebuilt as the solver's state (quaternions from the xyz angles) is its start: the same
+    centres, the same rotations, the same growth rates."""
+    from lightsail_mbs import RunSettings, solve
+
+    p = stiff(0.5).replace(n=4, ny=4)
+    r = solve(p, "reduced", RunSettings(t_final=0.02, output_interval=0.01), uncertainty=False)
+    state = ss.run_state(r, 0).reshape(-1, 13)
+    centres, q = sheet.initial_quaternions(p)
+    np.testing.assert_allclose(state[:, :3], centres - sheet.flat_centres(p), atol=1e-20)
+    np.testing.assert_allclose(state[:, 3:7] * np.sign(state[:, 3:4]), q, atol=1e-15)
+    rate = ss.spectrum(p).growth_rate  # the finite-difference Jacobian resolves it to ~1e-6
+    assert ss.spectrum(p, state.ravel()).growth_rate == pytest.approx(rate, rel=1e-5)
