@@ -1,12 +1,11 @@
-"""The growth rates of the doubly sinusoidal sheet frozen in the states its 60 s runs reach, against the runs' own
-late growth (validation/sheet_spectrum_late.md).
+"""The growth rates of the doubly sinusoidal sheet frozen in the states its runs reach, against the runs' own late
+growth (validation/sheet_spectrum_late.md).
 
-The 60 s runs of validation/sheet_spectrum.py (section D: 18 × 18 and 24 × 24 tiles, 2–4 E_cr,max; taken from
-the same store, or run again) linearised at rest in the state of the sample where the amplitude first reaches
-LEVELS × a₀ (analysis.sheet_spectrum.run_state), each family's block of the symmetrised linearisation
-(family_spectrum: the whole spectrum of these grids is too large for dense eigenvalues; on 12 × 12 and 16 × 16
-the symmetrised A1 rate is within the whole one's by the amount validation/sheet_spectrum.md, section B, shows),
-beside the run's growth rate over the next LEVEL_STEP in amplitude.
+Every run in the store of validation/sheet_spectrum.py on grids up to WHOLE_GRID (run that first, with the same
+--store), linearised at rest in the state of the sample where the amplitude first reaches LEVELS × a₀, or of
+its largest amplitude if it never does (analysis.sheet_spectrum.run_state; the rates at the start are
+validation/sheet_spectrum.md's): the whole deformation spectrum (analysis.sheet_spectrum.spectrum), beside the
+run's own growth rate over the next LEVEL_STEP in amplitude.
 Run: ``nice python validation/sheet_spectrum_late.py [--store DIR]``.
 """
 
@@ -18,34 +17,53 @@ import sys
 from pathlib import Path
 
 import numpy as np
-from sheet_spectrum import HERE, LONG, LONG_RUNS, case, level_time
+from sheet_spectrum import HERE, level_time
 
 from lightsail_mbs.analysis import plane_amplitude
 from lightsail_mbs.analysis import sheet_spectrum as ss
 from lightsail_mbs.model import theory
-from lightsail_mbs.studies.sweep import run_cases
 
-LEVELS = (1.0, 1.25, 1.5, 1.75)  # a/a₀ of the frozen states (1.0: the start)
-LEVEL_STEP = 0.25  # the run's growth rate from a level to the level + this
+LEVELS = (1.5,)  # a/a₀ of the frozen states (a run that never reaches one: its largest amplitude)
+LEVEL_STEP = 0.5  # the run's growth rate from a level to the level + this
+WHOLE_GRID = 12  # grids up to this one (the whole spectrum's dense eigenvalues take minutes on finer ones)
+
+
+def stored_runs(store: Path) -> list:
+    """(label, Result) of every saved run in the store, by grid and modulus."""
+    from lightsail_mbs.result import Result
+    from lightsail_mbs.studies.store import CaseStore
+
+    out = []
+    for record in CaseStore(store).records():
+        if record.get("result_path"):
+            result = Result.load(store / record["result_path"])
+            p = result.params
+            seed = (record.get("options") or {}).get("perturbation")
+            label = f"{p.n} × {p.n}, {p.youngs_modulus / theory.critical_modulus_max(p):.3g} E_cr,max"
+            out.append((label + (f", seeded {seed:g} m" if seed else ""), result))
+    return sorted(out, key=lambda item: (item[1].params.n, item[1].params.youngs_modulus, item[0]))
+
+
+def frozen_rates(p, result, k: int) -> dict:
+    return ss.spectrum(p, ss.run_state(result, k)).family_rates
 
 
 def rows(store: Path) -> list[dict]:
-    cases = [case(g, r) for g, r in LONG_RUNS]
-    found = run_cases(cases, store, LONG, solver="reduced", workers=1, label="sheet spectrum")
     out = []
-    for p, (_, result) in zip(cases, found, strict=True):
+    for label, result in stored_runs(store):
+        p = result.params
+        if p.n > WHOLE_GRID:
+            continue
         amplitude = plane_amplitude(result.tile_centres)
         amplitude = amplitude / amplitude[0]
         for level in LEVELS:
-            k = 0 if level == 1.0 else int(np.argmax(amplitude >= level))
-            if level > 1.0 and amplitude[k] < level:
-                continue
-            blocks = ss.family_spectrum(p, ss.run_state(result, k))
-            rates = {f: blocks[f].growth_rate for f in ss.FAMILIES}
-            t0 = result.time[k] if level > 1.0 else None
+            reached = amplitude >= level
+            k = int(np.argmax(reached)) if reached.any() else int(np.argmax(amplitude))  # else: its largest
+            rates = frozen_rates(p, result, k)
+            t0 = result.time[k] if k else None
             t1 = level_time(result.time, amplitude, level + LEVEL_STEP)
             row = {
-                "run": f"{p.n} × {p.n}, {p.youngs_modulus / theory.critical_modulus_max(p):.3g} E_cr,max",
+                "run": label,
                 "t": float(result.time[k]),
                 "level": float(amplitude[k]),
                 "run_rate": math.log((level + LEVEL_STEP) / amplitude[k]) / (t1 - t0) if t0 and t1 else None,
@@ -58,11 +76,13 @@ def rows(store: Path) -> list[dict]:
 
 def report(found: list[dict]) -> str:
     lines = [
-        "# The doubly sinusoidal sheet frozen in the states of its 60 s runs",
+        "# The doubly sinusoidal sheet frozen in the states its runs reach",
         "",
-        "Generated by `nice python validation/sheet_spectrum_late.py` (module docstring). Rates (1/s): the fastest",
-        "deformation mode of each family's block of the symmetrised linearisation at rest in the run's state at the",
-        f"first sample with a/a₀ ≥ the level; 'run' is the run's own growth rate from there to {LEVEL_STEP:g} a₀ more.",
+        "Generated by `nice python validation/sheet_spectrum_late.py` (module docstring). Rates (1/s): each family's",
+        "fastest deformation mode of the sheet linearised at rest in the run's state at the first sample with",
+        f"a/a₀ ≥ {', '.join(map(str, LEVELS))} (else at its largest amplitude), the whole deformation spectrum, runs",
+        f"on grids up to {WHOLE_GRID} × {WHOLE_GRID} tiles; 'run's growth' is the run's own growth rate from there to",
+        f"{LEVEL_STEP:g} a₀ more; 0: ≤ 0.001/s.",
         "",
         "| run | t (s) | a/a₀ | run's growth (1/s) | " + " | ".join(ss.FAMILIES) + " |",
         "|---|---|---|---|" + "---|" * len(ss.FAMILIES),

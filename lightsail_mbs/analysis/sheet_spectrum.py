@@ -29,7 +29,12 @@ there, a symmetric defect drives only A1, and a mode of another family grows onl
 symmetry (the finite differences of the Jacobian, the connectors' Tait–Bryan angles, which are not
 symmetric under a mirror beyond first order, round-off). Then L splits into one block per family
 (:func:`family_spectrum`, the ``E`` block once, on its x-odd/y-even half: the other half repeats it), and
-the commutators ‖G L − L G‖ measure how far it does not.
+the commutators ‖G L − L G‖ measure how far it does not. For the sheet with a doubly curved defect L
+commutes with the swap to ~1e-11 but with the mirrors only to ~1e-5 of its norm, in proportion to a₀ and to
+the tile size: the connector law measures a connection in the frame of its first tile, and a mirror makes the
+second tile the first (their frames differ by the neighbours' relative rotation). Through the stiff membrane
+that moves eigenvalues at second order by far more than its size: the family blocks are then a diagnostic,
+and :func:`spectrum` (the whole L, every mode classified) is the answer.
 
 **Rigid modes.** A free sheet (a supported one has none) has six: three translations and three
 rotations (ξ_rigid: Δu = t + ω × r, Δθ_b = R_kᵀ ω). The failure measure (the best-fit plane removed) does
