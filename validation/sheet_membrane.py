@@ -11,7 +11,8 @@ A. Linearised spectrum at the initial state (8 × 8 tiles, ν = 1.5 × 1.5, E = 
    growth rates with the drilling springs at their former stiffness E_m h e³/(12 s) (the within-tile
    in-plane bending) and at the current D_m e/s, lit and unlit, with the bending springs at rest flat
    (the paper's convention) or in the initial shape (a stress-free defect: unlit, an exact equilibrium,
-   which no conservative model can make unstable). The former drilling springs, through the connector
+   which no conservative model can make unstable), and the fastest deformation mode with the rigid-body motion
+   removed (analysis.sheet_spectrum). The former drilling springs, through the connector
    law's Tait–Bryan moments A₀Kφ (not the gradient of a potential), coupled in-plane rotation to tilt
    with a circulatory stiffness ~ k_drill θ and made even the unlit, stress-free sheet grow at ~15/s.
 B. Time domain (in-house, grid × grid tiles, 6 s): failure time and largest amplitude ratio with the
@@ -33,6 +34,7 @@ import numpy as np  # noqa: E402
 
 from lightsail_mbs import RunSettings, SailParameters  # noqa: E402
 from lightsail_mbs import solve as solve_with_estimate  # noqa: E402
+from lightsail_mbs.analysis import sheet_spectrum  # noqa: E402
 from lightsail_mbs.model import sheet, sheet_connectors, theory  # noqa: E402
 from lightsail_mbs.solvers.reduced.sheet import SheetModel  # noqa: E402
 from lightsail_mbs.studies.tables import fmt  # noqa: E402
@@ -67,10 +69,14 @@ def spectra() -> list[str]:
     lines = [
         "## A. Linearised growth rates at the initial state (8 × 8)",
         "",
-        f"E = 10.83 E_cr,max = {E:.3g} Pa; growth rate = largest real part of the eigenvalues (1/s).",
+        f"E = 10.83 E_cr,max = {E:.3g} Pa; growth rate = largest real part of the eigenvalues (1/s). The last",
+        "column: the largest over the deformation modes, rigid-body motion removed",
+        "(lightsail_mbs.analysis.sheet_spectrum), and the mode's symmetry family; the eigenvalues before it include",
+        "the six rigid-body modes, whose zero eigenvalues the non-equilibrium state and the finite differences split.",
         "",
-        "| drilling springs | E_m (Pa) | bending at rest | beam | two largest eigenvalues (1/s) |",
-        "|---|---|---|---|---|",
+        "| drilling springs | E_m (Pa) | bending at rest | beam | two largest eigenvalues (1/s) | fastest deformation "
+        "mode (1/s, family) |",
+        "|---|---|---|---|---|---|",
     ]
     for label, stiffness in (("former E_m h e³/(12 s)", former_edge_stiffness), ("current D_m e/s", None)):
         sheet_connectors.edge_stiffness = stiffness or CURRENT_EDGE_STIFFNESS  # what connectors() calls
@@ -85,9 +91,11 @@ def spectra() -> list[str]:
                             intensity=1e8 if lit else 0.0,
                         )
                         w = growth_rates(p)
+                        s = sheet_spectrum.spectrum(p)
                         lines.append(
                             f"| {label} | {sheet.Tiles.of(p).membrane_modulus:.3g} | {reference} | "
-                            f"{'on' if lit else 'off'} | {' , '.join(f'{z.real:.3g}{z.imag:+.2g}j' for z in w)} |"
+                            f"{'on' if lit else 'off'} | {' , '.join(f'{z.real:.3g}{z.imag:+.2g}j' for z in w)} | "
+                            f"{s.growth_rate:.3g} ({s.family}) |"
                         )
                         print(lines[-1], flush=True)
         finally:

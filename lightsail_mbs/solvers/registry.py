@@ -72,6 +72,9 @@ REDUCED_CHAIN_CAPABILITIES = {
 register(
     Solver("reduced", "chain", "reduced.solver", REDUCED_CHAIN_OPTIONS, REDUCED_CHAIN_CAPABILITIES, CHAIN_DEFAULTS)
 )
+REDUCED_SHEET_CAPABILITIES = {**SHEET_CAPABILITIES, "linearise": "linearise"}
 register(
-    Solver("reduced", "sheet", "reduced.sheet", (RTOL, MAX_STEP, PERTURBATION), SHEET_CAPABILITIES, SHEET_DEFAULTS)
+    Solver(
+        "reduced", "sheet", "reduced.sheet", (RTOL, MAX_STEP, PERTURBATION), REDUCED_SHEET_CAPABILITIES, SHEET_DEFAULTS
+    )
 )

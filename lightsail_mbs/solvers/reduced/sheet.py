@@ -396,3 +396,29 @@ def eigenfrequencies(p: SailParameters, count: int = 10) -> np.ndarray:
     model = SheetModel(p)
     values = eigs(model.stiffness(model.y0()), k=count, sigma=-1e-9, which="LM", return_eigenvectors=False)
     return np.sort(np.sqrt(np.abs(values.real)))
+
+
+def linearise(p: SailParameters, state: np.ndarray | None = None) -> sp.csc_matrix:
+    """The Jacobian L (12N × 12N, sparse) of the sheet's equations linearised at rest in `state` (the solver's
+    13N state vector, velocities ignored; default the initial shape), in a minimal parametrisation.
+
+    The solver's state carries a unit quaternion per tile, 4 parameters for 3 rotations: its Jacobian has a
+    spurious direction per tile (q scaled along itself). Perturbing a tile as q ⊗ exp(Δθ_b/2) instead keeps
+    q on the unit sphere, and Ẋ = B V (:meth:`SheetModel.kinematics`) maps the body-frame rates onto its
+    tangent space, so with ξ = (Δu, Δθ_b) per tile and V = (v, ω_b) at rest
+
+        ξ̇ = V,    V̇ = K ξ + C V,    K = ∂a/∂X · B = :meth:`SheetModel.stiffness`,  C = ∂a/∂V,
+
+    (the gyroscopic term ω_b × J ω_b is quadratic in V and vanishes at rest). L = [[0, I], [K, C]] in the
+    order (ξ of every tile, 6 per tile: Δu_x, Δu_y, Δu_z, Δθ_x, Δθ_y, Δθ_z; then V of every tile in the same
+    order), tile k = j·nx + i. Its eigenvalues λ are the growth rates (Re λ) and frequencies of the sheet
+    frozen in that state: where the state is not an equilibrium (a released defect) they describe small
+    deviations about the state before it has moved."""
+    model = SheetModel(p)
+    y = model.y0() if state is None else np.array(state, float)
+    y.reshape(model.tiles.count, STATE)[:, 7:] = 0.0
+    J = model.jacobian(0.0, y).tocsr()
+    V = model.velocity_indices
+    K = J[V][:, model.position_indices] @ model.kinematics(y)
+    C = J[V][:, V]
+    return sp.bmat([[None, sp.identity(V.size)], [K, C]], format="csc")
