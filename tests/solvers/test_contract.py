@@ -76,7 +76,7 @@ def test_a_missing_capability_is_one_line():
     """A solver that lacks a capability, a family or a name each give one ParameterError line, before
     anything is imported or solved; an unknown capability cannot be declared."""
     for solver, name, words in (
-        (("reduced", "sheet"), "linearise", "the reduced sheet solver has no capability 'linearise': it offers"),
+        (("exudyn", "sheet"), "linearise", "the exudyn sheet solver has no capability 'linearise': it offers"),
         (("exudyn", "chain"), "linearise", "the exudyn chain solver has no capability 'linearise': it offers"),
         (("reduced", "chain"), "mass_stiffness", "the reduced chain solver has no capability 'mass_stiffness'"),
     ):
