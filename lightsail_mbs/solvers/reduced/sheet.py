@@ -52,7 +52,7 @@ import scipy.sparse as sp
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import failure, sheet
+from lightsail_mbs.model import failure, sheet, sheet_spin
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.progress import Progress
@@ -113,6 +113,9 @@ class SheetModel:
         y = np.zeros((self.tiles.count, STATE))
         y[:, 0:3] = self.start - self.flat
         y[:, 3:7] = self.q0
+        if self.p.spin_rate != 0:  # rigid rotation (model.sheet_spin); ω in the tiles' body axes
+            y[:, 7:10], omega = sheet_spin.spin_velocities(self.p, self.start)
+            y[:, 10:13] = np.einsum("kji,kj->ki", sheet.quaternion_rotation(self.q0), omega)
         return y.ravel()
 
     def rhs(self, t, y, out=None):
