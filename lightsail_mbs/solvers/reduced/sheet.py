@@ -258,12 +258,19 @@ def distance2_colouring(neighbours: list) -> np.ndarray:
 
 def state_scales(p: SailParameters) -> np.ndarray:
     """Absolute-tolerance scales per state component: a₀ for u, the defect slope for q, and both over the
-    instability time √(L/g₀) for the rates."""
+    instability time √(L/g₀) for the rates. A spinning sail's in-plane motion is its rotation: u_x, u_y
+    and v_x, v_y are scaled by the rim's radius and speed (a tile near the axis moves little, but the
+    round-off of its in-plane forces, ~ε k_∥ R, is that of the whole sheet's)."""
     a0 = p.displacement_scale
     mode = p.defect_mode if p.defect_mode_y is None else max(p.defect_mode, p.defect_mode_y)
     slope = max(2 * math.pi * mode * p.defect_amplitude / p.length, a0 / p.length)
     tc = math.sqrt(p.length / p.nominal_acceleration) if p.nominal_acceleration > 0 else 1.0
-    return np.tile(np.r_[[a0] * 3, [slope] * 4, [a0 / tc] * 3, [slope / tc] * 3], sheet.tile_count(p))
+    scales = np.tile(np.r_[[a0] * 3, [slope] * 4, [a0 / tc] * 3, [slope / tc] * 3], (sheet.tile_count(p), 1))
+    if p.spin_rate != 0:
+        rim = 0.5 * max(p.length, p.width)
+        scales[:, 0:2] = np.maximum(scales[:, 0:2], rim)
+        scales[:, 7:9] = np.maximum(scales[:, 7:9], abs(p.spin_rate) * rim)
+    return scales.ravel()
 
 
 def run(params: SailParameters, settings: RunSettings, *, progress: bool = False, **options) -> Result:
