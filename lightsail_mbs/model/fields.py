@@ -202,6 +202,21 @@ FIELDS = {
         _choices(planforms.PLANFORMS),
         family="sheet",
     ),
+    "spin_rate": FieldInfo(
+        SHEET,
+        "rad/s",
+        "initial spin Ω about the sail's normal through its centre, from the spun equilibrium (the unlit flat "
+        "sail rests in its rotating frame)",
+        "finite; 0 unless boundary='free'",
+        family="sheet",
+    ),
+    "spin_tilt": FieldInfo(
+        SHEET,
+        "rad",
+        "the initial angular velocity turned from the sail's normal towards +x by this angle (a nutating spin)",
+        "|tilt| < π/2; 0 unless spin_rate ≠ 0",
+        family="sheet",
+    ),
     "billow_radius": FieldInfo(
         SAIL,
         "m",

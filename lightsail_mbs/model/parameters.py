@@ -101,6 +101,8 @@ class SailParameters(DerivedQuantities):
     bending_reference: str = "flat"  # bending springs at rest "flat" or in the "initial" (manufactured) shape
     initial_equilibrium: bool = False  # True: the springs' rest state corrected: the unlit sheet rests as it starts
     planform: str = "rectangle"  # the sheet's outline and its tiles: one of model.planforms.PLANFORMS
+    spin_rate: float = 0.0  # Ω, rad/s: initial spin about the sail's normal through its centre (model.sheet_spin)
+    spin_tilt: float = 0.0  # rad: the initial angular velocity turned from the normal towards +x (nutation)
     billow_radius: float = math.inf  # R_c, m: initial circular arc (shapes.py); > 0 concave to the laser; inf: flat
     optics: str | None = None  # the slices' force law from a table: None (R, α above), "mirror", or a table file
     optics_layout: str = "uniform"  # one of OPTICS_LAYOUTS: which slices carry the table turned over
@@ -305,6 +307,9 @@ class SailParameters(DerivedQuantities):
         check(
             "initial_equilibrium", self.initial_equilibrium, isinstance(self.initial_equilibrium, bool), "True or False"
         )
+        spin, tilt = finite("spin_rate", self.spin_rate), finite("spin_tilt", self.spin_tilt)
+        check("spin_rate", spin, spin == 0 or self.boundary == "free", "0 unless boundary='free'")
+        check("spin_tilt", tilt, abs(tilt) < math.pi / 2 and (tilt == 0 or spin != 0), "|β| < π/2, 0 unless spinning")
 
     def _check_optics(self) -> None:
         check("optics_layout", self.optics_layout, self.optics_layout in OPTICS_LAYOUTS, " or ".join(OPTICS_LAYOUTS))

@@ -27,6 +27,8 @@ SHEET_DEFAULTS = {
     "bending_reference": "flat",
     "initial_equilibrium": False,
     "planform": "rectangle",
+    "spin_rate": 0.0,
+    "spin_tilt": 0.0,
 }
 # Fields added after the store's keys were first written, omitted by to_dict at their defaults so that the
 # record (and store key) of every case that does not use them stays what it was.

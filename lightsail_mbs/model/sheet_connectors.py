@@ -96,7 +96,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lightsail_mbs.model import planforms
+from lightsail_mbs.model import planforms, sheet_spin
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.model.sheet_grid import (
     Tiles,
@@ -253,8 +253,13 @@ def connectors(
     damping = p.stiffness_damping * K
     damping[:, [0, 1, 2, 5]] += t.membrane_damping * K[:, [0, 1, 2, 5]]
     out = Connectors(ta, tb, la, lb, K, damping, offset, kind, gap, frame)
-    if p.initial_equilibrium:
-        out.offset = equilibrium_offsets(p, out, centres, quaternions)
+    if p.initial_equilibrium or p.spin_rate != 0:
+        load = None
+        if p.spin_rate != 0:  # the spun equilibrium (model.sheet_spin): the initial residual kept, if any
+            load = sheet_spin.centrifugal_loads(p, centres, quaternions)
+            if not p.initial_equilibrium:
+                load = load - static_loads(p, out, centres, quaternions)
+        out.offset = equilibrium_offsets(p, out, centres, quaternions, load=load)
     return out
 
 
@@ -353,10 +358,16 @@ def _load_map(p: SailParameters, conn: Connectors, centres: np.ndarray, quaterni
 
 
 def equilibrium_offsets(
-    p: SailParameters, conn: Connectors, centres: np.ndarray, quaternions: np.ndarray, iterations: int = 4
+    p: SailParameters,
+    conn: Connectors,
+    centres: np.ndarray,
+    quaternions: np.ndarray,
+    iterations: int = 4,
+    load: np.ndarray | None = None,
 ) -> np.ndarray:
     """The connectors' rest offsets (C, 6) corrected so that the unlit sheet, edge tension included, is at
-    rest in the given state (initial_equilibrium).
+    rest in the given state (initial_equilibrium), or, with a load (N, 6, static_loads' layout), in
+    equilibrium with it (static_loads + load = 0: the spun equilibrium, model.sheet_spin).
 
     The residual r (static_loads, 6N) is linear in the offsets: a change Δo of the rest strains changes the
     connectors' local loads by −K Δo and the tiles' loads by −G K Δo (G: _load_map). Of all Δo that cancel r
@@ -388,6 +399,8 @@ def equilibrium_offsets(
     lu = splu(S[keep][:, keep].tocsc())
     for _ in range(iterations):
         r = static_loads(p, Connectors(**{**conn.__dict__, "offset": offset}), centres, quaternions).ravel()
+        if load is not None:
+            r = r + load.ravel()
         if free:
             r = r - rigid @ np.linalg.lstsq(rigid, r, rcond=None)[0]
         lam = np.zeros(S.shape[0])

@@ -47,7 +47,7 @@ import numpy as np
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import failure, sheet, terms
+from lightsail_mbs.model import failure, sheet, sheet_spin, terms
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.model.terms.bodies import VELOCITIES
 from lightsail_mbs.result import Result
@@ -147,6 +147,11 @@ class SheetSystem:
         start = sheet.perturbed(p, self.centres0, perturbation)
         angles0 = sheet.angles_xyz(sheet.quaternion_rotation(self.q0))
         self.conn = sheet.connectors(p, self.centres0, self.q0)
+        velocities, rates = np.zeros((N, 3)), np.zeros((N, 3))
+        if p.spin_rate != 0:  # rigid rotation (model.sheet_spin); the angles' rates φ̇ = G⁻¹ω
+            velocities, omega = sheet_spin.spin_velocities(p, start)
+            G = angular_velocity_xyz(angles0[:, None, :], np.eye(3)).transpose(0, 2, 1)  # ω = G φ̇
+            rates = np.linalg.solve(G, omega[:, :, None])[:, :, 0]
         self.SC = exu.SystemContainer()
         mbs = self.mbs = self.SC.AddSystem()
         J = self.tiles.inertias  # Exudyn's order: J_xx, J_yy, J_zz, J_yz, J_xz, J_xy
@@ -158,7 +163,7 @@ class SheetSystem:
                 NodeRigidBodyRxyz(
                     referenceCoordinates=[*self.flat[k], 0.0, 0.0, 0.0],
                     initialCoordinates=[*(start[k] - self.flat[k]), *angles0[k]],
-                    initialVelocities=[0.0] * 6,
+                    initialVelocities=[*velocities[k], *rates[k]],
                 )
             )
             self.nodes.append(node)

@@ -52,7 +52,7 @@ import scipy.sparse as sp
 
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import failure, sheet, terms
+from lightsail_mbs.model import failure, sheet, sheet_spin, terms
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.progress import Progress
@@ -100,6 +100,9 @@ class SheetModel:
         y = np.zeros((self.tiles.count, STATE))
         y[:, 0:3] = self.start - self.flat
         y[:, 3:7] = self.q0
+        if self.p.spin_rate != 0:  # rigid rotation (model.sheet_spin); ω in the tiles' body axes
+            y[:, 7:10], omega = sheet_spin.spin_velocities(self.p, self.start)
+            y[:, 10:13] = np.einsum("kji,kj->ki", sheet.quaternion_rotation(self.q0), omega)
         return y.ravel()
 
     def rhs(self, t, y, out=None):
@@ -242,7 +245,10 @@ def distance2_colouring(neighbours: list) -> np.ndarray:
 def state_scales(p: SailParameters) -> np.ndarray:
     """Absolute-tolerance scales per state component: a₀ for u, the defect slope for q, and both over the
     instability time √(L/g₀) for the rates; a billowed sheet's at least its cap's sag and largest slope (the
-    round-off of its tilted springs' forces, ~1e-16 of them, must sit below the tolerance)."""
+    round-off of its tilted springs' forces, ~1e-16 of them, must sit below the tolerance). A spinning sail's
+    in-plane motion is its rotation: u_x, u_y and v_x, v_y are scaled by the rim's radius and speed (a tile
+    near the axis moves little, but the round-off of its in-plane forces, ~ε k_∥ R, is that of the whole
+    sheet's)."""
     a0 = p.displacement_scale
     mode = p.defect_mode if p.defect_mode_y is None else max(p.defect_mode, p.defect_mode_y)
     slope = max(2 * math.pi * mode * p.defect_amplitude / p.length, a0 / p.length)
@@ -251,7 +257,12 @@ def state_scales(p: SailParameters) -> np.ndarray:
         a0 = max(a0, float(np.ptp(points[:, 2])))
         slope = max(slope, float(np.max(np.hypot(normals[:, 0], normals[:, 1]))))
     tc = math.sqrt(p.length / p.nominal_acceleration) if p.nominal_acceleration > 0 else 1.0
-    return np.tile(np.r_[[a0] * 3, [slope] * 4, [a0 / tc] * 3, [slope / tc] * 3], sheet.tile_count(p))
+    scales = np.tile(np.r_[[a0] * 3, [slope] * 4, [a0 / tc] * 3, [slope / tc] * 3], (sheet.tile_count(p), 1))
+    if p.spin_rate != 0:
+        rim = 0.5 * max(p.length, p.width)
+        scales[:, 0:2] = np.maximum(scales[:, 0:2], rim)
+        scales[:, 7:9] = np.maximum(scales[:, 7:9], abs(p.spin_rate) * rim)
+    return scales.ravel()
 
 
 def run(params: SailParameters, settings: RunSettings, *, progress: bool = False, **options) -> Result:

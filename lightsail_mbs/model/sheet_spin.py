@@ -1,0 +1,129 @@
+"""The spinning sheet (model "sheet", case fields ``spin_rate`` Ω and ``spin_tilt`` β): its initial velocities,
+the centrifugal loads of its spun equilibrium, and the closed forms its validations compare with.
+
+Initial velocities
+------------------
+The sail starts in rigid rotation at ω = Ω (sin β, 0, cos β) about its centre of mass c_m (β = 0: the spin
+about the sail's normal ẑ): tile k's centre moves at v_k = ω × (c_k − c_m) and every tile turns at ω. With
+β ≠ 0 the angular velocity is off the sail's symmetry axis and the sail nutates (free_top_rates).
+
+The spun equilibrium
+--------------------
+In steady rotation at Ω_z = Ω cos β about ẑ every tile's centre moves on a circle, so its connectors must
+supply the centripetal force −m Ω_z² ρ_k (ρ_k = the in-plane part of c_k − c_m) and the torque
+Ω_z ẑ × J_k Ω_z ẑ (zero for a flat tile, whose ẑ is a principal axis). The connectors' rest state is
+corrected so that they do, in the initial shape: the residual of static_loads plus the centrifugal loads
+C_k = (m Ω_z² ρ_k, −ω × J ω) is cleared by the elastic correction of the rest offsets (model.sheet_connectors.
+equilibrium_offsets: of all corrections that clear it, the one of least complementary energy, i.e. the
+compatible elastic stress state), added to whatever residual the initial shape already had (a defect held
+by the bending springs keeps its own). The sail therefore starts at its initial positions carrying the
+centrifugal stress of its spun state: rigid rotation is then an exact solution of the unlit sheet (the
+connectors' strains and forces are invariant under the rotation, and the markers of each connector
+coincide, so the relative velocity its damping sees is zero). The stretched positions of that state
+differ from the initial ones by the strain ρΩ²R²/E (~1e-9 for the paper's film at 100 rad/s); they are not
+used (the rest lengths absorb them instead), which keeps the initial shape the case's.
+
+The in-plane stress of a spinning free disc (plane stress, Poisson ratio ν_p; Timoshenko & Goodier §32)::
+
+    σ_r = (3 + ν_p)/8 ρΩ²(R² − r²),   σ_θ = ρΩ²[(3 + ν_p)R² − (1 + 3ν_p)r²]/8,
+
+from the equilibrium dσ_r/dr + (σ_r − σ_θ)/r + ρΩ²r = 0, compatibility, σ_r(R) = 0 and a finite centre.
+The sheet's in-plane springs have ν_p = 0 (model.sheet_connectors): σ_r = 3ρΩ²(R² − r²)/8,
+σ_θ = ρΩ²(3R² − r²)/8. edge_stresses reads the discrete sheet's normal stress across every shared edge.
+
+A free symmetric top (I₁ = I₂ ≠ I₃) has constant ω₃ and, in its body axes, Euler's equations
+I₁ω̇₁ = −(I₃ − I₁)ω₂ω₃, I₁ω̇₂ = (I₃ − I₁)ω₃ω₁: the transverse body rate ω₁ + iω₂ turns at
+λ = (I₃ − I₁)ω₃/I₁ (a thin disc: I₃ = 2I₁, λ = ω₃), (free_top_rates).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from lightsail_mbs.model import planforms
+from lightsail_mbs.model.parameters import SailParameters
+from lightsail_mbs.model.sheet_grid import Tiles, quaternion_rotation
+
+
+def spin_vector(p: SailParameters) -> np.ndarray:
+    """ω = Ω (sin β, 0, cos β) (rad/s): the sail's initial angular velocity."""
+    return p.spin_rate * np.array([math.sin(p.spin_tilt), 0.0, math.cos(p.spin_tilt)])
+
+
+def spin_centre(p: SailParameters, centres: np.ndarray) -> np.ndarray:
+    """c_m (3,): the tiles' centre of mass."""
+    masses = Tiles.of(p).masses
+    return masses @ np.asarray(centres) / masses.sum()
+
+
+def spin_velocities(p: SailParameters, centres: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(v (N, 3), ω (N, 3)): the tiles' centre velocities ω × (c_k − c_m) and global angular velocities ω
+    of the sail's initial rigid rotation (module docstring); zeros when it does not spin."""
+    omega = spin_vector(p)
+    centres = np.asarray(centres, float)
+    velocities = np.cross(omega, centres - spin_centre(p, centres))
+    return velocities, np.tile(omega, (len(centres), 1))
+
+
+def centrifugal_loads(p: SailParameters, centres: np.ndarray, quaternions: np.ndarray) -> np.ndarray:
+    """(N, 6): the centrifugal force m Ω_z² ρ_k (global, N) and torque −ω × J ω (global, N m) of every tile in
+    the steady spin ω = Ω_z ẑ (Ω_z = Ω cos β), static_loads' layout: the connectors rest in the spun state
+    when their loads plus these vanish (module docstring)."""
+    t = Tiles.of(p)
+    spin = p.spin_rate * math.cos(p.spin_tilt)
+    omega = np.array([0.0, 0.0, spin])
+    centres = np.asarray(centres, float)
+    radial = centres - spin_centre(p, centres)
+    radial[:, 2] = 0.0
+    out = np.zeros((len(centres), 6))
+    out[:, :3] = t.masses[:, None] * spin**2 * radial
+    rotations = quaternion_rotation(quaternions)
+    inertia = np.einsum("kij,kjl,kml->kim", rotations, t.inertias, rotations)  # R J Rᵀ
+    out[:, 3:] = -np.cross(omega, inertia @ omega)
+    return out
+
+
+def rigid_inertia(p: SailParameters, centres: np.ndarray, quaternions: np.ndarray) -> np.ndarray:
+    """The sail's inertia tensor (3, 3) about its centre of mass as one rigid body (kg m²): the tiles' own
+    (turned to their orientations) plus m(|r|² I − r rᵀ) of their centres."""
+    t = Tiles.of(p)
+    r = np.asarray(centres, float) - spin_centre(p, centres)
+    rotations = quaternion_rotation(quaternions)
+    own = np.einsum("kij,kjl,kml->im", rotations, t.inertias, rotations)
+    parallel = np.einsum("k,kij->ij", t.masses, np.einsum("ki,ki->k", r, r)[:, None, None] * np.eye(3))
+    return own + parallel - np.einsum("k,ki,kj->ij", t.masses, r, r)
+
+
+def disc_stress(r, radius: float, density: float, spin_rate: float, poisson: float = 0.0):
+    """(σ_r, σ_θ) (Pa) of a free disc of `radius` spinning at `spin_rate`, at radii r (module docstring)."""
+    r = np.asarray(r, float)
+    scale = density * spin_rate**2 / 8.0
+    return (
+        scale * (3.0 + poisson) * (radius**2 - r**2),
+        scale * ((3.0 + poisson) * radius**2 - (1.0 + 3.0 * poisson) * r**2),
+    )
+
+
+def free_top_rates(t, axial: float, transverse: float, inertias: tuple[float, float]) -> np.ndarray:
+    """Body rates (T, 3) of a free symmetric top (I₁ = I₂ = inertias[0], I₃ = inertias[1]) that starts at
+    ω_b = (transverse, 0, axial): (ω⊥ cos λt, ω⊥ sin λt, ω₃), λ = (I₃ − I₁)ω₃/I₁ (module docstring)."""
+    t = np.asarray(t, float)
+    rate = (inertias[1] - inertias[0]) / inertias[0] * axial
+    return np.stack(
+        [transverse * np.cos(rate * t), transverse * np.sin(rate * t), np.full(t.shape, axial)],
+        axis=-1,
+    )
+
+
+def edge_stresses(p: SailParameters, offset: np.ndarray, stiffness: np.ndarray):
+    """(points (E, 2), directions (E, 2), σ (E,)) of the mesh's shared edges in the flat rest state: the
+    connector's marker, the unit vector between the two centres and the normal stress across the edge,
+    σ = −(K o)·d/(e h) (the spring pulls b towards a with the force −K o of its rest offset o, over the
+    edge's cross-section e h). offset, stiffness: the connectors' (model.sheet_connectors.Connectors),
+    whose first E rows are the shared edges."""
+    m = planforms.mesh_of(p)
+    count = len(m.pairs)
+    force = (stiffness[:count, :2] * offset[:count, :2] * m.direction).sum(axis=1)
+    return m.centres[m.pairs[:, 0]] + m.marker_a, m.direction, -force / (m.edge_length * p.thickness)
