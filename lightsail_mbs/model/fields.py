@@ -266,6 +266,13 @@ FIELDS = {
         "the film from the materials table: fills density and youngs_modulus (explicit values override)",
         _choices(MATERIALS),
     ),
+    "velocity_terms": FieldInfo(
+        BEAM,
+        "",
+        "the first-order velocity-dependent radiation load: Doppler and aberration of each slice's or tile's own "
+        "velocity in the sail's frame (a damping of rate 2g₀/c on a mirror's normal velocity)",
+        "",
+    ),
 }
 
 

@@ -112,6 +112,7 @@ class SailParameters(DerivedQuantities):
     billow_rest: bool = False  # torsion springs at rest on the billowed arc (a sail made curved); False: flat
     initial_tilt: float = 0.0  # rad: the initial shape turned counter-clockwise about the craft's centre of mass
     material: str | None = None  # the film's name in model.materials (its density and E fill the case: materials.fill)
+    velocity_terms: bool = False  # the first-order Doppler and aberration of each body's velocity (terms/velocity.py)
 
     def __post_init__(self):
         check("model", self.model, self.model in MODELS, f"one of {', '.join(MODELS)}")
@@ -208,7 +209,8 @@ class SailParameters(DerivedQuantities):
         )
         self._check_optics()
         self._check_payload()
-        check("billow_rest", self.billow_rest, isinstance(self.billow_rest, bool), "True or False")
+        for name in ("billow_rest", "velocity_terms"):
+            check(name, getattr(self, name), isinstance(getattr(self, name), bool), "True or False")
         v = finite("initial_tilt", self.initial_tilt)
         check("initial_tilt", v, abs(v) < math.pi / 2, "|tilt| < π/2 rad")
         check("initial_tilt", v, v == 0 or self.boundary == "free", "0 unless boundary='free'")
@@ -318,7 +320,7 @@ class SailParameters(DerivedQuantities):
             return
         allowed = "None, 'mirror' or the path of an optical table file (.npz, from lightsail-mbs optics … --out)"
         check("optics", self.optics, isinstance(self.optics, str) and self.optics != "", allowed)
-        for name in ("reflectivity", "absorptivity"):
+        for name in ("reflectivity", "absorptivity", "velocity_terms"):
             check(name, getattr(self, name), getattr(self, name) == (name == "reflectivity"), "its default with optics")
         self.optical_table()  # reads the file now: a bad one is refused before any solving
 

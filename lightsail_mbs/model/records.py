@@ -49,6 +49,7 @@ LATER_DEFAULTS = {
     "film_hurst": 0.5,
     "film_seed": 0,
     "material": None,
+    "velocity_terms": False,
 }
 # Names under which saved runs and store records written before the current field names hold them.
 LEGACY_NAMES = {"amplitude": "defect_amplitude", "mode": "defect_mode", "defect_modes": "defect_mode_count"}

@@ -9,11 +9,11 @@ from __future__ import annotations
 import numpy as np
 
 from lightsail_mbs.base.kernels import njit
-from lightsail_mbs.model.terms import body_force, frame, pressure, radiation
+from lightsail_mbs.model.terms import body_force, frame, pressure, radiation, velocity
 from lightsail_mbs.model.terms.bodies import COUNT, ENTRY, HEADER, READS, chain_bodies, tile_bodies
 
 # the order of summation: the forces of every body are added in this order (rule 4)
-TERMS = (radiation, frame, pressure, body_force)
+TERMS = (radiation, frame, pressure, body_force, velocity)
 
 
 def active_terms(p, family: str) -> tuple:
@@ -73,6 +73,10 @@ def _add_term(term, block, bodies, forces, tiles):
         body_force.chain_into(block, bodies, forces)
     elif term == body_force.ID:
         body_force.tiles_into(block, bodies, forces)
+    elif term == velocity.ID and not tiles:
+        velocity.chain_into(block, bodies, forces)
+    elif term == velocity.ID:
+        velocity.tiles_into(block, bodies, forces)
     else:
         raise ValueError("a packed term without a compiled form for this family")
 
