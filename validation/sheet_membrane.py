@@ -46,9 +46,10 @@ CURRENT_EDGE_STIFFNESS = sheet_connectors.edge_stiffness
 
 
 def former_edge_stiffness(p, tiles, edge, span, bending=True):
-    """The drilling stiffness of the first version: E_m h e³/(12 s), the within-tile in-plane bending."""
+    """The drilling stiffness of the first version: E_m h e³/(12 s), the within-tile in-plane bending (of one
+    edge or of an array of edges, as edge_stiffness)."""
     k = CURRENT_EDGE_STIFFNESS(p, tiles, edge, span, bending)
-    k[5] = tiles.membrane_modulus * p.thickness * edge**3 / (12.0 * span)
+    k[..., 5] = tiles.membrane_modulus * p.thickness * edge**3 / (12.0 * span)
     return k
 
 
