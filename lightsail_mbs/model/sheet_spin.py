@@ -127,3 +127,19 @@ def edge_stresses(p: SailParameters, offset: np.ndarray, stiffness: np.ndarray):
     count = len(m.pairs)
     force = (stiffness[:count, :2] * offset[:count, :2] * m.direction).sum(axis=1)
     return m.centres[m.pairs[:, 0]] + m.marker_a, m.direction, -force / (m.edge_length * p.thickness)
+
+
+def disc_stress_errors(p: SailParameters, offset: np.ndarray, stiffness: np.ndarray) -> tuple[int, float, float]:
+    """(shared edges, σ_r error, σ_θ error) of a spinning free disc: the largest difference of the edge stresses
+    (edge_stresses) from the closed form (disc_stress, ν_p = 0), over the radial edges (centre line within
+    about 45° of the radius) and the circumferential ones, as fractions of the centre's stress 3ρΩ²R²/8."""
+    points, direction, sigma = edge_stresses(p, offset, stiffness)
+    radius = 0.5 * p.length
+    rel = points - radius
+    r = np.hypot(rel[:, 0], rel[:, 1])
+    radial = np.abs(np.sum(rel * direction, axis=1)) > 0.7 * r
+    exact_r, exact_t = disc_stress(r, radius, p.density, p.spin_rate)
+    peak = 3.0 / 8.0 * p.density * p.spin_rate**2 * radius**2
+    error_r = np.max(np.abs(sigma[radial] - exact_r[radial])) / peak
+    error_t = np.max(np.abs(sigma[~radial] - exact_t[~radial])) / peak
+    return len(sigma), float(error_r), float(error_t)
