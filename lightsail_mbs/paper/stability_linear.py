@@ -4,8 +4,8 @@ For the paper's cases (n = 30) the spectra of the flat state's Jacobian with the
 (I₀ = 0) are compared mode by mode (analysis.linear_stability): the load changes no frequency and adds
 no growth rate. The torsion spectrum is set next to the free–free Euler–Bernoulli beam,
 ω_j = (β_j L)² √(EI/(ρhW L⁴)). Exudyn's own forward-difference Jacobian of the lit tree is also shown
-against its difference step: its load part is noise (the central-difference load stiffness of
-analysis.linear_stability is not).
+against its difference step: its load part carries the forward difference's truncation error, linear in
+the step (the central-difference load stiffness of analysis.linear_stability is second order).
 
 Writes stability_linear.png, stability_linear.csv (per case and solver) and stability_linear_exudyn_fd.csv
 (the spurious shift against Exudyn's relativeEpsilon). No time integration and no store: both solvers'
