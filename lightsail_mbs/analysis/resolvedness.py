@@ -30,7 +30,10 @@ crossing (L/√(E/ρ), about 1e-4 s), far faster than any growth; the inextensib
 Where the case is well posed, the discretisation error of the fastest growth rate, δσ = abs(σ(n) − σ(2n)), gives a
 rough n-error of a failure time that scales as ln(ratio)/σ: δt_f ≈ t_f δσ/σ(2n) (``relative_n_error``). The n-error
 a run's ± holds is :mod:`lightsail_mbs.analysis.n_error`'s (coarser twins; this estimate only as its floor for a
-grid-scale fastest wave).
+grid-scale fastest wave). A well-posed case whose fastest rate still moves by more than UNRESOLVED_RATE_CHANGE
+between n and 2n is not resolved at n (bending cuts the growth off, but near the grid scale: the torsion sail
+at E = 0.001 E_cr,max and n = 120 has its fastest wave at 2 slices, σ = 27.2 /s at n and 19.7 /s at 2n); its
+run says so in one line (:meth:`Resolvedness.warning`).
 
 Cost: two Jacobians by central differences (2·dof vectorised right-hand-side calls each) and the eigenproblem
 of the dof × dof block; about 5 ms at n = 30, 0.8 s at n = 240 (with 480 for the twin). Above MAX_SLICES, on
@@ -50,6 +53,7 @@ from lightsail_mbs.model.parameters import SailParameters
 
 MAX_SLICES = 240  # the twin at 2n = 480 costs about 1 s; above, the verdict is not assessed
 RATE_EXPONENT_LIMIT = 0.5  # log₂ σ(2n)/σ(n) above this: the growth still rises toward the grid scale
+UNRESOLVED_RATE_CHANGE = 0.1  # well posed, but abs(σ(n) − σ(2n))/σ(2n) above this: not yet resolved at n
 MIN_DEFORMATION = 0.5  # modes whose angles deviate from their mean by less than this fraction are rigid turns
 FFT_PADDING = 16  # zero-padding factor of the mode's angle spectrum (wavelength resolution)
 
@@ -91,12 +95,29 @@ class Resolvedness:
 
     def to_dict(self) -> dict:
         """The verdict as a record (Result.info), without its CPU time: records of repeated runs stay equal."""
-        record = {**asdict(self), "rate_ratio": self.rate_ratio}
+        record = {**asdict(self), "rate_ratio": self.rate_ratio, "resolved": self.resolved}
         del record["cpu_time"]
         return record
 
+    @property
+    def resolved(self) -> bool | None:
+        """Well posed and its fastest growth rate within UNRESOLVED_RATE_CHANGE between n and 2n (None: not
+        assessed or ill-posed)."""
+        if not self.well_posed:
+            return None
+        return self.relative_n_error is None or self.relative_n_error <= UNRESOLVED_RATE_CHANGE
+
     def warning(self) -> str | None:
-        """One line for Result.warnings when the case is ill-posed in n at this n, else None."""
+        """One line for Result.warnings when the case is ill-posed in n at this n, or well posed but not yet
+        resolved at it; else None."""
+        if self.resolved is False:
+            return (
+                f"not resolved in n: the fastest-growing wave spans {self.slices_per_wavelength:.3g} slices and its "
+                f"growth rate moves from {self.growth_rate:.3g} /s at n = {self.n} to "
+                f"{self.growth_rate_refined:.3g} /s at n = {2 * self.n} ({self.relative_n_error:.0%}); bending cuts "
+                f"the short waves off near the grid scale, so the answer still moves with n (its ± carries the "
+                f"n-error of the coarser twins): refine n"
+            )
         if self.well_posed is not False:
             return None
         ratios = ", ".join(f"{name} = {value:.2g}" for name, value in (self.stiffness_ratios or {}).items())
@@ -180,6 +201,8 @@ def assess(p: SailParameters) -> Resolvedness:
     if sigma <= 0 or math.log2(max(sigma2, 1e-300) / sigma) <= RATE_EXPONENT_LIMIT:
         relative = abs(sigma - sigma2) / sigma2 if sigma > 0 and sigma2 > 0 else None
         what = "no wave grows at the initial state" if sigma <= 0 else "the fastest growth rate converges in n"
+        if relative is not None and relative > UNRESOLVED_RATE_CHANGE:
+            what = "bending cuts the growth off, but near the grid scale (not yet resolved at this n)"
         return Resolvedness(
             True, True, f"well posed in n: {what}", relative_n_error=relative, cpu_time=_since(start), **common
         )
@@ -206,7 +229,7 @@ def _since(start: float) -> float:
 
 def annotate(params: SailParameters, result) -> None:
     """Record the verdict in ``result.info["resolvedness"]``, its one-line warning in ``result.warnings`` when the
-    case is ill-posed in n, and, for a well-posed failure, the failure time's n-error estimate
+    case is ill-posed in n or not resolved at its n, and, for a well-posed failure, the failure time's n-error estimate
     (``failure_time_n_error``, s). An assessment that raises is recorded as not assessed."""
     try:
         verdict = assess(params)
