@@ -481,7 +481,7 @@ def run_all(work: Path) -> None:
         ("--mode-y", "-1", "defect_mode_y"),
         ("--membrane-modulus", "nan", "membrane_modulus"),
         ("--edge-tension", "-1", "edge_tension"),
-        ("--beam-center-y", "inf", "beam_center_y"),
+        ("--beam-centre-y", "inf", "beam_centre_y"),
     ):
         cli_row([*sheet, option, value], work, "error", names=[name])
     cli_row(["simulate", *QUICK, "--ny", "3"], work, "error", names=["ny", "model='sheet'"])

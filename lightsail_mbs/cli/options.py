@@ -44,6 +44,8 @@ ALIASES = {
     "--modulus": ["--youngs-modulus"],
     "--mode-y": ["--defect-mode-y"],
 }
+# older spellings still accepted but not shown in --help
+HIDDEN_ALIASES = {"--beam-centre": ["--beam-center"], "--beam-centre-y": ["--beam-center-y"]}
 CASE_FIELDS = {f.name: f for f in dataclasses.fields(SailParameters)}
 OPTION_TYPES = {"int": int, "float": float, "str": str}
 
@@ -91,6 +93,8 @@ def add_case_options(parser: argparse.ArgumentParser, run: bool = True) -> None:
         groups[info.group].add_argument(
             option, *ALIASES.get(option, []), dest=name, default=None, help=field_help(name), **how
         )
+        for alias in HIDDEN_ALIASES.get(option, []):
+            groups[info.group].add_argument(alias, dest=name, default=None, help=argparse.SUPPRESS, **how)
     if not run:
         return
     settings = RunSettings()

@@ -35,7 +35,7 @@ except ModuleNotFoundError:  # Python 3.10
     import tomli as tomllib
 
 from lightsail_mbs.model.fields import FIELDS, number
-from lightsail_mbs.model.records import RUN_FIELDS
+from lightsail_mbs.model.records import LEGACY_NAMES, RUN_FIELDS
 
 FORMAT = "lightsail-mbs case"
 VERSION = 1
@@ -73,9 +73,10 @@ def read(path, fields: Mapping[str, tuple[str, str]]) -> tuple[dict, dict]:
         raise CaseFileError(f"{path}: {RUN_TABLE} = {run!r} is invalid: allowed a [run] table")
     case = {}
     for key, value in data.items():
-        if key not in fields:
+        name = LEGACY_NAMES.get(key, key)  # an older name of a field reads as the field
+        if name not in fields:
             raise CaseFileError(f"{path}: {_unknown(key, value, fields)}")
-        case[key] = _typed(path, key, value, *fields[key])
+        case[name] = _typed(path, key, value, *fields[name])
     for key, value in run.items():
         if key not in RUN_FIELDS:
             hint = _close(key, RUN_FIELDS)
@@ -115,7 +116,7 @@ def write_case(path, params, settings=None) -> Path:
 
 def case_fields(params) -> dict:
     """The fields a case file holds: all but those that are None, those of the other model family at their
-    defaults, and those whose default follows other fields (bending, beam_center) at that default."""
+    defaults, and those whose default follows other fields (bending, beam_centre) at that default."""
     followed = type(params)(model=params.model, length=params.length)
     family = "sheet" if params.model == "sheet" else "chain"
     out = {}

@@ -101,7 +101,7 @@ FIELDS = {
     "film_hurst": FieldInfo(DEFECT, "", "the film spectrum's Hurst exponent H", "0 < H ≤ 1"),
     "film_seed": FieldInfo(DEFECT, "", "seed of the film's modes", "an integer ≥ 0"),
     "beam_waist": FieldInfo(BEAM, "m", "Gaussian beam waist w: I₀ exp(−2(x − x_c)²/w²); inf: a uniform beam", "> 0"),
-    "beam_center": FieldInfo(BEAM, "m", "Gaussian beam axis x_c", "finite", follows="the sail's middle L/2"),
+    "beam_centre": FieldInfo(BEAM, "m", "Gaussian beam axis x_c", "finite", follows="the sail's middle L/2"),
     "reflectivity": FieldInfo(BEAM, "", "specular reflectivity R (the paper: 1)", "0 ≤ R ≤ 1, R + α ≤ 1"),
     "absorptivity": FieldInfo(BEAM, "", "absorptivity α (transmissivity 1 − R − α)", "0 ≤ α ≤ 1 − R"),
     "bending": FieldInfo(
@@ -160,7 +160,7 @@ FIELDS = {
         "≥ 0",
         family="sheet",
     ),
-    "beam_center_y": FieldInfo(SHEET, "m", "Gaussian beam axis y_c", "finite", follows="W/2", family="sheet"),
+    "beam_centre_y": FieldInfo(SHEET, "m", "Gaussian beam axis y_c", "finite", follows="W/2", family="sheet"),
     "pressure": FieldInfo(
         SHEET, "Pa", "dead pressure p along the beam (+z), the plate validations", "finite", family="sheet"
     ),

@@ -77,7 +77,7 @@ class SailParameters(DerivedQuantities):
     film_hurst: float = 0.5  # H: the film spectrum's self-affine exponent
     film_seed: int = 0  # seed of the film's modes
     beam_waist: float = math.inf  # w, m: Gaussian beam I₀ exp(−2(x − x_c)²/w²); inf = uniform (paper)
-    beam_center: float | None = None  # x_c, m; None: the sail's middle L/2
+    beam_centre: float | None = None  # x_c, m; None: the sail's middle L/2
     reflectivity: float = 1.0  # R, specular (paper: 1)
     absorptivity: float = 0.0  # α; transmissivity 1 − R − α
     bending: bool | None = None  # torsional springs on? None: on for torsion, off for tnt (paper)
@@ -94,7 +94,7 @@ class SailParameters(DerivedQuantities):
     defect_mode_y: float | None = None  # ν_y: w = a₀ sin(2πνx/L) sin(2πν_y y/W); None: uniform across W
     membrane_modulus: float | None = None  # E_m, Pa, of the in-plane (membrane) springs; None: E
     edge_tension: float = 0.0  # T, N per metre of edge: follower tension on all four edges + pre-stress
-    beam_center_y: float | None = None  # y_c, m, of the Gaussian beam; None: W/2
+    beam_centre_y: float | None = None  # y_c, m, of the Gaussian beam; None: W/2
     pressure: float = 0.0  # p, Pa: dead pressure along the beam (+z) (the plate validations)
     membrane_damping: float | None = None  # β_m, s: damping β_m k on the stiff springs; None: critical
     membrane_reference: str = "initial"  # in-plane springs at rest in the "initial" (defect) or "flat" shape
@@ -156,9 +156,9 @@ class SailParameters(DerivedQuantities):
             not isinstance(waist, bool) and isinstance(waist, numbers.Real) and _as_float(waist) > 0,
             "> 0 (inf for a uniform beam)",
         )
-        if self.beam_center is None:
-            object.__setattr__(self, "beam_center", 0.5 * self.length)
-        finite("beam_center", self.beam_center)
+        if self.beam_centre is None:
+            object.__setattr__(self, "beam_centre", 0.5 * self.length)
+        finite("beam_centre", self.beam_centre)
         for name in ("reflectivity", "absorptivity"):
             v = finite(name, getattr(self, name))
             check(name, v, 0 <= v <= 1, "0 ≤ value ≤ 1")
@@ -292,8 +292,8 @@ class SailParameters(DerivedQuantities):
         if self.membrane_damping is not None:
             v = finite("membrane_damping", self.membrane_damping)
             check("membrane_damping", v, v >= 0, "≥ 0 s or None (critical for the top in-plane mode)")
-        if self.beam_center_y is not None:
-            finite("beam_center_y", self.beam_center_y)
+        if self.beam_centre_y is not None:
+            finite("beam_centre_y", self.beam_centre_y)
         check(
             "membrane_reference",
             self.membrane_reference,

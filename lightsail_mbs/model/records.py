@@ -20,7 +20,7 @@ SHEET_DEFAULTS = {
     "defect_mode_y": None,
     "membrane_modulus": None,
     "edge_tension": 0.0,
-    "beam_center_y": None,
+    "beam_centre_y": None,
     "pressure": 0.0,
     "membrane_damping": None,
     "membrane_reference": "initial",
@@ -52,7 +52,13 @@ LATER_DEFAULTS = {
     "velocity_terms": False,
 }
 # Names under which saved runs and store records written before the current field names hold them.
-LEGACY_NAMES = {"amplitude": "defect_amplitude", "mode": "defect_mode", "defect_modes": "defect_mode_count"}
+LEGACY_NAMES = {
+    "amplitude": "defect_amplitude",
+    "mode": "defect_mode",
+    "defect_modes": "defect_mode_count",
+    "beam_center": "beam_centre",
+    "beam_center_y": "beam_centre_y",
+}
 # Run control that saved runs of that format kept with the case (now solvers.settings.RunSettings).
 RUN_FIELDS = ("t_final", "output_interval", "stop_at_failure", "failure_ratio")
 OMITTED_AT_DEFAULT = {**VALIDATION_DEFAULTS, **LATER_DEFAULTS, **SHEET_DEFAULTS}
