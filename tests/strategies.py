@@ -12,7 +12,8 @@ from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
 
 from lightsail_mbs import RunSettings, SailParameters
-from lightsail_mbs.model.parameters import BOUNDARIES, MODELS, SHEET_BOUNDARIES, SPEED_OF_LIGHT
+from lightsail_mbs.model.fields import BOUNDARIES, MODELS, SHEET_BOUNDARIES
+from lightsail_mbs.model.parameters import SPEED_OF_LIGHT
 
 FAST_EXAMPLES, SLOW_EXAMPLES = 8, 150
 EXAMPLES = [
@@ -76,7 +77,7 @@ def case_kwargs(draw) -> dict:
     )
     if kwargs["reflectivity"] == 0 and kwargs["absorptivity"] == 0:
         kwargs["reflectivity"] = 1.0
-    if model == "sheet":  # a few tiles across; the chain's validation loads and dampers are not the sheet's
+    if model == "sheet":  # a few tiles across; the chain's fields (FieldInfo.models) at their defaults
         kwargs.update(
             ny=draw(st.integers(1, 4)),
             defect_mode_y=draw(st.one_of(st.none(), st.floats(0.25, 3.0))),
@@ -85,6 +86,8 @@ def case_kwargs(draw) -> dict:
             beam_centre_y=draw(st.one_of(st.none(), st.floats(0.0, 1.0).map(lambda f: f * kwargs["width"]))),
             boundary=draw(st.sampled_from(SHEET_BOUNDARIES)),
             tip_load=0.0,
+            tip_load_time_constant=0.0,
+            axial_springs=True,
             torsional_damping=0.0,
             axial_damping=0.0,
         )
