@@ -99,7 +99,10 @@ BAD_FILES = [
     ("wrong type", 'thickness = "thin"', ["thickness", "allowed a number"]),
     ("out of range", "thickness = -1e-6", ["thickness=-1e-06", "> 0"]),
     ("another family's field", "ny = 3", ["ny=3", "unless model='sheet'"]),
-    ("newer version", "version = 7", ["version = 7", "up to version 1"]),
+    ("newer version", "version = 7", ["version = 7", "up to version 2"]),
+    ("key in the wrong table", "[beam]\nny = 3", ["beam.ny", "allowed in [sheet]"]),
+    ("unknown table", "[hull]\nn = 12", ["unknown table [hull]", "[sail]"]),
+    ("another family's table", '[sail]\nmodel = "torsion"\n[sheet]\nny = 3', ["ny=3", "unless model='sheet'"]),
     ("bad run entry", "[run]\nfailure_ratio = 0.5", ["[run] failure_ratio", "> 1"]),
 ]
 
