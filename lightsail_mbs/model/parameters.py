@@ -33,8 +33,9 @@ class SailParameters(DerivedQuantities):
     """One lightsail case: the sail, its supports, its defect and the beam (SI units).
 
     Defaults: the paper's torsion study (Sec. IV.B, Fig. 6). Run control (duration, sampling, stop
-    rule) is a separate :class:`~lightsail_mbs.solvers.settings.RunSettings`. Every field is checked
-    on construction; a bad value raises :class:`ParameterError` naming the field and its range.
+    rule) is a separate :class:`~lightsail_mbs.solvers.settings.RunSettings`. The fields form sections
+    (:meth:`section`, :meth:`from_sections`); every field is checked on construction, by its section and
+    the rules that join sections; a bad value raises :class:`ParameterError` naming the field and its range.
     """
 
     model: str = "torsion"
@@ -102,7 +103,10 @@ class SailParameters(DerivedQuantities):
             object.__setattr__(self, "bending", self.model in ("torsion", "sheet"))
         if self.beam_centre is None:
             object.__setattr__(self, "beam_centre", 0.5 * self.length)
-        self._check_chain() if self.model != "sheet" else self._check_sheet()
+        if self.model == "sheet":
+            self._check_sheet()
+        else:
+            check("boundary", self.boundary, self.boundary in BOUNDARIES, f"one of {', '.join(BOUNDARIES)}")
         self._check_across()
 
     def _check_across(self) -> None:
@@ -191,9 +195,6 @@ class SailParameters(DerivedQuantities):
             math.isinf(R) or self.boundary == "free",
             "inf (flat) unless boundary='free' (the supports hold a flat chain)",
         )
-
-    def _check_chain(self) -> None:
-        check("boundary", self.boundary, self.boundary in BOUNDARIES, f"one of {', '.join(BOUNDARIES)}")
 
     def _check_sheet(self) -> None:
         """The sheet's rules that join its own section to the sail's: its size, planform, supports, the
