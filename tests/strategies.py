@@ -12,7 +12,8 @@ from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
 
 from lightsail_mbs import RunSettings, SailParameters
-from lightsail_mbs.model.parameters import BOUNDARIES, MODELS, SHEET_BOUNDARIES, SPEED_OF_LIGHT
+from lightsail_mbs.model.fields import BOUNDARIES, MODELS, SHEET_BOUNDARIES
+from lightsail_mbs.model.parameters import SPEED_OF_LIGHT
 
 FAST_EXAMPLES, SLOW_EXAMPLES = 8, 150
 EXAMPLES = [
@@ -62,7 +63,7 @@ def case_kwargs(draw) -> dict:
         defect_mode_count=draw(st.integers(1, 12)),
         defect_spectrum=draw(st.floats(-1.0, 3.0)),
         beam_waist=draw(st.one_of(st.just(math.inf), log_uniform(-1, 2).map(lambda w: w * length))),
-        beam_center=draw(st.one_of(st.none(), st.floats(0.0, 1.0).map(lambda f: f * length))),
+        beam_centre=draw(st.one_of(st.none(), st.floats(0.0, 1.0).map(lambda f: f * length))),
         reflectivity=reflectivity,
         absorptivity=draw(st.floats(0.0, 1.0)) * (1.0 - reflectivity),
         bending=draw(st.sampled_from([None, True, False])),
@@ -76,15 +77,17 @@ def case_kwargs(draw) -> dict:
     )
     if kwargs["reflectivity"] == 0 and kwargs["absorptivity"] == 0:
         kwargs["reflectivity"] = 1.0
-    if model == "sheet":  # a few tiles across; the chain's validation loads and dampers are not the sheet's
+    if model == "sheet":  # a few tiles across; the chain's fields (FieldInfo.models) at their defaults
         kwargs.update(
             ny=draw(st.integers(1, 4)),
             defect_mode_y=draw(st.one_of(st.none(), st.floats(0.25, 3.0))),
             membrane_modulus=draw(st.one_of(st.none(), log_uniform(6, 12))),
             edge_tension=draw(log_uniform(-9, -3, zero=True)),
-            beam_center_y=draw(st.one_of(st.none(), st.floats(0.0, 1.0).map(lambda f: f * kwargs["width"]))),
+            beam_centre_y=draw(st.one_of(st.none(), st.floats(0.0, 1.0).map(lambda f: f * kwargs["width"]))),
             boundary=draw(st.sampled_from(SHEET_BOUNDARIES)),
             tip_load=0.0,
+            tip_load_time_constant=0.0,
+            axial_springs=True,
             torsional_damping=0.0,
             axial_damping=0.0,
         )

@@ -26,7 +26,6 @@ TABLES = {
 KNOWN_LONG_MODULES: set = set()
 KNOWN_LONG_FUNCTIONS = {
     "model/optics_grating.py:grating_table",
-    "model/parameters.py:SailParameters.__post_init__",
 }
 
 COMPILERS = ("njit", "jit")  # @njit, @numba.njit, @jit, with or without arguments

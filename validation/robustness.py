@@ -5,7 +5,8 @@
 Each row tries one input a user could give (bad numbers, bad and unwritable paths, foreign, corrupt and
 truncated files, truncated, corrupt and stale store records, a Dask scheduler that does not answer,
 Ctrl-C, killed sweep workers, an unforeseen internal error, case files that are malformed, of a newer
-format, name unknown keys, values of the wrong type or out of range, or fields of another model family)
+format, name unknown keys or tables, put a key in the wrong table, values of the wrong type or out of range, or
+fields or tables of another model family)
 and records what happened: the exit status, the first line of stderr, whether a Python traceback reached
 the user, and the time to fail (wall clock of the whole command, Python start-up and imports included; the
 machine is shared, so these are upper bounds) with the command's CPU time, on which the row with a time
@@ -204,7 +205,16 @@ BAD_CASE_FILES = (  # file name, content, words the one-line error must hold (th
     ("type.toml", 'n = "ten"\n', ["type.toml", "n = ", "an integer"]),
     ("range.toml", "thickness = -1e-6\n", ["range.toml", "thickness=", "> 0"]),
     ("family.toml", 'model = "torsion"\nny = 3\n', ["family.toml", "ny=3", "unless model='sheet'"]),
-    ("newer.toml", "version = 2\n", ["newer.toml", "version = 2", "up to version 1"]),
+    ("newer.toml", "version = 3\n", ["newer.toml", "version = 3", "up to version 2"]),
+    ("top.toml", "version = 2\nn = 12\n", ["top.toml", "n at the top", "allowed in [sail]"]),
+    ("wrongtable.toml", "[beam]\nny = 3\n", ["wrongtable.toml", "beam.ny", "allowed in [sheet]"]),
+    ("table.toml", "[hull]\nn = 12\n", ["table.toml", "unknown table [hull]", "[sail]"]),
+    ("sectionkey.toml", "[beam]\nbeam_wasit = 0.3\n", ["sectionkey.toml", "beam.beam_wasit", "allowed in [beam]"]),
+    (
+        "othertable.toml",
+        '[sail]\nmodel = "torsion"\n[sheet]\nny = 3\n',
+        ["othertable.toml", "ny=3", "unless model='sheet'"],
+    ),
     ("runtable.toml", "[run]\nt_fnal = 1.0\n", ["runtable.toml", "run.t_fnal", "t_final"]),
     ("missing.toml", None, ["missing.toml", "no such file"]),
 )
@@ -481,7 +491,7 @@ def run_all(work: Path) -> None:
         ("--mode-y", "-1", "defect_mode_y"),
         ("--membrane-modulus", "nan", "membrane_modulus"),
         ("--edge-tension", "-1", "edge_tension"),
-        ("--beam-center-y", "inf", "beam_center_y"),
+        ("--beam-centre-y", "inf", "beam_centre_y"),
     ):
         cli_row([*sheet, option, value], work, "error", names=[name])
     cli_row(["simulate", *QUICK, "--ny", "3"], work, "error", names=["ny", "model='sheet'"])

@@ -40,7 +40,7 @@ def cases(grid: int) -> list[sheet_study.SheetCase]:
         ("doubly sinusoidal ν = 1.5 × 1.5", base.replace(defect_mode_y=1.5), SLOW, quarter),
         (
             "Gaussian w = 2 m at (0.3, 0.6) m, doubly sinusoidal",
-            base.replace(beam_waist=2.0, beam_center=0.3, beam_center_y=0.6, defect_mode_y=1.5),
+            base.replace(beam_waist=2.0, beam_centre=0.3, beam_centre_y=0.6, defect_mode_y=1.5),
             FAST,
             {},
         ),

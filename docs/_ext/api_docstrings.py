@@ -33,7 +33,6 @@ _SPANS = re.compile(r"``.*?``|:[\w:.+-]+:`[^`]*`|`[^`]*`_{0,2}")
 RAW_ROLE = re.compile(r":(?:py:)?(?:class|mod|meth|func|attr|data|exc|obj|doc|ref|term|math):`")
 # a float literal in a signature
 FLOAT = re.compile(r"(?<![\w.])\d+\.\d*(?:e[+-]?\d+)?(?![\w.])")
-FAMILIES = {"chain": "Chains only (rigid, torsion, tnt).", "sheet": "The sheet only (model='sheet')."}
 
 
 def case_field_lines() -> list[str]:
@@ -56,8 +55,8 @@ def case_field_lines() -> list[str]:
             f"{field.name} : {field.type}",
             f"    {info.help}{unit}.{allowed} Default: {default}.",
         ]
-        if info.family in FAMILIES:
-            lines.append(f"    {FAMILIES[info.family]}")
+        if info.family != "all":
+            lines.append(f"    Used only by model {', '.join(repr(m) for m in info.models)} (others keep the default).")
     return lines
 
 

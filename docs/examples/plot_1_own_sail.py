@@ -2,7 +2,8 @@
 Your own sail from a case file
 ==============================
 
-A case file names only what differs from the defaults (the paper's torsion sail, Sec. IV.B). Here: a
+A case file names only what differs from the defaults (the paper's torsion sail, Sec. IV.B), each field in
+the table of its section. Here: a
 thinner, denser film with a softer modulus under a brighter beam. The file is read, its closed-form
 theory printed (paper Eqs 4, 8), and the case is run to failure on the reduced solver. The failure time
 carries its uncertainty: the estimate reruns the case at tighter tolerances and with round-off-sized
@@ -25,16 +26,23 @@ from lightsail_mbs.model import theory
 
 CASE_FILE = """\
 format = "lightsail-mbs case"
-version = 1
+version = 2
 
+[sail]
 model = "torsion"
 n = 40
 thickness = 5e-7          # h (m)
+
+[material]
 density = 2200.0          # ρ (kg/m³), glass-like
 youngs_modulus = 7e10     # E (Pa)
-intensity = 2e8           # I₀ (W/m²)
+
+[defect]
 defect_amplitude = 1e-5   # a₀ (m)
 defect_mode = 1.5         # ν
+
+[beam]
+intensity = 2e8           # I₀ (W/m²)
 
 [run]
 t_final = 2.0

@@ -188,7 +188,7 @@ class Linearisation:
 
 def linearised(sail: RigidSail, step: float = 1e-6) -> Linearisation:
     """K of the discrete rigid body about X = x_c, φ = 0 by central differences (steps step·L and step)."""
-    x0 = sail.params.beam_center
+    x0 = sail.params.beam_centre
 
     def acc(dx, dphi):
         return sail.rhs(0.0, np.array([x0 + dx, dphi, 0.0, 0.0]))[2:]
@@ -329,7 +329,7 @@ def ride(
     check("t_final", t_final, t_final > 0, "> 0 s")
     check("output_interval", output_interval, 0 < output_interval <= t_final, f"0 < interval ≤ t_final = {t_final}")
     width = drift_factor * p.beam_waist
-    x0 = p.beam_center
+    x0 = p.beam_centre
 
     def drift(t, y):
         return width - abs(y[0] - x0)
@@ -418,7 +418,7 @@ def flexible_ride(result, crumple: float = 0.01, drift_factor: float = 1.0) -> F
     c, s = np.cos(turn)[:, None], np.sin(turn)[:, None]
     fit_u, fit_v = c * u0 - s * v0, s * u0 + c * v0
     deformation = np.max(np.hypot(u - fit_u, v - fit_v), axis=1)
-    lateral = gx - p.beam_center
+    lateral = gx - p.beam_centre
     tilt = turn + p.initial_tilt  # from the untilted pose
     verdict, when = "rides", None
     crumpled = np.flatnonzero(deformation >= crumple)

@@ -3,7 +3,7 @@
 Each gives the case's fields and the run entries (its [run] table, or the saved run's settings); the
 options given are applied over them (merged), and a bad entry is one line naming the source
 (ParameterError). A saved run's fields are those a case file would hold (casefile.case_fields): a default
-that follows other fields (bending, beam_center) is left out at its followed value and so follows an option
+that follows other fields (bending, beam_centre) is left out at its followed value and so follows an option
 that changes them.
 """
 

@@ -18,7 +18,7 @@ from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import materials
 from lightsail_mbs.model.cases import PAPER_CASES
-from lightsail_mbs.model.fields import FIELDS, number
+from lightsail_mbs.model.fields import FIELDS, SECTIONS, number
 from lightsail_mbs.model.parameters import SailParameters
 
 # the options whose name is not --field-name
@@ -44,6 +44,8 @@ ALIASES = {
     "--modulus": ["--youngs-modulus"],
     "--mode-y": ["--defect-mode-y"],
 }
+# older spellings still accepted but not shown in --help
+HIDDEN_ALIASES = {"--beam-centre": ["--beam-center"], "--beam-centre-y": ["--beam-center-y"]}
 CASE_FIELDS = {f.name: f for f in dataclasses.fields(SailParameters)}
 OPTION_TYPES = {"int": int, "float": float, "str": str}
 
@@ -54,8 +56,8 @@ def option_name(field: str) -> str:
 
 
 def field_help(name: str) -> str:
-    """A case option's help: what the field is, its unit, what is allowed, and its default (or what the
-    default follows)."""
+    """A case option's help: what the field is, its unit, what is allowed, the models that use it (when not
+    all: FieldInfo.models), and its default (or what the default follows)."""
     info, field = FIELDS[name], CASE_FIELDS[name]
     if info.follows:
         default = info.follows
@@ -65,7 +67,12 @@ def field_help(name: str) -> str:
         default = number(field.default)
     unit = f" ({info.unit})" if info.unit else ""
     allowed = f"; allowed {info.allowed}" if info.allowed else ""
-    return f"{info.help}{unit}{allowed} [default: {default}]".replace("%", "%%")
+    used = (
+        ""
+        if info.family == "all"
+        else f"; used only by the {', '.join(info.models)} model{'s' * (len(info.models) > 1)}"
+    )
+    return f"{info.help}{unit}{allowed}{used} [default: {default}]".replace("%", "%%")
 
 
 def add_case_options(parser: argparse.ArgumentParser, run: bool = True) -> None:
@@ -84,13 +91,15 @@ def add_case_options(parser: argparse.ArgumentParser, run: bool = True) -> None:
     for name, field in CASE_FIELDS.items():
         info = FIELDS[name]
         if info.group not in groups:
-            groups[info.group] = parser.add_argument_group(f"case: {info.group}")
+            groups[info.group] = parser.add_argument_group(f"case: {SECTIONS[info.group]}")
         kind = field.type.split("|")[0].strip()
         how = {"action": argparse.BooleanOptionalAction} if kind == "bool" else {"type": OPTION_TYPES[kind]}
         option = option_name(name)
         groups[info.group].add_argument(
             option, *ALIASES.get(option, []), dest=name, default=None, help=field_help(name), **how
         )
+        for alias in HIDDEN_ALIASES.get(option, []):
+            groups[info.group].add_argument(alias, dest=name, default=None, help=argparse.SUPPRESS, **how)
     if not run:
         return
     settings = RunSettings()

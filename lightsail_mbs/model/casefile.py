@@ -1,21 +1,29 @@
-"""Case files: a case, and optionally how to run it, as a flat TOML file.
+"""Case files: a case, and optionally how to run it, as a TOML file with one table per section of the case.
 
 ::
 
     format = "lightsail-mbs case"
-    version = 1
+    version = 2
+
+    [sail]
     model = "torsion"
+
+    [material]
     youngs_modulus = 4.5e+09  # Young's modulus E (Pa)
 
     [run]
     t_final = 6.0
 
-Keys are the fields of :class:`~lightsail_mbs.model.parameters.SailParameters` (a field left out keeps its
-default); the optional ``[run]`` table holds those of
-:class:`~lightsail_mbs.solvers.settings.RunSettings`. ``format`` and ``version`` may be left out of a
-hand-written file; a file of a newer version is refused. Reading checks names and types here
-(:func:`read`); the values' ranges are checked by the classes built from them. Every problem is one line
-naming the file, the key and what is allowed (:class:`CaseFileError`).
+The tables are the case's sections (:data:`~lightsail_mbs.model.fields.SECTIONS`), each holding the fields
+of :class:`~lightsail_mbs.model.parameters.SailParameters` that its FIELDS entry puts there (a field left
+out keeps its default); the optional ``[run]`` table holds those of
+:class:`~lightsail_mbs.solvers.settings.RunSettings`. Version 1 files, the case's fields flat at the top,
+are read too; ``format`` and ``version`` may be left out of a hand-written file (a file with section
+tables is then version 2, one without version 1); a file of a newer version is refused. Reading checks
+names, tables and types here (:func:`read`); the values' ranges, and that a field the case's model does
+not use keeps its default, are checked by the classes built from them. Every problem is one line naming
+the file, the key and what is allowed (:class:`CaseFileError`). Older names of fields (LEGACY_NAMES) are
+read as the fields.
 
 The paper's cases ship as case files in the folder ``cases`` next to this module (:class:`CaseFolder`).
 """
@@ -34,11 +42,11 @@ try:
 except ModuleNotFoundError:  # Python 3.10
     import tomli as tomllib
 
-from lightsail_mbs.model.fields import FIELDS, number
-from lightsail_mbs.model.records import RUN_FIELDS
+from lightsail_mbs.model.fields import FIELDS, SECTIONS, number
+from lightsail_mbs.model.records import LEGACY_NAMES, RUN_FIELDS
 
 FORMAT = "lightsail-mbs case"
-VERSION = 1
+VERSION = 2  # 1: the case's fields flat at the top; 2: in section tables
 RUN_TABLE = "run"
 PAPER_FOLDER = Path(__file__).with_name("cases")
 KIND_TEXT = {"int": "an integer", "float": "a number", "bool": "true or false", "str": "a string"}
@@ -67,15 +75,14 @@ def read(path, fields: Mapping[str, tuple[str, str]]) -> tuple[dict, dict]:
         raise CaseFileError(f"{path}: cannot read it ({exc.strerror or exc})") from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise CaseFileError(f"{path}: not valid TOML ({exc})") from None
-    _check_format(path, data)
+    version = _check_format(path, data)
     run = data.pop(RUN_TABLE, {})
     if not isinstance(run, dict):
         raise CaseFileError(f"{path}: {RUN_TABLE} = {run!r} is invalid: allowed a [run] table")
     case = {}
-    for key, value in data.items():
-        if key not in fields:
-            raise CaseFileError(f"{path}: {_unknown(key, value, fields)}")
-        case[key] = _typed(path, key, value, *fields[key])
+    for where, key, value in _flat(path, data, fields) if version == 1 else _sectioned(path, data, fields):
+        name = LEGACY_NAMES.get(key, key)  # an older name of a field reads as the field
+        case[name] = _typed(path, where + key, value, *fields[name])
     for key, value in run.items():
         if key not in RUN_FIELDS:
             hint = _close(key, RUN_FIELDS)
@@ -90,17 +97,19 @@ def read(path, fields: Mapping[str, tuple[str, str]]) -> tuple[dict, dict]:
 
 
 def write(path, case: Mapping, run: Mapping | None = None, comments: Mapping[str, str] | None = None) -> Path:
-    """Write a case file: the format entry, each of case's entries (None left out) with its comment,
-    and run's entries as a [run] table. Returns the path."""
+    """Write a case file: the format entries, case's entries (None left out) each with its comment in the
+    table of its section, and run's entries as a [run] table. Returns the path."""
     comments = comments or {}
-    lines = [f"format = {_value(FORMAT)}", f"version = {VERSION}", ""]
+    tables = {name: [] for name in SECTIONS}
     for key, value in case.items():
         if value is not None:
             note = f"  # {comments[key]}" if key in comments else ""
-            lines.append(f"{key} = {_value(value)}{note}")
-    entries = {k: v for k, v in (run or {}).items() if v is not None}
-    if entries:
-        lines += ["", f"[{RUN_TABLE}]", *(f"{key} = {_value(value)}" for key, value in entries.items())]
+            tables[FIELDS[key].group].append(f"{key} = {_value(value)}{note}")
+    tables[RUN_TABLE] = [f"{key} = {_value(value)}" for key, value in (run or {}).items() if value is not None]
+    lines = [f"format = {_value(FORMAT)}", f"version = {VERSION}"]
+    for name, entries in tables.items():
+        if entries:
+            lines += ["", f"[{name}]", *entries]
     path = Path(path)
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")
     return path
@@ -115,7 +124,7 @@ def write_case(path, params, settings=None) -> Path:
 
 def case_fields(params) -> dict:
     """The fields a case file holds: all but those that are None, those of the other model family at their
-    defaults, and those whose default follows other fields (bending, beam_center) at that default."""
+    defaults, and those whose default follows other fields (bending, beam_centre) at that default."""
     followed = type(params)(model=params.model, length=params.length)
     family = "sheet" if params.model == "sheet" else "chain"
     out = {}
@@ -153,16 +162,57 @@ class CaseFolder(Mapping):
         return name in self._names
 
 
-def _check_format(path: Path, data: dict) -> None:
+def _check_format(path: Path, data: dict) -> int:
+    """The file's version (checked), its format and version entries taken out of data; a file without a
+    version is version 2 if it has a section table, else 1."""
     found = data.pop("format", FORMAT)
     if found != FORMAT:
         raise CaseFileError(f"{path}: format = {_shown(found)} is invalid: allowed {_value(FORMAT)}")
-    version = data.pop("version", VERSION)
+    sectioned = any(key in SECTIONS and isinstance(value, dict) for key, value in data.items())
+    version = data.pop("version", 2 if sectioned else 1)
     if isinstance(version, bool) or not isinstance(version, int) or not 1 <= version <= VERSION:
         raise CaseFileError(
             f"{path}: version = {_shown(version)} is invalid: allowed an integer ≤ {VERSION} (this lightsail-mbs "
             f"reads case files up to version {VERSION}; a newer one wrote this file)"
         )
+    return version
+
+
+def _flat(path: Path, data: dict, fields):
+    """(where, key, value) of a version 1 file: the case's fields at the top."""
+    for key, value in data.items():
+        if LEGACY_NAMES.get(key, key) not in fields:
+            raise CaseFileError(f"{path}: {_unknown(key, value, fields)}")
+        yield "", key, value
+
+
+def _sectioned(path: Path, data: dict, fields):
+    """(where, key, value) of a version 2 file: each field in the table of its section."""
+    tables = ", ".join(f"[{name}]" for name in (*SECTIONS, RUN_TABLE))
+    for table, entries in data.items():
+        if not isinstance(entries, dict):
+            name = LEGACY_NAMES.get(table, table)
+            if name in fields:
+                raise CaseFileError(
+                    f"{path}: {table} at the top is invalid: allowed in [{FIELDS[name].group}] (a version 2 file "
+                    "holds each field in the table of its section)"
+                )
+            raise CaseFileError(f"{path}: unknown key {table}: allowed format, version and the tables {tables}")
+        if table not in SECTIONS:
+            raise CaseFileError(f"{path}: unknown table [{table}]{_close(table, SECTIONS)}: allowed {tables}")
+        for key, value in entries.items():
+            name = LEGACY_NAMES.get(key, key)
+            if name in fields and FIELDS[name].group != table:
+                raise CaseFileError(
+                    f"{path}: {table}.{key} is in the wrong table: allowed in [{FIELDS[name].group}] "
+                    f"({FIELDS[name].group}.{name})"
+                )
+            if name not in fields:
+                own = [n for n in fields if FIELDS[n].group == table]
+                raise CaseFileError(
+                    f"{path}: unknown key {table}.{key}{_close(key, own)}: allowed in [{table}] {', '.join(own)}"
+                )
+            yield f"{table}.", key, value
 
 
 def _typed(path: Path, key: str, value, annotation: str, allowed: str):
@@ -182,7 +232,10 @@ def _typed(path: Path, key: str, value, annotation: str, allowed: str):
 
 def _unknown(key: str, value, fields) -> str:
     if isinstance(value, dict):
-        return f"unknown table [{key}]: allowed the case's fields at the top and a [{RUN_TABLE}] table"
+        tables = ", ".join(f"[{name}]" for name in (*SECTIONS, RUN_TABLE))
+        return (
+            f"unknown table [{key}]: allowed in a version 1 file the fields at the top and [run]; in version 2 {tables}"
+        )
     return f"unknown key {key}{_close(key, fields)}: allowed format, version, {', '.join(fields)}"
 
 

@@ -97,9 +97,9 @@ class DerivedQuantities:
             from lightsail_mbs.model import planforms
 
             return planforms.mean_intensity(self)
-        mean = self.intensity * _gaussian_mean(self.beam_waist, self.beam_center, self.length)
+        mean = self.intensity * _gaussian_mean(self.beam_waist, self.beam_centre, self.length)
         if self.model == "sheet":  # the sheet's beam is round: I₀ exp(−2((x − x_c)² + (y − y_c)²)/w²)
-            mean *= _gaussian_mean(self.beam_waist, self.sheet_beam_center_y, self.width)
+            mean *= _gaussian_mean(self.beam_waist, self.sheet_beam_centre_y, self.width)
         return mean
 
     @property
@@ -111,9 +111,9 @@ class DerivedQuantities:
         return self.optical_table().normal_at_zero
 
     @property
-    def sheet_beam_center_y(self) -> float:
-        """y_c of the sheet's Gaussian beam (m): beam_center_y, or W/2 when it is None."""
-        return 0.5 * self.width if self.beam_center_y is None else float(self.beam_center_y)
+    def sheet_beam_centre_y(self) -> float:
+        """y_c of the sheet's Gaussian beam (m): beam_centre_y, or W/2 when it is None."""
+        return 0.5 * self.width if self.beam_centre_y is None else float(self.beam_centre_y)
 
     def tip_force(self, t):
         """P(t) = P₀(1 − e^(−t/τ)) (paper Eq. 43; P₀ for τ = 0), N."""
@@ -122,7 +122,7 @@ class DerivedQuantities:
         return self.tip_load * -math.expm1(-t / self.tip_load_time_constant)
 
 
-def _gaussian_mean(waist: float, center: float, span: float) -> float:
-    """(1/span) ∫₀^span exp(−2(s − center)²/waist²) ds."""
+def _gaussian_mean(waist: float, centre: float, span: float) -> float:
+    """(1/span) ∫₀^span exp(−2(s − centre)²/waist²) ds."""
     r = math.sqrt(2.0) / waist
-    return math.sqrt(math.pi / 8.0) * waist / span * (math.erf(r * (span - center)) + math.erf(r * center))
+    return math.sqrt(math.pi / 8.0) * waist / span * (math.erf(r * (span - centre)) + math.erf(r * centre))

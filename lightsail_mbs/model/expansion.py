@@ -46,7 +46,7 @@ def heated_case(p: SailParameters, strain: float) -> SailParameters:
     sail is not scaled (the frame holds its length: :func:`remaining_tension`)."""
     s = 1.0 + strain
     changes = {name: getattr(p, name) * s for name in ("length", "width", "thickness", "defect_amplitude")}
-    changes["beam_center"] = p.beam_center + 0.5 * (s - 1.0) * p.length
+    changes["beam_centre"] = p.beam_centre + 0.5 * (s - 1.0) * p.length
     changes.update(density=p.density / s**3, roughness=p.roughness * s, film_rms=p.film_rms * s)
     changes.update(payload_stem=p.payload_stem * s, film_correlation_length=p.film_correlation_length * s)
     if p.payload_inertia:  # J = m r²: the payload's own size grows by s too

@@ -34,27 +34,47 @@ MIN_DEFECT_FRACTION = 1e-100
 
 
 class FieldInfo(NamedTuple):
-    group: str  # the concern the field belongs to (the command line's option groups)
+    group: str  # the section of the case the field belongs to (SECTIONS: a case file's table, a CLI option group)
     unit: str  # SI unit, "" for a number without one
     help: str  # what the field is, for a user
     allowed: str  # the values allowed, as the error messages state them ("" for True/False)
     follows: str | None = None  # the default when it follows other fields ("the sail's middle L/2")
-    family: str = "all"  # "chain" or "sheet": the model family that uses it (the other keeps its default)
+    models: tuple[str, ...] = MODELS  # the models that use it; under any other model it keeps its default
+    instead: str = ""  # what the other models use in its place, for the error message
+
+    @property
+    def family(self) -> str:
+        """ "all", "chain" or "sheet": the model family that uses the field (a tnt-only field is a chain's)."""
+        if set(self.models) == set(MODELS):
+            return "all"
+        return "sheet" if self.models == ("sheet",) else "chain"
+
+    def unused_text(self, default: str) -> str:
+        """The one line allowed for the field under a model that does not use it: its default."""
+        which = f"={self.models[0]!r}" if len(self.models) == 1 else f" is one of {', '.join(self.models)}"
+        return f"{default} unless model{which}" + (f" ({self.instead})" if self.instead else "")
 
 
 def _choices(values) -> str:
     return "one of " + ", ".join(values)
 
 
-SAIL, DEFECT, BEAM, DAMPING, SUPPORTS, PAYLOAD, SHEET = (
-    "sail",
-    "defect",
-    "beam and optics",
-    "damping",
-    "supports and loads",
-    "payload",
-    "sheet (--model sheet)",
-)
+# The case's sections: name (a case file's table) -> title (the command line's option group).
+SECTIONS = {
+    "sail": "sail",
+    "material": "material",
+    "defect": "defect",
+    "film": "film roughness",
+    "beam": "beam",
+    "optics": "optics table",
+    "damping": "damping",
+    "supports": "supports and loads",
+    "payload": "payload",
+    "sheet": "sheet (--model sheet)",
+    "spin": "spin (--model sheet)",
+}
+SAIL, MATERIAL, DEFECT, FILM, BEAM, OPTICS, DAMPING, SUPPORTS, PAYLOAD, SHEET, SPIN = SECTIONS
+TNT, CHAINS, SHEETS = ("tnt",), CHAIN_MODELS, ("sheet",)
 FIELDS = {
     "model": FieldInfo(
         SAIL, "", "model family: chains of n slices (rigid, torsion, tnt) or a sheet of n × ny tiles", _choices(MODELS)
@@ -63,14 +83,15 @@ FIELDS = {
     "length": FieldInfo(SAIL, "m", "sail length L", "> 0"),
     "width": FieldInfo(SAIL, "m", "sail width W", "> 0"),
     "thickness": FieldInfo(SAIL, "m", "film thickness h", "> 0"),
-    "density": FieldInfo(SAIL, "kg/m³", "film density ρ", "> 0"),
-    "youngs_modulus": FieldInfo(SAIL, "Pa", "Young's modulus E", "≥ 0 (> 0 for the tnt model with axial springs)"),
+    "density": FieldInfo(MATERIAL, "kg/m³", "film density ρ", "> 0"),
+    "youngs_modulus": FieldInfo(MATERIAL, "Pa", "Young's modulus E", "≥ 0 (> 0 for the tnt model with axial springs)"),
     "tension": FieldInfo(
         SUPPORTS,
         "N",
         "boundary tension T of the TnT chain (the paper's per-width value × W)",
-        "≥ 0; 0 unless model=tnt",
-        family="chain",
+        "≥ 0",
+        models=TNT,
+        instead="a sheet's is edge_tension, N per metre of edge",
     ),
     "intensity": FieldInfo(BEAM, "W/m²", "laser intensity I₀ (on the beam axis for a Gaussian beam)", "≥ 0"),
     "defect_amplitude": FieldInfo(DEFECT, "m", "initial defect amplitude a₀", "0 or 1e-100 L ≤ a₀ < L/(2πν)"),
@@ -87,21 +108,23 @@ FIELDS = {
     "roughness": FieldInfo(
         DEFECT,
         "m",
-        "seeded roughness at every wavelength the slices or tiles carry, added to the defect",
+        "seeded roughness at every wavelength the slices carry, added to the defect (a sheet's: film_rms)",
         "0 ≤ … < L/(2πn)",
+        models=CHAINS,
+        instead="a sheet's film: film_rms",
     ),
-    "roughness_seed": FieldInfo(DEFECT, "", "seed of the roughness", "an integer ≥ 0"),
+    "roughness_seed": FieldInfo(DEFECT, "", "seed of the roughness", "an integer ≥ 0", models=CHAINS),
     "film_rms": FieldInfo(
-        DEFECT,
+        FILM,
         "m",
         "RMS of the film's roughness (K-correlation spectrum, model.film; 0: none), added to the defect",
         "≥ 0",
     ),
-    "film_correlation_length": FieldInfo(DEFECT, "m", "the film spectrum's correlation length ξ", "> 0"),
-    "film_hurst": FieldInfo(DEFECT, "", "the film spectrum's Hurst exponent H", "0 < H ≤ 1"),
-    "film_seed": FieldInfo(DEFECT, "", "seed of the film's modes", "an integer ≥ 0"),
+    "film_correlation_length": FieldInfo(FILM, "m", "the film spectrum's correlation length ξ", "> 0"),
+    "film_hurst": FieldInfo(FILM, "", "the film spectrum's Hurst exponent H", "0 < H ≤ 1"),
+    "film_seed": FieldInfo(FILM, "", "seed of the film's modes", "an integer ≥ 0"),
     "beam_waist": FieldInfo(BEAM, "m", "Gaussian beam waist w: I₀ exp(−2(x − x_c)²/w²); inf: a uniform beam", "> 0"),
-    "beam_center": FieldInfo(BEAM, "m", "Gaussian beam axis x_c", "finite", follows="the sail's middle L/2"),
+    "beam_centre": FieldInfo(BEAM, "m", "Gaussian beam axis x_c", "finite", follows="the sail's middle L/2"),
     "reflectivity": FieldInfo(BEAM, "", "specular reflectivity R (the paper: 1)", "0 ≤ R ≤ 1, R + α ≤ 1"),
     "absorptivity": FieldInfo(BEAM, "", "absorptivity α (transmissivity 1 − R − α)", "0 ≤ α ≤ 1 − R"),
     "bending": FieldInfo(
@@ -116,10 +139,19 @@ FIELDS = {
         "",
         "tnt: extensible slices with k_s = (n−1)EhW/L, or their rigid (inextensible) limit",
         "",
-        family="chain",
+        models=CHAINS,
     ),
-    "torsional_damping": FieldInfo(DAMPING, "N·m·s/rad", "torsional damping c_T", "≥ 0", family="chain"),
-    "axial_damping": FieldInfo(DAMPING, "N·s/m", "axial damping c_s", "≥ 0", family="chain"),
+    "torsional_damping": FieldInfo(
+        DAMPING,
+        "N·m·s/rad",
+        "torsional damping c_T",
+        "≥ 0",
+        models=CHAINS,
+        instead="a sheet's damping: stiffness_damping",
+    ),
+    "axial_damping": FieldInfo(
+        DAMPING, "N·s/m", "axial damping c_s", "≥ 0", models=CHAINS, instead="a sheet's damping: stiffness_damping"
+    ),
     "stiffness_damping": FieldInfo(
         DAMPING, "s", "material damping β: c = β k on every spring; loss factor η at ω: β = η/ω", "≥ 0"
     ),
@@ -130,10 +162,10 @@ FIELDS = {
         f"chain: {_choices(BOUNDARIES)}; sheet: {_choices(SHEET_BOUNDARIES)}",
     ),
     "tip_load": FieldInfo(
-        SUPPORTS, "N", "transverse (+y) dead load P₀ at the centre of slice n (Eq. 43)", "finite", family="chain"
+        SUPPORTS, "N", "transverse (+y) dead load P₀ at the centre of slice n (Eq. 43)", "finite", models=CHAINS
     ),
     "tip_load_time_constant": FieldInfo(
-        SUPPORTS, "s", "ramp of the tip load, P(t) = P₀(1 − e^(−t/τ)); 0: P₀ from t = 0", "≥ 0", family="chain"
+        SUPPORTS, "s", "ramp of the tip load, P(t) = P₀(1 − e^(−t/τ)); 0: P₀ from t = 0", "≥ 0", models=CHAINS
     ),
     "body_force": FieldInfo(
         SUPPORTS,
@@ -141,28 +173,28 @@ FIELDS = {
         "uniform in-plane body force per unit mass along the sail's length x, on every slice or tile (a test load)",
         "finite; 0 with a payload",
     ),
-    "ny": FieldInfo(SHEET, "", "tiles across the width W", "an integer 1 ≤ ny ≤ 500", family="sheet"),
+    "ny": FieldInfo(SHEET, "", "tiles across the width W", "an integer 1 ≤ ny ≤ 500", models=SHEETS),
     "defect_mode_y": FieldInfo(
         SHEET,
         "",
         "defect mode ν_y across the width: w = a₀ sin(2πνx/L) sin(2πν_y y/W)",
         "> 0",
         follows="uniform across W",
-        family="sheet",
+        models=SHEETS,
     ),
     "membrane_modulus": FieldInfo(
-        SHEET, "Pa", "in-plane (membrane) modulus E_m", "> 0", follows="E (youngs_modulus)", family="sheet"
+        SHEET, "Pa", "in-plane (membrane) modulus E_m", "> 0", follows="E (youngs_modulus)", models=SHEETS
     ),
     "edge_tension": FieldInfo(
         SHEET,
         "N/m",
         "follower tension on all four edges, per metre of edge (and the pre-stress)",
         "≥ 0",
-        family="sheet",
+        models=SHEETS,
     ),
-    "beam_center_y": FieldInfo(SHEET, "m", "Gaussian beam axis y_c", "finite", follows="W/2", family="sheet"),
+    "beam_centre_y": FieldInfo(SHEET, "m", "Gaussian beam axis y_c", "finite", follows="W/2", models=SHEETS),
     "pressure": FieldInfo(
-        SHEET, "Pa", "dead pressure p along the beam (+z), the plate validations", "finite", family="sheet"
+        SHEET, "Pa", "dead pressure p along the beam (+z), the plate validations", "finite", models=SHEETS
     ),
     "membrane_damping": FieldInfo(
         SHEET,
@@ -170,14 +202,14 @@ FIELDS = {
         "damping β_m k on the stiff in-plane springs",
         "≥ 0",
         follows="critical for the top in-plane mode",
-        family="sheet",
+        models=SHEETS,
     ),
     "membrane_reference": FieldInfo(
         SHEET,
         "",
         "in-plane springs at rest in the initial (defect) or the flat shape",
         _choices(MEMBRANE_REFERENCES),
-        family="sheet",
+        models=SHEETS,
     ),
     "bending_reference": FieldInfo(
         SHEET,
@@ -185,14 +217,14 @@ FIELDS = {
         "bending springs at rest flat (the paper: an elastically loaded defect) or in the initial shape "
         "(a stress-free, manufactured defect)",
         _choices(BENDING_REFERENCES),
-        family="sheet",
+        models=SHEETS,
     ),
     "initial_equilibrium": FieldInfo(
         SHEET,
         "",
         "correct the springs' rest state so that the unlit sheet (edge tension included) rests in its initial shape",
         "",
-        family="sheet",
+        models=SHEETS,
     ),
     "planform": FieldInfo(
         SHEET,
@@ -200,22 +232,22 @@ FIELDS = {
         "the sheet's outline and tiles: "
         + "; ".join(f"{name}: {form.help}" for name, form in planforms.PLANFORMS.items()),
         _choices(planforms.PLANFORMS),
-        family="sheet",
+        models=SHEETS,
     ),
     "spin_rate": FieldInfo(
-        SHEET,
+        SPIN,
         "rad/s",
         "initial spin Ω about the sail's normal through its centre, from the spun equilibrium (the unlit flat "
         "sail rests in its rotating frame)",
         "finite; 0 unless boundary='free'",
-        family="sheet",
+        models=SHEETS,
     ),
     "spin_tilt": FieldInfo(
-        SHEET,
+        SPIN,
         "rad",
         "the initial angular velocity turned from the sail's normal towards +x by this angle (a nutating spin)",
         "|tilt| < π/2; 0 unless spin_rate ≠ 0",
-        family="sheet",
+        models=SHEETS,
     ),
     "billow_radius": FieldInfo(
         SAIL,
@@ -225,26 +257,27 @@ FIELDS = {
         "|R_c| ≥ l/(2 sin(π/2n)) (chain), ≥ 2/π × the farthest corner's distance from the middle (sheet)",
     ),
     "optics": FieldInfo(
-        BEAM,
+        OPTICS,
         "",
         "the slices' force law from a table: 'mirror' or a table file (lightsail-mbs optics … --out)",
         "'mirror' or a path",
         follows="the R/α law",
-        family="chain",
+        models=CHAINS,
+        instead="a sheet's tiles: reflectivity, absorptivity",
     ),
     "optics_layout": FieldInfo(
-        BEAM,
+        OPTICS,
         "",
         "which slices carry the table turned over (mirrored-halves: the right half)",
         _choices(OPTICS_LAYOUTS),
-        family="chain",
+        models=CHAINS,
     ),
     "payload_mass": FieldInfo(
-        PAYLOAD, "kg", "payload mass m_p on a rigid stem from the sail's middle", "≥ 0", family="chain"
+        PAYLOAD, "kg", "payload mass m_p on a rigid stem from the sail's middle", "≥ 0", models=CHAINS
     ),
-    "payload_inertia": FieldInfo(PAYLOAD, "kg·m²", "the payload's own inertia J_p", "≥ 0", family="chain"),
+    "payload_inertia": FieldInfo(PAYLOAD, "kg·m²", "the payload's own inertia J_p", "≥ 0", models=CHAINS),
     "payload_stem": FieldInfo(
-        PAYLOAD, "m", "stem length d from the sail's middle towards the laser", "≥ 0", family="chain"
+        PAYLOAD, "m", "stem length d from the sail's middle towards the laser", "≥ 0", models=CHAINS
     ),
     "billow_rest": FieldInfo(
         SAIL,
@@ -258,10 +291,10 @@ FIELDS = {
         "rad",
         "the initial shape turned counter-clockwise about the craft's centre of mass",
         "|tilt| < π/2",
-        family="chain",
+        models=CHAINS,
     ),
     "material": FieldInfo(
-        SAIL,
+        MATERIAL,
         "",
         "the film from the materials table: fills density and youngs_modulus (explicit values override)",
         _choices(MATERIALS),

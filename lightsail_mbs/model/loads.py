@@ -69,7 +69,7 @@ def intensity(p: SailParameters, x: np.ndarray) -> np.ndarray:
     x = np.asarray(x, float)
     if p.uniform_beam:
         return np.full_like(x, p.intensity)
-    return p.intensity * np.exp(-2.0 * ((x - p.beam_center) / p.beam_waist) ** 2)
+    return p.intensity * np.exp(-2.0 * ((x - p.beam_centre) / p.beam_waist) ** 2)
 
 
 def sheet_intensity(p: SailParameters, x: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -77,7 +77,7 @@ def sheet_intensity(p: SailParameters, x: np.ndarray, y: np.ndarray) -> np.ndarr
     x = np.asarray(x, float)
     if p.uniform_beam:
         return np.full_like(x, p.intensity)
-    r2 = (x - p.beam_center) ** 2 + (np.asarray(y, float) - p.sheet_beam_center_y) ** 2
+    r2 = (x - p.beam_centre) ** 2 + (np.asarray(y, float) - p.sheet_beam_centre_y) ** 2
     return p.intensity * np.exp(-2.0 * r2 / p.beam_waist**2)
 
 
@@ -205,19 +205,19 @@ def net_slice_force(theta, cos_theta, sin_theta, local_intensity, mean_intensity
 
 
 @njit(cache=True)
-def gaussian_intensity(x, peak, center, waist):
+def gaussian_intensity(x, peak, centre, waist):
     """I(x) of the Gaussian beam for one abscissa (compiled); waist = inf gives the uniform peak."""
     if math.isinf(waist):
         return peak
-    d = (x - center) / waist
+    d = (x - centre) / waist
     return peak * math.exp(-2.0 * d * d)
 
 
 @njit(cache=True)
-def round_gaussian_intensity(x, y, peak, center_x, center_y, waist):
+def round_gaussian_intensity(x, y, peak, centre_x, centre_y, waist):
     """I(x, y) of the sheet's round Gaussian beam at one point (compiled); waist = inf: the uniform peak."""
     if math.isinf(waist):
         return peak
-    dx = (x - center_x) / waist
-    dy = (y - center_y) / waist
+    dx = (x - centre_x) / waist
+    dy = (y - centre_y) / waist
     return peak * math.exp(-2.0 * (dx * dx + dy * dy))

@@ -1,50 +1,31 @@
 """The case: one validated, immutable parameter set per simulation (SI units throughout).
 
 Paper: Sections III–IV; the derived quantities (slice length, mass, inertia, stiffnesses) are those of
-:class:`~lightsail_mbs.model.derived.DerivedQuantities`. What each field means, its unit and its allowed
-values: :data:`lightsail_mbs.model.fields.FIELDS`; case files: :mod:`lightsail_mbs.model.casefile`.
+:class:`~lightsail_mbs.model.derived.DerivedQuantities`. What each field means, its unit, its allowed
+values, its section and the models that use it: :data:`lightsail_mbs.model.fields.FIELDS`; case files:
+:mod:`lightsail_mbs.model.casefile`.
 
-Two model families share this one parameter class. The chains ("rigid", "torsion", "tnt") are the
-paper's strip of n slices. The "sheet" is the sail cut into n × ny rigid tiles moving in 3-D
-(:mod:`lightsail_mbs.model.sheet`); its own fields (SHEET_DEFAULTS) are rejected away from their defaults
-for a chain and left out of :meth:`~SailParameters.to_dict` at their defaults (:mod:`lightsail_mbs.model.records`).
+The case is composed of sections (the sail, its material, defect, film, beam, optics table, damping,
+supports and loads, payload, the sheet's fields and its spin: :mod:`lightsail_mbs.model.sections`), each
+checked on its own; :meth:`SailParameters.section` gives one as its own record and
+:meth:`SailParameters.from_sections` builds a case from them. The solvers read the flat record. Two model
+families share it: the chains ("rigid", "torsion", "tnt") are the paper's strip of n slices; the "sheet"
+is the sail cut into n × ny rigid tiles moving in 3-D (:mod:`lightsail_mbs.model.sheet`). A field that
+the case's model does not use (FieldInfo.models) stays at its default.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
-import numbers
 from dataclasses import dataclass
 
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT  # noqa: F401 - re-exported
-from lightsail_mbs.base.validation import ParameterError, check, finite
-from lightsail_mbs.model import casefile, film, materials, planforms
+from lightsail_mbs.base.validation import ParameterError, check
+from lightsail_mbs.model import casefile, materials, planforms, sections
 from lightsail_mbs.model.derived import DerivedQuantities
-from lightsail_mbs.model.fields import (
-    BENDING_REFERENCES,
-    BOUNDARIES,
-    FIELDS,
-    MEMBRANE_REFERENCES,
-    MIN_DEFECT_FRACTION,
-    MODELS,
-    OPTICS_LAYOUTS,
-    SHEET_BOUNDARIES,
-)
-from lightsail_mbs.model.records import LEGACY_NAMES, RUN_FIELDS, SHEET_DEFAULTS, current_names, record  # noqa: F401
-
-
-def _integer(value, low: int, high: float = math.inf) -> bool:
-    """Whether value is an int (not a bool) with low ≤ value ≤ high."""
-    return isinstance(value, int) and not isinstance(value, bool) and low <= value <= high
-
-
-def _as_float(value) -> float:
-    """float(value), NaN where that fails (an int beyond the float range)."""
-    try:
-        return float(value)
-    except (TypeError, ValueError, OverflowError):
-        return math.nan
+from lightsail_mbs.model.fields import BOUNDARIES, FIELDS, MIN_DEFECT_FRACTION, SHEET_BOUNDARIES
+from lightsail_mbs.model.records import LEGACY_NAMES, RUN_FIELDS, current_names, record  # noqa: F401
 
 
 @dataclass(frozen=True)
@@ -52,8 +33,9 @@ class SailParameters(DerivedQuantities):
     """One lightsail case: the sail, its supports, its defect and the beam (SI units).
 
     Defaults: the paper's torsion study (Sec. IV.B, Fig. 6). Run control (duration, sampling, stop
-    rule) is a separate :class:`~lightsail_mbs.solvers.settings.RunSettings`. Every field is checked
-    on construction; a bad value raises :class:`ParameterError` naming the field and its range.
+    rule) is a separate :class:`~lightsail_mbs.solvers.settings.RunSettings`. The fields form sections
+    (:meth:`section`, :meth:`from_sections`); every field is checked on construction, by its section and
+    the rules that join sections; a bad value raises :class:`ParameterError` naming the field and its range.
     """
 
     model: str = "torsion"
@@ -77,7 +59,7 @@ class SailParameters(DerivedQuantities):
     film_hurst: float = 0.5  # H: the film spectrum's self-affine exponent
     film_seed: int = 0  # seed of the film's modes
     beam_waist: float = math.inf  # w, m: Gaussian beam I₀ exp(−2(x − x_c)²/w²); inf = uniform (paper)
-    beam_center: float | None = None  # x_c, m; None: the sail's middle L/2
+    beam_centre: float | None = None  # x_c, m; None: the sail's middle L/2
     reflectivity: float = 1.0  # R, specular (paper: 1)
     absorptivity: float = 0.0  # α; transmissivity 1 − R − α
     bending: bool | None = None  # torsional springs on? None: on for torsion, off for tnt (paper)
@@ -94,7 +76,7 @@ class SailParameters(DerivedQuantities):
     defect_mode_y: float | None = None  # ν_y: w = a₀ sin(2πνx/L) sin(2πν_y y/W); None: uniform across W
     membrane_modulus: float | None = None  # E_m, Pa, of the in-plane (membrane) springs; None: E
     edge_tension: float = 0.0  # T, N per metre of edge: follower tension on all four edges + pre-stress
-    beam_center_y: float | None = None  # y_c, m, of the Gaussian beam; None: W/2
+    beam_centre_y: float | None = None  # y_c, m, of the Gaussian beam; None: W/2
     pressure: float = 0.0  # p, Pa: dead pressure along the beam (+z) (the plate validations)
     membrane_damping: float | None = None  # β_m, s: damping β_m k on the stiff springs; None: critical
     membrane_reference: str = "initial"  # in-plane springs at rest in the "initial" (defect) or "flat" shape
@@ -115,80 +97,86 @@ class SailParameters(DerivedQuantities):
     velocity_terms: bool = False  # the first-order Doppler and aberration of each body's velocity (terms/velocity.py)
 
     def __post_init__(self):
-        check("model", self.model, self.model in MODELS, f"one of {', '.join(MODELS)}")
-        check("n", self.n, _integer(self.n, 2, 5000), "an integer 2 ≤ n ≤ 5000")
-        for name in ("length", "width", "thickness", "density"):
-            v = finite(name, getattr(self, name))
-            check(name, v, v > 0, "> 0")
-        nonnegative = ("youngs_modulus", "tension", "intensity", "defect_amplitude", "torsional_damping")
-        for name in (*nonnegative, "axial_damping", "stiffness_damping"):
-            v = finite(name, getattr(self, name))
-            check(name, v, v >= 0, "≥ 0")
+        sections.check_sections(self)
+        sections.check_unused_at_defaults(self, DEFAULTS)
+        if self.bending is None:
+            object.__setattr__(self, "bending", self.model in ("torsion", "sheet"))
+        if self.beam_centre is None:
+            object.__setattr__(self, "beam_centre", 0.5 * self.length)
+        if self.model == "sheet":
+            self._check_sheet()
+        else:
+            check("boundary", self.boundary, self.boundary in BOUNDARIES, f"one of {', '.join(BOUNDARIES)}")
+        self._check_across()
+
+    def _check_across(self) -> None:
+        """The rules that join sections: the material and the model, the defect and the roughness against the
+        sail's size, the loads, payload, tilt and billow against the supports, the optics table against R/α."""
         check(
             "youngs_modulus",
             self.youngs_modulus,
-            self.youngs_modulus > 0 or not (self.model == "tnt" and self.axial_springs),
+            self.youngs_modulus > 0 or not self.extensible,
             "> 0 for the tnt model with axial springs",
         )
-        seed = self.defect_seed
-        check("defect_seed", seed, seed is None or _integer(seed, 0), "None or an integer ≥ 0")
-        check(
-            "defect_mode_count",
-            self.defect_mode_count,
-            _integer(self.defect_mode_count, 1, 200),
-            "an integer 1 ≤ K ≤ 200",
-        )
-        finite("defect_spectrum", self.defect_spectrum)
-        v = finite("roughness", self.roughness)
+        limit = self.length / (2 * math.pi * self.n)
         check(
             "roughness",
-            v,
-            0 <= v < self.length / (2 * math.pi * self.n),
-            f"0 ≤ roughness < L/(2πn) = "
-            f"{self.length / (2 * math.pi * self.n):.3g} m (slopes of its shortest waves below 45°)",
-        )
-        check("roughness_seed", self.roughness_seed, _integer(self.roughness_seed, 0), "an integer ≥ 0")
-        film.of_case(self)  # the film's fields, each checked by the film model
-        waist = self.beam_waist
-        check(
-            "beam_waist",
-            waist,
-            not isinstance(waist, bool) and isinstance(waist, numbers.Real) and _as_float(waist) > 0,
-            "> 0 (inf for a uniform beam)",
-        )
-        if self.beam_center is None:
-            object.__setattr__(self, "beam_center", 0.5 * self.length)
-        finite("beam_center", self.beam_center)
-        for name in ("reflectivity", "absorptivity"):
-            v = finite(name, getattr(self, name))
-            check(name, v, 0 <= v <= 1, "0 ≤ value ≤ 1")
-        check(
-            "absorptivity",
-            self.absorptivity,
-            self.reflectivity + self.absorptivity <= 1,
-            f"≤ 1 − reflectivity = {1 - self.reflectivity:g} (R + α + transmissivity = 1)",
+            self.roughness,
+            0 <= self.roughness < limit,
+            f"0 ≤ roughness < L/(2πn) = {limit:.3g} m (slopes of its shortest waves below 45°)",
         )
         check(
-            "reflectivity",
-            self.reflectivity,
-            2 * self.reflectivity + self.absorptivity > 0,
-            "> 0 or absorptivity > 0 (a transparent sail feels no load)",
+            "body_force",
+            self.body_force,
+            self.body_force == 0 or self.payload_mass == 0,
+            "0 with a payload (it acts on the sail's bodies)",
         )
-        v = finite("defect_mode", self.defect_mode)
-        check("defect_mode", v, v > 0, "> 0 (whole or half integers in the paper)")
+        self._check_billow()
+        if self.optics is not None:
+            for name in ("reflectivity", "absorptivity", "velocity_terms"):
+                check(
+                    name,
+                    getattr(self, name),
+                    getattr(self, name) == (name == "reflectivity"),
+                    "its default with optics",
+                )
+        if self.payload_mass != 0:
+            check("payload_mass", self.payload_mass, self.boundary == "free", "0 unless boundary='free'")
+            check("payload_mass", self.payload_mass, self.n >= 3, "0 for n < 3 (the payload slice is not an end slice)")
+            check(
+                "payload_mass",
+                self.payload_mass,
+                not self.extensible,
+                "0 for the extensible TnT chain (axial_springs=False: its inextensible limit carries one)",
+            )
+        for name in ("initial_tilt", "spin_rate"):
+            check(
+                name,
+                getattr(self, name),
+                getattr(self, name) == 0 or self.boundary == "free",
+                "0 unless boundary='free'",
+            )
+        a, floor, steep = (
+            self.defect_amplitude,
+            MIN_DEFECT_FRACTION * self.length,
+            self.length / (2 * math.pi * self.defect_mode),
+        )
         check(
-            "tension",
-            self.tension,
-            self.tension == 0 or self.model == "tnt",
-            "0 unless model='tnt' (boundary tension exists only in the TnT model; a sheet's is edge_tension, N/m)",
+            "defect_amplitude",
+            a,
+            a == 0 or a >= floor,
+            f"0 or ≥ {MIN_DEFECT_FRACTION:g} L = {floor:.3g} m (the solvers' tolerances scale with a₀; below this "
+            "they underflow)",
         )
-        finite("tip_load", self.tip_load)
-        v = finite("body_force", self.body_force)
-        check("body_force", v, v == 0 or self.payload_mass == 0, "0 with a payload (it acts on the sail's bodies)")
-        v = finite("tip_load_time_constant", self.tip_load_time_constant)
-        check("tip_load_time_constant", v, v >= 0, "≥ 0 (0: the full load from t = 0)")
-        ok_type = isinstance(self.billow_radius, (int, float)) and not isinstance(self.billow_radius, bool)
-        R = float(self.billow_radius) if ok_type else math.nan
+        check(
+            "defect_amplitude",
+            a,
+            a < steep,
+            f"< L/(2πν) = {steep:.3g} m (a sine steeper than 45° is outside the model)",
+        )
+
+    def _check_billow(self) -> None:
+        R = sections.as_float(self.billow_radius)
         if self.model == "sheet":  # the cap reaches the sail's farthest corner at most 90° from its apex
             reach = 0.5 * (math.hypot(self.length, self.width) if self.planform == "rectangle" else self.length)
             r_min, why = 2.0 * reach / math.pi, "the cap reaches at most 90° from its apex to the farthest corner"
@@ -207,51 +195,11 @@ class SailParameters(DerivedQuantities):
             math.isinf(R) or self.boundary == "free",
             "inf (flat) unless boundary='free' (the supports hold a flat chain)",
         )
-        self._check_optics()
-        self._check_payload()
-        for name in ("billow_rest", "velocity_terms"):
-            check(name, getattr(self, name), isinstance(getattr(self, name), bool), "True or False")
-        v = finite("initial_tilt", self.initial_tilt)
-        check("initial_tilt", v, abs(v) < math.pi / 2, "|tilt| < π/2 rad")
-        check("initial_tilt", v, v == 0 or self.boundary == "free", "0 unless boundary='free'")
-        check(
-            "billow_rest",
-            self.billow_rest,
-            not self.billow_rest or not math.isinf(float(self.billow_radius)),
-            "False for a flat sail (billow_radius = inf)",
-        )
-        if self.material is not None:
-            materials.get(self.material)  # one line naming the allowed materials
-        self._check_sheet_fields()
-        if self.bending is None:
-            object.__setattr__(self, "bending", self.model in ("torsion", "sheet"))
-        check("bending", self.bending, isinstance(self.bending, bool), "True, False or None")
-        check(
-            "defect_amplitude",
-            self.defect_amplitude,
-            self.defect_amplitude == 0 or self.defect_amplitude >= MIN_DEFECT_FRACTION * self.length,
-            f"0 or ≥ {MIN_DEFECT_FRACTION:g} L = {MIN_DEFECT_FRACTION * self.length:.3g} m (the solvers' "
-            "tolerances scale with a₀; below this they underflow)",
-        )
-        check(
-            "defect_amplitude",
-            self.defect_amplitude,
-            self.defect_amplitude < self.length / (2 * math.pi * self.defect_mode),
-            f"< L/(2πν) = {self.length / (2 * math.pi * self.defect_mode):.3g} m (a sine steeper than 45° "
-            "is outside the model)",
-        )
 
-    def _check_sheet_fields(self) -> None:
-        """The sheet's fields: at their defaults for a chain; in range for a sheet."""
-        if self.model != "sheet":
-            for name, default in SHEET_DEFAULTS.items():
-                check(name, getattr(self, name), getattr(self, name) == default, f"{default!r} unless model='sheet'")
-            check("boundary", self.boundary, self.boundary in BOUNDARIES, f"one of {', '.join(BOUNDARIES)}")
-            return
-        check("ny", self.ny, _integer(self.ny, 1, 500), "an integer 1 ≤ ny ≤ 500")
+    def _check_sheet(self) -> None:
+        """The sheet's rules that join its own section to the sail's: its size, planform, supports, the
+        defect across the width and the membrane's modulus."""
         check("n", self.n, self.n <= 500, "an integer 2 ≤ n ≤ 500 for a sheet (n × ny tiles)")
-        names = planforms.PLANFORMS
-        check("planform", self.planform, self.planform in names, "one of " + ", ".join(names))
         for name, value, allowed in planforms.problems(self):
             check(name, value, False, allowed)
         check(
@@ -260,101 +208,48 @@ class SailParameters(DerivedQuantities):
             self.boundary in SHEET_BOUNDARIES,
             f"one of {', '.join(SHEET_BOUNDARIES)} for a sheet",
         )
-        check("tip_load", self.tip_load, self.tip_load == 0, "0 for a sheet (a chain validation)")
-        check("initial_tilt", self.initial_tilt, self.initial_tilt == 0, "0 for a sheet")
-        check("roughness", self.roughness, self.roughness == 0, "0 for a sheet (its film: film_rms, model.film)")
-        check("optics", self.optics, self.optics is None, "None for a sheet (its tiles: reflectivity, absorptivity)")
-        check("payload_mass", self.payload_mass, self.payload_mass == 0, "0 for a sheet")
-        for name in ("torsional_damping", "axial_damping"):
-            check(name, getattr(self, name), getattr(self, name) == 0, "0 for a sheet (its damping: stiffness_damping)")
         if self.defect_mode_y is not None:
-            v = finite("defect_mode_y", self.defect_mode_y)
-            check("defect_mode_y", v, v > 0, "None (uniform across the width) or > 0")
+            steep = self.width / (2 * math.pi * self.defect_mode_y)
             check(
                 "defect_amplitude",
                 self.defect_amplitude,
-                self.defect_amplitude < self.width / (2 * math.pi * v),
-                f"< W/(2πν_y) = {self.width / (2 * math.pi * v):.3g} m (a sine steeper than 45° is outside the model)",
+                self.defect_amplitude < steep,
+                f"< W/(2πν_y) = {steep:.3g} m (a sine steeper than 45° is outside the model)",
             )
-        for name in ("edge_tension", "pressure"):
-            finite(name, getattr(self, name))
-        check("edge_tension", self.edge_tension, self.edge_tension >= 0, "≥ 0 (N per metre of edge)")
-        if self.membrane_modulus is not None:
-            v = finite("membrane_modulus", self.membrane_modulus)
-            check("membrane_modulus", v, v > 0, "> 0 or None (= youngs_modulus)")
-        else:
-            check(
-                "membrane_modulus",
-                self.membrane_modulus,
-                self.youngs_modulus > 0,
-                "> 0 when youngs_modulus = 0 (the in-plane springs hold the tiles together)",
-            )
-        if self.membrane_damping is not None:
-            v = finite("membrane_damping", self.membrane_damping)
-            check("membrane_damping", v, v >= 0, "≥ 0 s or None (critical for the top in-plane mode)")
-        if self.beam_center_y is not None:
-            finite("beam_center_y", self.beam_center_y)
         check(
-            "membrane_reference",
-            self.membrane_reference,
-            self.membrane_reference in MEMBRANE_REFERENCES,
-            f"one of {', '.join(MEMBRANE_REFERENCES)}",
-        )
-        check(
-            "bending_reference",
-            self.bending_reference,
-            self.bending_reference in BENDING_REFERENCES,
-            f"one of {', '.join(BENDING_REFERENCES)}",
-        )
-        check(
-            "initial_equilibrium", self.initial_equilibrium, isinstance(self.initial_equilibrium, bool), "True or False"
-        )
-        spin, tilt = finite("spin_rate", self.spin_rate), finite("spin_tilt", self.spin_tilt)
-        check("spin_rate", spin, spin == 0 or self.boundary == "free", "0 unless boundary='free'")
-        check("spin_tilt", tilt, abs(tilt) < math.pi / 2 and (tilt == 0 or spin != 0), "|β| < π/2, 0 unless spinning")
-
-    def _check_optics(self) -> None:
-        check("optics_layout", self.optics_layout, self.optics_layout in OPTICS_LAYOUTS, " or ".join(OPTICS_LAYOUTS))
-        if self.optics is None:
-            check("optics_layout", self.optics_layout, self.optics_layout == "uniform", "'uniform' without optics")
-            return
-        allowed = "None, 'mirror' or the path of an optical table file (.npz, from lightsail-mbs optics … --out)"
-        check("optics", self.optics, isinstance(self.optics, str) and self.optics != "", allowed)
-        for name in ("reflectivity", "absorptivity", "velocity_terms"):
-            check(name, getattr(self, name), getattr(self, name) == (name == "reflectivity"), "its default with optics")
-        self.optical_table()  # reads the file now: a bad one is refused before any solving
-
-    def _check_payload(self) -> None:
-        for name in ("payload_mass", "payload_inertia", "payload_stem"):
-            v = finite(name, getattr(self, name))
-            check(name, v, v >= 0, "≥ 0")
-        if self.payload_mass == 0:
-            for name in ("payload_inertia", "payload_stem"):
-                check(name, getattr(self, name), getattr(self, name) == 0, "0 without a payload (payload_mass = 0)")
-            return
-        check("payload_mass", self.payload_mass, self.boundary == "free", "0 unless boundary='free'")
-        check("payload_mass", self.payload_mass, self.n >= 3, "0 for n < 3 (the payload slice is not an end slice)")
-        check(
-            "payload_mass",
-            self.payload_mass,
-            not (self.model == "tnt" and self.axial_springs),
-            "0 for the extensible TnT chain (axial_springs=False: its inextensible limit carries one)",
+            "membrane_modulus",
+            self.membrane_modulus,
+            self.membrane_modulus is not None or self.youngs_modulus > 0,
+            "> 0 when youngs_modulus = 0 (the in-plane springs hold the tiles together)",
         )
 
     def optical_table(self):
         """The slices' force law as a :class:`~lightsail_mbs.model.optics.OpticalTable`: the file `optics`
         (read once per path and modification time), the built-in mirror for 'mirror', and for None the
         built-in mirror or facet of reflectivity and absorptivity."""
-        from lightsail_mbs.model import optics
-
         if self.optics is None:
+            from lightsail_mbs.model import optics
+
             return optics.for_case(self)
-        if self.optics == "mirror":
-            return optics.mirror()
-        try:
-            return optics.read_table(self.optics)
-        except optics.OpticsFileError as exc:
-            raise ParameterError(f"optics={self.optics!r} is invalid: {exc}") from None
+        return sections.table_of(self.optics)
+
+    def section(self, name: str):
+        """The case's section name (one of fields.SECTIONS) as its own frozen record
+        (:func:`lightsail_mbs.model.sections.records`), the defaults that follow other fields resolved."""
+        check("section", name, name in SECTION_RECORDS, f"one of {', '.join(SECTION_RECORDS)}")
+        record_class = SECTION_RECORDS[name]
+        return record_class(**{f.name: getattr(self, f.name) for f in dataclasses.fields(record_class)})
+
+    @classmethod
+    def from_sections(cls, *records, **fields) -> SailParameters:
+        """The case of section records (one per section at most; a section left out keeps its defaults) and
+        of fields given by name over them."""
+        merged: dict = {}
+        names = [part.name for part in records]
+        for part in records:
+            check("sections", names, names.count(part.name) == 1, "one record per section")
+            merged.update(dataclasses.asdict(part))
+        return cls(**{**merged, **fields})
 
     @property
     def optics_file(self) -> bool:
@@ -419,6 +314,10 @@ class SailParameters(DerivedQuantities):
         for key in known:
             check("parameters", key, key in names, f"field names of SailParameters ({', '.join(sorted(names))})")
         return cls(**known)
+
+
+DEFAULTS = {f.name: f.default for f in dataclasses.fields(SailParameters)}
+SECTION_RECORDS = sections.records(SailParameters)  # section name -> its frozen record class
 
 
 def read_case_file(path) -> tuple[dict, dict]:

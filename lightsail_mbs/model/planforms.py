@@ -68,6 +68,6 @@ def mean_intensity(p) -> float:
     if math.isinf(p.beam_waist):
         return p.intensity
     m = mesh_of(p)
-    r2 = (m.centres[:, 0] - p.beam_center) ** 2 + (m.centres[:, 1] - p.sheet_beam_center_y) ** 2
+    r2 = (m.centres[:, 0] - p.beam_centre) ** 2 + (m.centres[:, 1] - p.sheet_beam_centre_y) ** 2
     local = p.intensity * np.exp(-2.0 * r2 / p.beam_waist**2)
     return float(np.sum(m.areas * local) / np.sum(m.areas))

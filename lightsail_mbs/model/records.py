@@ -4,7 +4,9 @@ runs and the store's keys are made of, kept stable as fields are added.
 Fields added after the store's keys were first written (the validations', the later ones and the sheet's)
 are left out of the record at their defaults, so the record (and the store key) of every case that does
 not use them is what it was before they existed; records of older versions are read under their old
-names (LEGACY_NAMES), their run-control entries (RUN_FIELDS) skipped.
+names (LEGACY_NAMES), their run-control entries (RUN_FIELDS) skipped, and the store's keys keep the old names
+(:func:`stored`). The validation of the case does not read these tables: which model uses which field is
+declared in :data:`lightsail_mbs.model.fields.FIELDS`.
 """
 
 from __future__ import annotations
@@ -14,13 +16,13 @@ import math
 # Fields of the validations that to_dict omits at their defaults (a free, unloaded sail), so that the
 # record of a sail lists only what describes it.
 VALIDATION_DEFAULTS = {"boundary": "free", "tip_load": 0.0, "tip_load_time_constant": 0.0}
-# The sheet's own fields at their defaults: omitted by to_dict, and the only values a chain accepts.
+# The sheet's own fields, omitted by to_dict at their defaults.
 SHEET_DEFAULTS = {
     "ny": 1,
     "defect_mode_y": None,
     "membrane_modulus": None,
     "edge_tension": 0.0,
-    "beam_center_y": None,
+    "beam_centre_y": None,
     "pressure": 0.0,
     "membrane_damping": None,
     "membrane_reference": "initial",
@@ -52,15 +54,28 @@ LATER_DEFAULTS = {
     "velocity_terms": False,
 }
 # Names under which saved runs and store records written before the current field names hold them.
-LEGACY_NAMES = {"amplitude": "defect_amplitude", "mode": "defect_mode", "defect_modes": "defect_mode_count"}
+LEGACY_NAMES = {
+    "amplitude": "defect_amplitude",
+    "mode": "defect_mode",
+    "defect_modes": "defect_mode_count",
+    "beam_center": "beam_centre",
+    "beam_center_y": "beam_centre_y",
+}
 # Run control that saved runs of that format kept with the case (now solvers.settings.RunSettings).
 RUN_FIELDS = ("t_final", "output_interval", "stop_at_failure", "failure_ratio")
+STORED_NAMES = {new: old for old, new in LEGACY_NAMES.items()}  # field name -> its name in the store's keys
 OMITTED_AT_DEFAULT = {**VALIDATION_DEFAULTS, **LATER_DEFAULTS, **SHEET_DEFAULTS}
 
 
 def record(fields: dict) -> dict:
     """The record of a case's fields: those of OMITTED_AT_DEFAULT that are at their defaults left out."""
     return {k: v for k, v in fields.items() if k not in OMITTED_AT_DEFAULT or v != OMITTED_AT_DEFAULT[k]}
+
+
+def stored(fields: dict) -> dict:
+    """The record of a case's fields as the store's keys name them: record(fields) under the field names the
+    keys were first written with (LEGACY_NAMES reversed), so that a renamed field keeps every key."""
+    return {STORED_NAMES.get(k, k): v for k, v in record(fields).items()}
 
 
 def current_names(d: dict) -> dict:

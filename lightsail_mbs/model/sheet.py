@@ -124,7 +124,7 @@ def as_strip(p: SailParameters) -> SailParameters:
         defect_mode_count=p.defect_mode_count,
         defect_spectrum=p.defect_spectrum,
         beam_waist=p.beam_waist,
-        beam_center=p.beam_center,
+        beam_centre=p.beam_centre,
         reflectivity=p.reflectivity,
         absorptivity=p.absorptivity,
         bending=p.bending,

@@ -60,7 +60,7 @@ def profile_cases(quick: bool = False) -> list[tuple]:
 def tilt_cases(quick: bool = False) -> list[tuple]:
     """(params, settings) of the flat sail under a beam of w = 1 m off the middle by OFFSETS × L."""
     base = paper_case("torsion-stable", defect_amplitude=0.0, beam_waist=1.0, **(dict(n=10) if quick else {}))
-    return [(base.replace(beam_center=base.length * (0.5 + d)), TILT) for d in OFFSETS]
+    return [(base.replace(beam_centre=base.length * (0.5 + d)), TILT) for d in OFFSETS]
 
 
 def turn_estimate(p) -> float:
@@ -96,8 +96,8 @@ def tilt_row(p, record: dict, result) -> dict:
         turn = float(result.time[beyond[0]]) if beyond.size else None
     return dict(
         kind="tilt",
-        beam_center_m=p.beam_center,
-        offset_over_L=p.beam_center / p.length - 0.5,
+        beam_centre_m=p.beam_centre,
+        offset_over_L=p.beam_centre / p.length - 0.5,
         turn_1deg_s=turn,
         turn_1deg_estimate_s=turn_estimate(p),
         error=record.get("error"),

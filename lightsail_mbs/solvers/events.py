@@ -109,10 +109,10 @@ def time_scales(params) -> dict:
     wavenumber = 2.0 * math.pi * params.defect_mode / params.length
     scales = {"finite amplitude": 1.0 / (wavenumber * math.sqrt(g0 * a0))}
     if math.isfinite(params.beam_waist):
-        centre_x = params.length / 2 if params.beam_center is None else params.beam_center
+        centre_x = params.length / 2 if params.beam_centre is None else params.beam_centre
         d2 = max(centre_x, params.length - centre_x) ** 2
         if params.model == "sheet":
-            centre_y = params.sheet_beam_center_y
+            centre_y = params.sheet_beam_centre_y
             d2 += max(centre_y, params.width - centre_y) ** 2
         lag = g0 * -math.expm1(-2.0 * d2 / params.beam_waist**2)
         if lag > 0:

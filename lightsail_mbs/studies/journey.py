@@ -149,7 +149,7 @@ class Journey:
         self.peak = lab_peak_intensity(p, s.power)
         self.edges = np.linspace(0.0, p.length, p.n + 1)
         centres = 0.5 * (self.edges[1:] + self.edges[:-1])
-        profile = np.ones(p.n) if p.uniform_beam else thermal.gaussian_flux(centres, 1.0, p.beam_waist, p.beam_center)
+        profile = np.ones(p.n) if p.uniform_beam else thermal.gaussian_flux(centres, 1.0, p.beam_waist, p.beam_centre)
         self.profile = profile  # I(x)/I₀ along the slices (a sheet: through the beam's axis)
 
     def temperatures(self, sail_peak: float) -> np.ndarray:

@@ -28,7 +28,8 @@ from pathlib import Path
 
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model.parameters import LEGACY_NAMES, SailParameters
+from lightsail_mbs.model.parameters import SailParameters
+from lightsail_mbs.model.records import stored
 from lightsail_mbs.result import Result
 from lightsail_mbs.studies.runners import available_cores, dask_client, make_runner
 from lightsail_mbs.studies.store import CaseStore, to_json
@@ -36,7 +37,6 @@ from lightsail_mbs.studies.store import CaseStore, to_json
 __all__ = ["Case", "Sweep", "run_sweep", "run_cases", "solve_case", "available_cores", "dask_client"]
 
 KEY_LENGTH = 20  # hex digits of the SHA-256 of a case's description
-STORED_NAMES = {new: old for old, new in LEGACY_NAMES.items()}  # field names in the key's parameter dict
 
 
 @dataclass(frozen=True)
@@ -67,9 +67,9 @@ class Case:
 
     def description(self) -> dict:
         """What the key identifies: the case and its run settings in one parameter dict (under the
-        field names of the store's key format, STORED_NAMES; with an optical table file, the digest of its
+        field names of the store's key format, model.records.stored; with an optical table file, the digest of its
         content, so that a rewritten table is a new case), the solver and its options."""
-        parameters = {STORED_NAMES.get(k, k): v for k, v in self.params.to_dict().items()}
+        parameters = stored(self.params.to_dict())
         parameters.update(self.settings.to_dict())
         if self.params.optics_file:
             parameters["optics_sha256"] = self.params.optics_digest

@@ -22,7 +22,7 @@ def sail_mass(p):
 @pytest.mark.parametrize("radius", [2.0, -1.5])
 def test_mirror_force_passes_through_the_centre_of_curvature(radius):
     rng = np.random.default_rng(1)
-    p = case(radius, waist=0.6, beam_center=0.35)
+    p = case(radius, waist=0.6, beam_centre=0.35)
     sail = br.RigidSail(p, 1e-3, 4.0)
     gx, gy = sail.centre_of_mass
     for _ in range(5):
@@ -158,7 +158,7 @@ def test_inputs_are_validated():
 
 # ---- the flexible sail ---------------------------------------------------------------------------------
 def flexible_case(**changes):
-    base = dict(n=10, youngs_modulus=1e19, billow_radius=2.0, billow_rest=True, beam_waist=0.5, beam_center=0.49)
+    base = dict(n=10, youngs_modulus=1e19, billow_radius=2.0, billow_rest=True, beam_waist=0.5, beam_centre=0.49)
     base.update(defect_amplitude=0.0, payload_mass=1e-3, payload_stem=6.0, stiffness_damping=1e-4)
     return SailParameters(**{**base, **changes})
 
@@ -185,7 +185,7 @@ def test_flexible_ride_reads_a_rigid_motion_exactly():
     assert f.deformation.max() < 1e-13 and f.verdict == "rides"
     m, mp = p.slice_mass, p.payload_mass
     xp, _ = payload.position(p, x, y, theta)
-    expected = (m * x.sum(axis=1) + mp * xp) / (m * p.n + mp) - p.beam_center
+    expected = (m * x.sum(axis=1) + mp * xp) / (m * p.n + mp) - p.beam_centre
     np.testing.assert_allclose(f.lateral, expected, atol=1e-15)
     assert abs(f.lateral[0] - 0.01) < 2e-3  # the payload under the middle: the craft starts 1 cm off the axis
     bent = y.copy()

@@ -35,7 +35,24 @@ def test_a_default_that_follows_another_field_follows_it_over_a_file(tmp_path):
     turns bending off and --length 2 moves the axis to 1 m, as with no file."""
     case = SailParameters(beam_waist=0.3).to_toml(tmp_path / "c.toml")
     p = params_from_args(parsed("theory", case, "--model", "tnt", "--tension", 1e-3, "--length", 2))
-    assert p.bending is False and p.beam_center == 1.0
+    assert p.bending is False and p.beam_centre == 1.0
+
+
+def test_the_older_spelling_of_the_beam_axis_is_read_from_files_and_options(tmp_path):
+    """beam_center / --beam-center (the spelling before beam_centre): a case file, a saved run's summary and
+    the command line still take it; --help shows only the new spelling."""
+    case = tmp_path / "old.toml"
+    case.write_text('model = "sheet"\nn = 4\nny = 3\nbeam_waist = 0.5\nbeam_center = 0.3\nbeam_center_y = 0.6\n')
+    expected = SailParameters(model="sheet", n=4, ny=3, beam_waist=0.5, beam_centre=0.3, beam_centre_y=0.6)
+    assert SailParameters.from_toml(case) == expected
+    summary = tmp_path / "old.json"
+    parameters = {"beam_center" if k == "beam_centre" else k: v for k, v in SailParameters(n=6).to_dict().items()}
+    summary.write_text(json.dumps({"format": "lightsail-mbs result", "format_version": 1, "parameters": parameters}))
+    assert params_from_args(parsed("theory", summary)) == SailParameters(n=6)
+    args = parsed("theory", "--model", "sheet", "--beam-center", 0.3, "--beam-center-y", 0.6)
+    assert (params_from_args(args).beam_centre, params_from_args(args).beam_centre_y) == (0.3, 0.6)
+    text = build_parser()._subparsers._group_actions[0].choices["simulate"].format_help()
+    assert "--beam-centre-y" in text and "beam-center" not in text
 
 
 @pytest.mark.parametrize(
@@ -82,7 +99,10 @@ BAD_FILES = [
     ("wrong type", 'thickness = "thin"', ["thickness", "allowed a number"]),
     ("out of range", "thickness = -1e-6", ["thickness=-1e-06", "> 0"]),
     ("another family's field", "ny = 3", ["ny=3", "unless model='sheet'"]),
-    ("newer version", "version = 7", ["version = 7", "up to version 1"]),
+    ("newer version", "version = 7", ["version = 7", "up to version 2"]),
+    ("key in the wrong table", "[beam]\nny = 3", ["beam.ny", "allowed in [sheet]"]),
+    ("unknown table", "[hull]\nn = 12", ["unknown table [hull]", "[sail]"]),
+    ("another family's table", '[sail]\nmodel = "torsion"\n[sheet]\nny = 3', ["ny=3", "unless model='sheet'"]),
     ("bad run entry", "[run]\nfailure_ratio = 0.5", ["[run] failure_ratio", "> 1"]),
 ]
 

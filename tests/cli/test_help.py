@@ -53,13 +53,13 @@ def test_no_number_in_any_help_is_written_out_in_full():
 
 def test_defaults_that_follow_other_fields_say_so():
     follows = [name for name, info in FIELDS.items() if info.follows]
-    assert "beam_center" in follows
+    assert "beam_centre" in follows
     for name in follows:
         assert CASE_FIELDS[name].default is None  # resolved from the other fields on construction
         assert field_help(name).endswith(f"[default: {FIELDS[name].follows}]")
     simulate = dict(parsers())["lightsail-mbs simulate"].format_help()
-    beam_center = " ".join(simulate.split("--beam-center BEAM_CENTER")[-1].split("--")[0].split())
-    assert beam_center.endswith("[default: the sail's middle L/2]"), beam_center
+    beam_centre = " ".join(simulate.split("--beam-centre BEAM_CENTRE")[-1].split("--")[0].split())
+    assert beam_centre.endswith("[default: the sail's middle L/2]"), beam_centre
     assert "[default: 4.5e+13]" in simulate and "45000000000000" not in simulate
 
 

@@ -27,8 +27,8 @@ def test_every_case_field_is_documented_with_its_help_and_unit():
         assert (f"[{info.unit}]" in text) == bool(info.unit)
     youngs = lines[lines.index("youngs_modulus : float") + 1]
     assert youngs.endswith("Default: 4.5e+13.")  # as the command line writes it
-    beam_center = lines[lines.index("beam_center : float | None") + 1]
-    assert beam_center.endswith("Default: None: the sail's middle L/2.")
+    beam_centre = lines[lines.index("beam_centre : float | None") + 1]
+    assert beam_centre.endswith("Default: None: the sail's middle L/2.")
 
 
 def test_bars_are_escaped_outside_literals_roles_and_literal_blocks():

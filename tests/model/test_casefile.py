@@ -84,12 +84,14 @@ def test_a_case_file_holds_what_describes_the_sail(tmp_path):
     """Defaults that follow other fields stay out at their followed value (so they follow an override), and so
     do the other family's fields; every line says what it is."""
     text = SailParameters(model="tnt", tension=1e-3, beam_waist=0.4).to_toml(tmp_path / "c.toml").read_text()
-    keys = tomllib.loads(text)
-    assert not {"beam_center", "bending", "ny", "edge_tension"} & set(keys) and keys["tension"] == 1e-3
+    keys = {
+        key: value for table in tomllib.loads(text).values() if isinstance(table, dict) for key, value in table.items()
+    }
+    assert not {"beam_centre", "bending", "ny", "edge_tension"} & set(keys) and keys["tension"] == 1e-3
     assert 'format = "lightsail-mbs case"' in text.splitlines()[0] and "beam_waist = 0.4  # Gaussian" in text
     assert "youngs_modulus = 4.5e+13  # Young's modulus E (Pa)" in text
-    moved = SailParameters(beam_center=0.2).to_toml(tmp_path / "m.toml")
-    assert SailParameters.from_toml(moved).beam_center == 0.2
+    moved = SailParameters(beam_centre=0.2).to_toml(tmp_path / "m.toml")
+    assert SailParameters.from_toml(moved).beam_centre == 0.2
 
 
 @pytest.mark.parametrize(
@@ -101,9 +103,16 @@ def test_a_case_file_holds_what_describes_the_sail(tmp_path):
         ('thickness = "thin"', ["thickness", "a number"]),
         ("n = 1", ["n=1", "2 ≤ n ≤ 5000"]),
         ("ny = 3", ["ny=3", "unless model='sheet'"]),
-        ("version = 2\nn = 12", ["version = 2", "up to version 1"]),
+        ("version = 3\nn = 12", ["version = 3", "up to version 2"]),
         ('format = "other"', ["format", "lightsail-mbs case"]),
-        ("[sheet]\nny = 3", ["[sheet]", "allowed"]),
+        ("[hull]\nn = 3", ["[hull]", "allowed", "[sail]"]),
+        ("version = 1\n[sheet]\nny = 3", ["[sheet]", "version 1"]),
+        ("version = 2\nn = 12", ["n at the top", "allowed in [sail]"]),
+        ("[beam]\nny = 3", ["beam.ny", "wrong table", "allowed in [sheet]"]),
+        ("[beam]\nbeam_wasit = 0.3", ["beam.beam_wasit", "did you mean beam_waist", "allowed in [beam]"]),
+        ('[beam]\nbeam_waist = "wide"', ["beam.beam_waist", "a number"]),
+        ('[sail]\nmodel = "torsion"\n[sheet]\nny = 3', ["ny=3", "unless model='sheet'"]),
+        ('[sail]\nmodel = "sheet"\n[payload]\npayload_mass = 1e-3', ["payload_mass", "unless model is one of"]),
         ("[run]\nt_fnal = 1.0", ["run.t_fnal", "t_final"]),
     ],
 )
@@ -123,3 +132,23 @@ def test_a_missing_case_file_is_named(tmp_path):
         SailParameters.from_toml(tmp_path / "nothere.toml")
     with pytest.raises(casefile.CaseFileError, match="a folder"):
         casefile.read(tmp_path, {})
+
+
+def test_a_version_1_file_and_its_version_2_file_are_the_same_case(tmp_path):
+    """A flat (version 1) file reads as it always did; its case written again is a version 2 file of section
+    tables, older field names included (beam_center), and reads back to the same case."""
+    flat = tmp_path / "flat.toml"
+    flat.write_text('version = 1\nmodel = "sheet"\nn = 4\nny = 3\nbeam_waist = 0.5\nbeam_center = 0.3\n')
+    p = SailParameters.from_toml(flat)
+    assert p == SailParameters(model="sheet", n=4, ny=3, beam_waist=0.5, beam_centre=0.3)
+    text = p.to_toml(tmp_path / "sections.toml").read_text()
+    tables = tomllib.loads(text)
+    assert tables["version"] == 2 and tables["sail"]["model"] == "sheet" and tables["sheet"]["ny"] == 3
+    assert tables["beam"]["beam_centre"] == 0.3 and "payload" not in tables  # the chain's sections left out
+    assert SailParameters.from_toml(tmp_path / "sections.toml") == p
+    old = tmp_path / "old_names.toml"
+    old.write_text('[sail]\nmodel = "sheet"\nn = 4\nny = 3\n[beam]\nbeam_waist = 0.5\nbeam_center = 0.3\n')
+    with pytest.raises(ParameterError, match="sail.ny is in the wrong table: allowed in \\[sheet\\]"):
+        SailParameters.from_toml(old)
+    old.write_text('[sail]\nmodel = "sheet"\nn = 4\n[sheet]\nny = 3\n[beam]\nbeam_waist = 0.5\nbeam_center = 0.3\n')
+    assert SailParameters.from_toml(old) == p

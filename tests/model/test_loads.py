@@ -27,7 +27,7 @@ def test_flat_sail_is_balanced_by_frame_force():
 OPTICS = {
     "mirror": SailParameters(n=12, intensity=1e9),
     "facet": SailParameters(n=12, intensity=1e9, reflectivity=0.6, absorptivity=0.3),
-    "gaussian": SailParameters(n=12, intensity=1e9, beam_waist=0.4, beam_center=0.3),
+    "gaussian": SailParameters(n=12, intensity=1e9, beam_waist=0.4, beam_centre=0.3),
     "gaussian-facet": SailParameters(n=12, intensity=1e9, beam_waist=0.5, reflectivity=0.7, absorptivity=0.2),
 }
 
@@ -77,7 +77,7 @@ def test_compiled_net_force_equals_the_load_model(name):
     fx, fy = net_slice_forces(p, x, th)
     area_c = p.slice_length * p.width / C
     for i in range(p.n):
-        local = gaussian_intensity(x[i], p.intensity, p.beam_center, p.beam_waist)
+        local = gaussian_intensity(x[i], p.intensity, p.beam_centre, p.beam_waist)
         cx, cy = net_slice_force(
             th[i], np.cos(th[i]), np.sin(th[i]), local, p.mean_intensity, area_c, p.reflectivity, p.absorptivity
         )
@@ -128,7 +128,7 @@ def test_frame_force_follows_optics():
 
 
 def test_gaussian_profile_and_mean():
-    p = SailParameters(beam_waist=0.4, beam_center=0.3)
+    p = SailParameters(beam_waist=0.4, beam_centre=0.3)
     x = np.linspace(0, 1, 200001)
     i = intensity(p, x)
     assert i.max() == pytest.approx(p.intensity, rel=1e-9)
@@ -143,12 +143,12 @@ def test_wide_gaussian_is_uniform():
 
 def test_off_centre_beam_torque_sign():
     """Beam centred right of the middle pushes the right half harder: counter-clockwise torque."""
-    p = SailParameters(n=40, beam_waist=0.5, beam_center=0.7)
+    p = SailParameters(n=40, beam_waist=0.5, beam_centre=0.7)
     x = (np.arange(40) + 0.5) / 40
     fx, fy = net_slice_forces(p, x, np.zeros(40))
     torque = np.sum((x - x.mean()) * fy)
     assert torque > 0
-    assert np.sum(net_slice_forces(p.replace(beam_center=0.3), x, np.zeros(40))[1] * (x - x.mean())) < 0
+    assert np.sum(net_slice_forces(p.replace(beam_centre=0.3), x, np.zeros(40))[1] * (x - x.mean())) < 0
 
 
 @pytest.mark.parametrize(
@@ -157,7 +157,7 @@ def test_off_centre_beam_torque_sign():
         (dict(reflectivity=1.2), "reflectivity"),
         (dict(reflectivity=0.8, absorptivity=0.3), "absorptivity"),
         (dict(beam_waist=0.0), "beam_waist"),
-        (dict(beam_center=float("nan")), "beam_center"),
+        (dict(beam_centre=float("nan")), "beam_centre"),
         (dict(reflectivity=0.0, absorptivity=0.0), "reflectivity"),
     ],
 )
@@ -201,8 +201,8 @@ def test_gaussian_beam_effect_falls_as_inverse_waist_squared():
 @pytest.mark.parametrize("solver", ["reduced", "exudyn"])
 def test_off_centre_beam_turns_the_sail_counter_clockwise(solver):
     """Beam axis right of the middle: the right half is pushed harder, the flat sail turns θ > 0."""
-    p = paper_case("torsion-stable", defect_amplitude=0.0, beam_waist=0.5, beam_center=0.7)
+    p = paper_case("torsion-stable", defect_amplitude=0.0, beam_waist=0.5, beam_centre=0.7)
     settings = RunSettings(t_final=0.05)
     r = solve(p, solver, settings, uncertainty=False)
     assert r.omega[-1].mean() > 0 and r.theta[-1].mean() > 0
-    assert solve(p.replace(beam_center=0.3), solver, settings, uncertainty=False).theta[-1].mean() < 0
+    assert solve(p.replace(beam_centre=0.3), solver, settings, uncertainty=False).theta[-1].mean() < 0

@@ -39,7 +39,7 @@ def test_facet_is_the_loads_law(seed):
     r = np.random.default_rng(seed)
     R = r.uniform(0, 1)
     a = r.uniform(0, 1 - R)
-    p = SailParameters(n=30, reflectivity=R, absorptivity=a, beam_waist=r.uniform(0.2, 2), beam_center=r.uniform(0, 1))
+    p = SailParameters(n=30, reflectivity=R, absorptivity=a, beam_waist=r.uniform(0.2, 2), beam_centre=r.uniform(0, 1))
     theta = r.uniform(-1.5, 1.5, 300)
     x = r.uniform(-0.5, 1.5, 300)
     table = optics.facet(R, a)

@@ -123,6 +123,15 @@ def test_from_dict_reads_the_names_of_older_records():
     assert SailParameters.from_dict(old) == p
 
 
+def test_from_dict_reads_the_beam_axis_under_its_older_spelling():
+    p = SailParameters(model="sheet", n=4, ny=3, beam_waist=0.5, beam_centre=0.3, beam_centre_y=0.6)
+    old = {LEGACY_SPELLING.get(k, k): v for k, v in p.to_dict().items()}
+    assert {"beam_center", "beam_center_y"} <= set(old) and SailParameters.from_dict(old) == p
+
+
+LEGACY_SPELLING = {"beam_centre": "beam_center", "beam_centre_y": "beam_center_y"}
+
+
 def test_from_dict_rejects_an_unknown_key():
     d = {**SailParameters().to_dict(), "colour": "gold"}
     with pytest.raises(ParameterError, match="colour"):
@@ -169,12 +178,12 @@ def test_bad_support_values_name_the_parameter(changes, name):
 def test_chain_records_do_not_change_with_the_sheet_fields():
     """The sheet's fields are left out of to_dict at their defaults, so every chain case keeps its
     record and store key; a chain rejects them away from their defaults."""
-    from lightsail_mbs.model.parameters import SHEET_DEFAULTS
+    from lightsail_mbs.model.records import SHEET_DEFAULTS
 
     for p in (SailParameters(), paper_case("tnt-soft"), SailParameters(model="rigid", beam_waist=0.5)):
         assert not set(SHEET_DEFAULTS) & set(p.to_dict())
     for name, value in dict(
-        ny=3, defect_mode_y=1.5, membrane_modulus=1e9, edge_tension=1e-6, beam_center_y=0.2, pressure=1.0
+        ny=3, defect_mode_y=1.5, membrane_modulus=1e9, edge_tension=1e-6, beam_centre_y=0.2, pressure=1.0
     ).items():
         with pytest.raises(ParameterError, match=f"{name}.*unless model='sheet'"):
             SailParameters(**{name: value})
@@ -186,7 +195,7 @@ def test_sheet_fields_round_trip_and_defaults():
     assert d["ny"] == 8 and d["defect_mode_y"] == 1.5 and "pressure" not in d
     assert SailParameters.from_dict(d) == p
     assert p.bending is True  # plate bending on by default
-    assert p.sheet_beam_center_y == 0.5
+    assert p.sheet_beam_centre_y == 0.5
 
 
 @pytest.mark.parametrize(
@@ -205,10 +214,10 @@ def test_sheet_fields_round_trip_and_defaults():
         (dict(boundary="pinned"), "boundary", "simply_supported"),
         (dict(tension=1.0), "tension", "edge_tension"),
         (dict(torsional_damping=1.0), "torsional_damping", "stiffness_damping"),
-        (dict(beam_center_y=math.nan), "beam_center_y", "finite"),
-        (dict(optics="mirror"), "optics", "None for a sheet"),
-        (dict(payload_mass=1e-3), "payload_mass", "0 for a sheet"),
-        (dict(initial_tilt=0.1), "initial_tilt", "0 for a sheet"),
+        (dict(beam_centre_y=math.nan), "beam_centre_y", "finite"),
+        (dict(optics="mirror"), "optics", "None unless model is one of rigid, torsion, tnt"),
+        (dict(payload_mass=1e-3), "payload_mass", "0 unless model is one of rigid, torsion, tnt"),
+        (dict(initial_tilt=0.1), "initial_tilt", "0 unless model is one of rigid, torsion, tnt"),
         (dict(billow_radius=0.2), "billow_radius", "90° from its apex"),
     ],
 )

@@ -57,7 +57,7 @@ def dense_accelerations(p, q, qd):
     ],
 )
 def test_kernel_equals_the_dense_lagrangian(n, extra):
-    p = SailParameters(n=n, youngs_modulus=4.5e11, beam_waist=1.5, beam_center=0.45, **extra)
+    p = SailParameters(n=n, youngs_modulus=4.5e11, beam_waist=1.5, beam_centre=0.45, **extra)
     q = np.concatenate([[0.01, -0.02], 0.2 * rng.standard_normal(n)])
     qd = np.concatenate([[0.1, 0.2], 0.3 * rng.standard_normal(n)])
     kernel = ChainDynamics(ChainModel.from_params(p)).accelerations(q, qd)

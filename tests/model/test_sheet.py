@@ -147,7 +147,7 @@ def test_random_two_dimensional_defect_is_seeded_and_scaled():
 def test_tile_forces_are_the_facet_law_minus_the_frame_force():
     """At finite tilts the net tile force equals (I ab/c) cos θ [2R cos θ n + α ẑ] − (2R + α) Ī ab/c ẑ + p ab ẑ
     summed naively (which loses nothing that matters there), for a round Gaussian beam off centre."""
-    p = sheet_case(beam_waist=0.6, beam_center=0.3, beam_center_y=0.7, reflectivity=0.7, absorptivity=0.2, pressure=0.3)
+    p = sheet_case(beam_waist=0.6, beam_centre=0.3, beam_centre_y=0.7, reflectivity=0.7, absorptivity=0.2, pressure=0.3)
     t = sheet.Tiles.of(p)
     centres = sheet.flat_centres(p) + rng.normal(0, 0.02, (35, 3))
     normal = rng.normal(0, 0.3, (35, 3)) + [0, 0, 1]
@@ -203,7 +203,7 @@ def test_one_facet_law_for_chain_and_sheet():
 
 
 def test_sheet_mean_intensity_is_the_round_beams_mean():
-    p = sheet_case(beam_waist=0.7, beam_center=0.2, beam_center_y=0.9, width=1.5)
+    p = sheet_case(beam_waist=0.7, beam_centre=0.2, beam_centre_y=0.9, width=1.5)
     xs, ys = np.linspace(0, 1, 801), np.linspace(0, 1.5, 1201)
     grid = loads.sheet_intensity(p, xs[:, None], ys[None, :])
     mean = np.trapezoid(np.trapezoid(grid, ys, axis=1), xs) / 1.5

@@ -117,7 +117,7 @@ def test_solvers_agree_on_a_round_sail_in_a_gaussian_beam(planform, n, ny):
 def test_mean_intensity_is_the_tiles_mean():
     """Ī over a round planform: the flat sail's net force (radiation minus frame force) vanishes."""
     p = SailParameters(
-        model="sheet", planform="disc", n=9, ny=12, length=1.0, width=1.0, beam_waist=0.4, beam_center=0.6
+        model="sheet", planform="disc", n=9, ny=12, length=1.0, width=1.0, beam_waist=0.4, beam_centre=0.6
     )
     centres = sheet.flat_centres(p)
     forces = terms.tile_forces(p, centres, np.tile([0.0, 0.0, 1.0], (len(centres), 1)))

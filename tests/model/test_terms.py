@@ -16,7 +16,7 @@ rng = np.random.default_rng(11)
 
 CHAINS = {
     "facet-gaussian-pushed": SailParameters(
-        n=9, intensity=1e9, beam_waist=0.4, beam_center=0.3, reflectivity=0.7, absorptivity=0.2, body_force=0.3
+        n=9, intensity=1e9, beam_waist=0.4, beam_centre=0.3, reflectivity=0.7, absorptivity=0.2, body_force=0.3
     ),
     "facet-moving": SailParameters(n=7, intensity=1e9, reflectivity=0.6, absorptivity=0.3, velocity_terms=True),
     "gaussian-moving": SailParameters(n=10, intensity=1e9, beam_waist=0.5, velocity_terms=True),
@@ -27,7 +27,7 @@ UNIFORM_SHEET = SailParameters(model="sheet", n=5, ny=4, youngs_modulus=4.5e9)
 SHEETS = {
     "uniform": UNIFORM_SHEET,
     "gaussian-pressure-pushed": UNIFORM_SHEET.replace(
-        beam_waist=0.6, beam_center_y=0.7, reflectivity=0.7, absorptivity=0.2, pressure=0.3, body_force=-0.2
+        beam_waist=0.6, beam_centre_y=0.7, reflectivity=0.7, absorptivity=0.2, pressure=0.3, body_force=-0.2
     ),
     "gaussian-moving": UNIFORM_SHEET.replace(beam_waist=0.6, reflectivity=0.8, absorptivity=0.15, velocity_terms=True),
 }

@@ -76,6 +76,15 @@ def test_keys_of_stores_written_before_run_settings_are_unchanged():
     )
 
 
+def test_keys_of_cases_with_a_beam_axis_are_those_of_its_older_name():
+    """The store's key names the beam axis beam_center / beam_center_y, as before the field took the spelling
+    beam_centre: a sheet under an off-centre Gaussian beam keeps the key it had."""
+    p = SailParameters(model="sheet", n=4, ny=3, beam_waist=0.5, beam_centre=0.3, beam_centre_y=0.6)
+    case = Case(p, "reduced", settings=RunSettings(t_final=0.01))
+    assert {"beam_center", "beam_center_y"} <= set(case.description()["parameters"])
+    assert case.key == "600c72b97516e5509d91"
+
+
 def test_sweep_records_outcomes_and_skips_finished_cases(tmp_path, markers, capsys):
     cases = small_sweep(markers)
     records = run_sweep(cases + cases[:2], tmp_path / "store", workers=2, progress=True, case_function=fake_case)

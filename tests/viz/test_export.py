@@ -22,7 +22,7 @@ def spinning_dish(planform="disc", steps=7, t_final=0.1) -> Result:
     """A rigid dish w = a r² turning about the z axis through the sail's middle at SPIN: each tile's centre and
     rotation those of the dish at rest turned by Ωt, velocities Ω ẑ × (x − c), angular velocities Ω ẑ; in a
     Gaussian beam off the middle, so that the load differs from tile to tile."""
-    p = SailParameters(model="sheet", planform=planform, n=8, ny=8, beam_waist=0.6, beam_center=0.4)
+    p = SailParameters(model="sheet", planform=planform, n=8, ny=8, beam_waist=0.6, beam_centre=0.4)
     flat = sheet.flat_centres(p)
     middle = np.array([0.5 * p.length, 0.5 * p.width, 0.0])
     arm = flat - middle

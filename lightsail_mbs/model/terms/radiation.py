@@ -39,11 +39,11 @@ def constants(p, family: str) -> np.ndarray:
     """Chain: I₀, Ī, l W/c, x_c, w (inf: uniform), R, α, c_n(0) [, flags, packed table]; sheet: Ī, I₀, x_c,
     y_c, w, R, α, then A_k/c of every tile k."""
     if family == "chain":
-        head = [p.intensity, p.mean_intensity, p.slice_length * p.width / SPEED_OF_LIGHT, p.beam_center]
+        head = [p.intensity, p.mean_intensity, p.slice_length * p.width / SPEED_OF_LIGHT, p.beam_centre]
         head += [p.beam_waist, p.reflectivity, p.absorptivity, p.normal_momentum]
         table = optics.solver_block(p) if p.optics is not None else np.zeros(0)
         return np.concatenate([head, table])
-    beam = [p.intensity, p.beam_center, p.sheet_beam_center_y, p.beam_waist]
+    beam = [p.intensity, p.beam_centre, p.sheet_beam_centre_y, p.beam_waist]
     head = np.array([p.mean_intensity, *beam, p.reflectivity, p.absorptivity])
     return np.concatenate([head, Tiles.of(p).areas / SPEED_OF_LIGHT])
 
@@ -78,12 +78,12 @@ def tiles(p, bodies: np.ndarray, forces: np.ndarray) -> None:
 @njit(cache=True)
 def chain_into(block, bodies, forces):
     """Adds the net force on every slice to forces (compiled form)."""
-    peak, mean, area_c, center, waist = block[0], block[1], block[2], block[3], block[4]
+    peak, mean, area_c, centre, waist = block[0], block[1], block[2], block[3], block[4]
     refl, absorb, momentum = block[5], block[6], block[7]
     n = forces.shape[1]
     table = block[CHAIN_HEAD + n :]
     for i in range(n):
-        local = gaussian_intensity(bodies[X, i], peak, center, waist)
+        local = gaussian_intensity(bodies[X, i], peak, centre, waist)
         theta, c, s = bodies[THETA, i], bodies[COS, i], bodies[SIN, i]
         if block.size > CHAIN_HEAD:
             mirrored = block[CHAIN_HEAD + i] != 0.0

@@ -92,8 +92,8 @@ def constants(p, family: str) -> np.ndarray:
     """Chain: I₀, x_c, w (inf: uniform), l W/c², R, α; sheet: I₀, x_c, y_c, w, R, α, then A_k/c² of every tile."""
     if family == "chain":
         area = p.slice_length * p.width / SPEED_OF_LIGHT**2
-        return np.array([p.intensity, p.beam_center, p.beam_waist, area, p.reflectivity, p.absorptivity])
-    head = [p.intensity, p.beam_center, p.sheet_beam_center_y, p.beam_waist, p.reflectivity, p.absorptivity]
+        return np.array([p.intensity, p.beam_centre, p.beam_waist, area, p.reflectivity, p.absorptivity])
+    head = [p.intensity, p.beam_centre, p.sheet_beam_centre_y, p.beam_waist, p.reflectivity, p.absorptivity]
     return np.concatenate([head, Tiles.of(p).areas / SPEED_OF_LIGHT**2])
 
 
@@ -121,9 +121,9 @@ def tiles(p, bodies: np.ndarray, forces: np.ndarray) -> None:
 @njit(cache=True)
 def chain_into(block, bodies, forces):
     """Adds δF on every slice (compiled form)."""
-    peak, center, waist, area, refl, absorb = block[0], block[1], block[2], block[3], block[4], block[5]
+    peak, centre, waist, area, refl, absorb = block[0], block[1], block[2], block[3], block[4], block[5]
     for i in range(forces.shape[1]):
-        scale = gaussian_intensity(bodies[X, i], peak, center, waist) * area
+        scale = gaussian_intensity(bodies[X, i], peak, centre, waist) * area
         c, s, vx, vy = bodies[COS, i], bodies[SIN, i], bodies[VX, i], bodies[VY, i]
         normal = 4.0 * refl * c * (-s * vx + c * vy)
         forces[0, i] -= scale * (normal * -s + absorb * c * vx)
