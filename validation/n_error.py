@@ -8,7 +8,8 @@ converged answer `converge` finds (studies.convergence.converge, reduced solver,
 - **the package's rule** (lightsail_mbs.analysis.n_error: twins at n/2 and, where it draws the defect, n/4):
   2 |q(n) − q(n/2)| where the three answers shrink as a power law of order 1–8 or there is no twin at n/4, else
   twice the larger of the two changes; without the twin at n/4, for a failure time at the grid scale, at least
-  the spectrum's estimate;
+  the spectrum's estimate; for a largest amplitude ratio, at least the rise its recurrences may make above it
+  (n_error.recurrence_rise, from the amplitude histories at n and n/2);
 - **twin n/2, order 1**: E_n = |q(n) − q(n/2)| / (2^p − 1), p = 1 (Richardson's estimate alone);
 - **twin 2n/3, order 1**: E_n = |q(n) − q(⌊2n/3⌋)| / ((n/⌊2n/3⌋)^p − 1), p = 1;
 - **twin n/2, order 2**: the same at p = 2 (the order the soft sail reaches from n ≈ 120);
@@ -81,6 +82,25 @@ def run_value(p, settings) -> tuple[float | None, str]:
     return value_of(solve(p, "reduced", settings, uncertainty=False))
 
 
+def recurrence_rise(p, settings, n: int) -> float:
+    """The package rule's recurrences' rise (n_error.recurrence_rise) of the case at n, from base runs at n and n/2."""
+    fine, coarse = (solve(p.replace(n=size), "reduced", settings, uncertainty=False) for size in (n, n // 2))
+    return n_error.recurrence_rise(fine.time, fine.amplitude, coarse.time, coarse.amplitude)
+
+
+def add_rises(case: dict, p, settings) -> bool:
+    """Record the recurrences' rise in each row of `case` whose answer is a largest amplitude ratio and that lacks
+    it (rows of an earlier version of this script); whether any was added."""
+    missing = [
+        row
+        for row in case["rows"]
+        if not row.get("skipped") and row["kind"] == "max_amplitude_ratio" and "rise" not in row
+    ]
+    for row in missing:
+        row["rise"] = recurrence_rise(p, settings, row["n"])
+    return bool(missing)
+
+
 def candidates(row: dict, p) -> dict:
     """E_n of every candidate (module docstring) from a row's answer and its twins' ({size: (value, kind)}); `p`:
     the case (the package's rule runs the twin at n/4 only where it draws the defect)."""
@@ -100,7 +120,7 @@ def candidates(row: dict, p) -> dict:
             row["slices_per_wavelength"] = resolvedness.assess(p.replace(n=n)).slices_per_wavelength
         verdict = {"slices_per_wavelength": row["slices_per_wavelength"], "relative_n_error": row["spectrum"]}
         floor = 0.0 if usable else n_error.spectral_floor(verdict, q, kind == "failure_time")
-        out["package"] = max(estimate, floor)
+        out["package"] = max(estimate, floor, row.get("rise") or 0.0)
     out["spectrum"] = q * row["spectrum"] if row["spectrum"] is not None and kind == "failure_time" else None
     return out
 
@@ -139,7 +159,7 @@ def run_case(key: str, label: str, p, settings, sizes_at) -> dict:
                 "twins": {str(size): answers[size] for size in (n // 4, n // 2, (2 * n) // 3)},
             }
         )
-    return {
+    case = {
         "key": key,
         "label": label,
         "sizes": [row.n for row in study.rows],
@@ -149,8 +169,10 @@ def run_case(key: str, label: str, p, settings, sizes_at) -> dict:
         "reference": reference,
         "reference_kind": "fit" if accepted else f"finest (n = {finest.n})",
         "rows": rows,
-        "cpu": time.process_time() - start,
     }
+    add_rises(case, p, settings)
+    case["cpu"] = time.process_time() - start
+    return case
 
 
 def well_posed_seeds(count: int) -> list[int]:
@@ -283,12 +305,18 @@ def main() -> None:
             continue
         case = done.get(key) or run_case(key, label, p, settings, sizes_at)
         case["label"] = label  # the label of this version of the script
-        if key not in done and not args.only:
+        start = time.process_time()
+        if add_rises(case, p, settings):
+            case["cpu"] += time.process_time() - start
+        if not args.only:
+            done[key] = case
             with ROWS.open("a") as out:
                 out.write(json.dumps(case) + "\n")
         cases.append(case)
         for row in case["rows"]:
             print(key, row, flush=True)
+    if not args.only:  # one line per case (the appended ones replace those they updated)
+        ROWS.write_text("".join(json.dumps(case) + "\n" for case in done.values()))
     text = markdown(cases, {key: p for key, _, p, *_ in all_cases()})
     if args.only:
         print(text)

@@ -53,7 +53,7 @@ infinite and the run ill-conditioned: the sail is at its stability boundary for 
 
 Measured (validation/accuracy.md, 96 seeded random cases of every model; the rule settled on the first
 64, the last 32 run once after): the two solvers' answers differ by less than their combined U in all 96
-cases, and by ≤ 1e-3 relative (at most 7.6e-5) on all 89 well-conditioned ones. For the tight twin to be
+cases, and by ≤ 1e-3 relative (at most 9.6e-5) on all 89 well-conditioned ones. For the tight twin to be
 much more accurate than the base run, every error source must shrink: Exudyn's chain tightens its Newton
 tolerances as rtol² (its step as √rtol), since on extensible chains the modified Newton's residual, not
 the step, can set the error (solvers.exudyn.chain).

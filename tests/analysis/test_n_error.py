@@ -2,6 +2,7 @@
 posed in n; an ill-posed run keeps its verdict and prints no n-error; the paper's soft sail at n = 30 prints a ±
 that covers its distance to the converged answer."""
 
+import numpy as np
 import pytest
 
 from lightsail_mbs import RunSettings, SailParameters, paper_case, paper_settings, solve
@@ -42,6 +43,52 @@ def test_estimate_distrusts_a_collapse_and_a_clipped_ratio():
     assert n_error.estimate(0.75630, 0.75629, 0.74061) == pytest.approx(2 * 0.01568)
     assert n_error.estimate(1.0, 1.0002, 1.0042, ratio=True) == pytest.approx(2 * 0.004)
     assert n_error.estimate(1.0001, 1.0002, 1.0042, ratio=True) == pytest.approx(2 * 0.0001)
+
+
+def recurring_history(recurrence: float, dip: float = 0.08):
+    """(time, amplitude) of a tension-stabilised sail's amplitude: from a(0) = 1 down to `dip` at half the run and
+    back up to `recurrence` at its end (piecewise linear, 401 samples)."""
+    time = np.linspace(0.0, 1.0, 401)
+    return time, np.interp(time, [0.0, 0.5, 1.0], [1.0, dip, recurrence])
+
+
+def test_recurrence_rise_bounds_a_clipped_ratio():
+    """Recurrences that stay below the initial amplitude at n/2 and n (0.977, 0.9995) give the answer 1 twice, so
+    the change of the answers is 0; the recurrences' own change, doubled, may lift them above 1:
+    0.9995 + 2 · 0.0225 − 1."""
+    ratio_n, ratio_half = 1.0, 1.0
+    assert n_error.estimate(ratio_n, ratio_half, ratio=True) == 0.0
+    rise = n_error.recurrence_rise(*recurring_history(0.9995), *recurring_history(0.977))
+    assert rise == pytest.approx(0.9995 + 2 * 0.0225 - 1.0)
+
+
+def test_recurrence_rise_ignores_recurrences_far_below_the_answer():
+    """A recurrence to 0.5 (0.3 at n/2) cannot reach the answer 1 within twice its change: no rise. A history
+    that only rises is its own recurrence: R(t) is its running maximum, and the rise twice the change at the end."""
+    assert n_error.recurrence_rise(*recurring_history(0.5), *recurring_history(0.3)) == 0.0
+    time = np.linspace(0.0, 1.0, 101)
+    assert n_error.recurrence_rise(time, 1.0 + 0.1 * time, time, 1.0 + 0.08 * time) == pytest.approx(2 * 0.02)
+
+
+def test_surviving_chain_whose_recurrence_passes_its_initial_amplitude_at_2n():
+    """An extensible TnT chain at T = 5 T_cr,max (seeded case 18 of validation/accuracy.md, where the rule was
+    found): its amplitude falls to 0.08 a(0) and recurs to 0.9995 a(0) at n = 91 (0.977 at n = 45), so the
+    answer is 1 at both and their change 0; at n = 182, sampled 4× finer, the recurrence passes a(0) (1.0146).
+    The ± holds the rise of the recurrences and covers it."""
+    p = SailParameters(
+        model="tnt", axial_springs=True, n=91, defect_mode=3, thickness=0.406e-6, density=2680, intensity=2.77e9,
+        defect_amplitude=3.84e-5, youngs_modulus=5.28e9, tension=1.81e-3,
+    )  # fmt: skip
+    settings = RunSettings(t_final=0.2625, output_interval=0.2625 / 400)
+    result = solve(p, "reduced", settings)
+    record = result.uncertainty["n_error"]
+    assert result.max_amplitude_ratio == 1.0 and record["twins"]["45"]["value"] == 1.0
+    assert record["value"] == record["recurrence_rise"] > 0
+    fine = solve(
+        p.replace(n=182), "reduced", RunSettings(t_final=0.2625, output_interval=0.2625 / 1600), uncertainty=False
+    )
+    assert fine.max_amplitude_ratio > 1.01
+    assert abs(fine.max_amplitude_ratio - result.max_amplitude_ratio) <= result.max_amplitude_ratio_uncertainty
 
 
 def test_twin_sizes_carry_the_defect():
