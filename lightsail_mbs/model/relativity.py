@@ -145,6 +145,12 @@ class Trajectory:
         b = _beta(beta)
         return self.time_constant * b / (1.0 - b)
 
+    def beta_at_proper_time(self, tau):
+        """β(τ) = τ/(K + τ): the speed after the proper time τ ≥ 0 from rest (the inverse of :meth:`proper_time`)."""
+        t = np.asarray(tau, float)
+        check("tau", tau, bool(np.all(t >= 0)), "≥ 0 (s)")
+        return t / (self.time_constant + t)
+
 
 def speed_from_u(u):
     """β = u/√(1 + u²) for u = γβ."""
