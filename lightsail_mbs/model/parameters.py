@@ -133,6 +133,12 @@ class SailParameters(DerivedQuantities):
             "0 with a payload (it acts on the sail's bodies)",
         )
         self._check_billow()
+        check(
+            "initial_beta",
+            self.initial_beta,
+            self.initial_beta == 0 or self.boundary == "free",
+            "0 unless boundary='free' (the trajectory is a free sail's)",
+        )
         if self.optics is not None:
             for name in ("reflectivity", "absorptivity", "velocity_terms", "initial_beta"):
                 check(

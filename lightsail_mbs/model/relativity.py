@@ -40,7 +40,6 @@ b = 1 − (1 − b) and the second derivative above: x(β) = c K [F(β) − F(0)
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import brentq
 
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT
 from lightsail_mbs.base.validation import check, finite
@@ -121,6 +120,8 @@ class Trajectory:
 
     def beta_at(self, time: float) -> float:
         """β(t): the root of t(β) = time on [0, 1) (Brent's method, to round-off in β)."""
+        from scipy.optimize import brentq  # here: the physics terms import this module, and runs load no scipy.optimize
+
         t = finite("time", time)
         check("time", time, t >= 0, "≥ 0")
         if t == 0:
