@@ -165,3 +165,19 @@ def test_both_sheet_solvers_give_the_same_doppler_delay():
     assert times["exudyn"][0] == pytest.approx(times["reduced"][0], rel=1e-6)
     assert shifts["reduced"] > 1e-4
     assert shifts["exudyn"] == pytest.approx(shifts["reduced"], rel=1e-3)
+
+
+def test_simulate_takes_initial_beta(tmp_path, capsys):
+    """`lightsail-mbs simulate --initial-beta` runs the Doppler term: the saved case holds β₀, and the soft sail
+    at 1e13 W/m² fails when the library's run of that case does."""
+    from lightsail_mbs import Result
+    from lightsail_mbs.cli import main
+
+    p, settings = soft_at_high_intensity()
+    args = ["simulate", "--model", "torsion", "--youngs-modulus", "4.5e9", "--intensity", "1e13"]
+    args += ["--initial-beta", str(BETA), "--t-final", str(settings.t_final), "--output-interval", "2e-5"]
+    assert main([*args, "--solver", "reduced", "--quiet", "--out", str(tmp_path / "run")]) == 0
+    saved = Result.load(tmp_path / "run.npz")
+    assert saved.params.initial_beta == BETA
+    expected = solve(p, "reduced", settings).failure_time
+    assert saved.failure_time == pytest.approx(expected, rel=1e-12)
