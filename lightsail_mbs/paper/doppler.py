@@ -6,10 +6,10 @@ intensity I₀ D(β₀) of their start.
 L = 1 m, n = 30) at I₀ = 1e13 W/m² in the lab frame (1e5 × the paper's 1e8 W/m²), from β₀ = 0.1
 (D₀ = 0.818): g₀ = 6.7e7 m/s² (at the lab intensity), failure in 7.35 ms, so that g₀ t_f/c = 1.6e-3 and the
 sail-frame intensity falls by r t_f = 2 D₀ g₀ t_f/c = 0.27 % over the run. At the paper's intensity the same
-sail fails in 2.34 s with g₀ t_f/c = 5e-6: too little to see against the solvers' error. So far above critical
-(E/E_cr,max = 1e-7) the chain is ill-posed in n (its fastest wave sits at the grid scale: analysis.resolvedness),
-so its t_f is the n = 30 chain's, not a converged one: what is compared is the two solvers on the same chain and
-the delay the Doppler term causes.
+sail fails in about 2 s (2.11 s from rest, docs/journey.md) with g₀ t_f/c ≈ 5e-6: too little to see against
+the solvers' error. So far above critical (E/E_cr,max = 1e-7) the chain is ill-posed in n (its fastest wave
+sits at the grid scale: analysis.resolvedness), so its t_f is the n = 30 chain's, not a converged one: what is
+compared is the two solvers on the same chain and the delay the Doppler term causes.
 
 **The heated journey snapshot.** The journey's Starshot-class TnT chain
 (:func:`~lightsail_mbs.paper.journey.starshot_case`, n = 10) at its β = 0.15 snapshot under 40 GW with 1 g
