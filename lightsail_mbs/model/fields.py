@@ -306,6 +306,14 @@ FIELDS = {
         "velocity in the sail's frame (a damping of rate 2g₀/c on a mirror's normal velocity)",
         "",
     ),
+    "initial_beta": FieldInfo(
+        BEAM,
+        "",
+        "the sail's speed along the beam at t = 0, β₀ (a fraction of c); > 0: the beam's loads follow the "
+        "Doppler factor (1 − β)/(1 + β) of the speed β(t) along the constant-power trajectory from β₀ "
+        "(intensity: the lab frame's); 0: at rest, no Doppler term",
+        "0 ≤ β₀ < 1",
+    ),
 }
 
 

@@ -95,6 +95,7 @@ class SailParameters(DerivedQuantities):
     initial_tilt: float = 0.0  # rad: the initial shape turned counter-clockwise about the craft's centre of mass
     material: str | None = None  # the film's name in model.materials (its density and E fill the case: materials.fill)
     velocity_terms: bool = False  # the first-order Doppler and aberration of each body's velocity (terms/velocity.py)
+    initial_beta: float = 0.0  # β₀: the sail's speed along the beam at t = 0, a fraction of c (terms/doppler.py)
 
     def __post_init__(self):
         sections.check_sections(self)
@@ -132,8 +133,14 @@ class SailParameters(DerivedQuantities):
             "0 with a payload (it acts on the sail's bodies)",
         )
         self._check_billow()
+        check(
+            "initial_beta",
+            self.initial_beta,
+            self.initial_beta == 0 or self.boundary == "free",
+            "0 unless boundary='free' (the trajectory is a free sail's)",
+        )
         if self.optics is not None:
-            for name in ("reflectivity", "absorptivity", "velocity_terms"):
+            for name in ("reflectivity", "absorptivity", "velocity_terms", "initial_beta"):
                 check(
                     name,
                     getattr(self, name),

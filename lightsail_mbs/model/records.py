@@ -52,6 +52,7 @@ LATER_DEFAULTS = {
     "film_seed": 0,
     "material": None,
     "velocity_terms": False,
+    "initial_beta": 0.0,
 }
 # Names under which saved runs and store records written before the current field names hold them.
 LEGACY_NAMES = {

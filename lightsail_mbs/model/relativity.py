@@ -40,7 +40,6 @@ b = 1 − (1 − b) and the second derivative above: x(β) = c K [F(β) − F(0)
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import brentq
 
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT
 from lightsail_mbs.base.validation import check, finite
@@ -121,6 +120,8 @@ class Trajectory:
 
     def beta_at(self, time: float) -> float:
         """β(t): the root of t(β) = time on [0, 1) (Brent's method, to round-off in β)."""
+        from scipy.optimize import brentq  # here: the physics terms import this module, and runs load no scipy.optimize
+
         t = finite("time", time)
         check("time", time, t >= 0, "≥ 0")
         if t == 0:
@@ -144,6 +145,12 @@ class Trajectory:
         τ = K β/(1 − β)."""
         b = _beta(beta)
         return self.time_constant * b / (1.0 - b)
+
+    def beta_at_proper_time(self, tau):
+        """β(τ) = τ/(K + τ): the speed after the proper time τ ≥ 0 from rest (the inverse of :meth:`proper_time`)."""
+        t = np.asarray(tau, float)
+        check("tau", tau, bool(np.all(t >= 0)), "≥ 0 (s)")
+        return t / (self.time_constant + t)
 
 
 def speed_from_u(u):

@@ -131,6 +131,8 @@ def _beam(s) -> None:
         "> 0 or absorptivity > 0 (a transparent sail feels no load)",
     )
     _flags(s, ("velocity_terms",))
+    v = finite("initial_beta", s.initial_beta)
+    check("initial_beta", v, 0 <= v < 1, "0 ≤ β₀ < 1 (the sail's speed along the beam, a fraction of c)")
 
 
 @_section("optics")

@@ -16,9 +16,11 @@ shape run of each snapshot: the case at that moment's intensity and tension, sol
 **The snapshots** are spaced so that g₀ and I' change by the fraction `step` between neighbours (equal steps in
 ln I'), T ∝ I'^(1/4) by about step/4 and λ' by step/2 (the default 5 %: at most 1.3 % in T).
 
-**Not modelled here**: the temperature and Doppler factor as part of a time-domain run (rest lengths following T
-inside the run, a load that falls with β during it), and a wavelength-dependent optical table (the absorptance
-and reflectivity are those at the laser's wavelength throughout). The first-order velocity-dependent terms of
+**Not modelled here**: the temperature as part of a time-domain run (rest lengths following T inside the run),
+and a wavelength-dependent optical table (the absorptance and reflectivity are those at the laser's wavelength
+throughout). A run can follow the Doppler factor along the trajectory (case field initial_beta,
+model.terms.doppler; lightsail_mbs.paper.doppler runs a heated snapshot that way); the snapshots' shape runs
+keep the intensity of their moment. The first-order velocity-dependent terms of
 the load are a physics term (model.terms.velocity, case field velocity_terms) that the snapshots' shape runs
 do not switch on.
 """

@@ -22,6 +22,9 @@ CHAINS = {
     "gaussian-moving": SailParameters(n=10, intensity=1e9, beam_waist=0.5, velocity_terms=True),
     "mirror-table": SailParameters(n=8, intensity=1e9, optics="mirror", optics_layout="mirrored-halves"),
     "payload": SailParameters(n=12, youngs_modulus=4.5e9, payload_mass=1e-4, payload_stem=0.2, beam_waist=0.8),
+    "doppler-moving-pushed": SailParameters(
+        n=8, intensity=1e9, beam_waist=0.7, velocity_terms=True, body_force=0.2, initial_beta=0.15
+    ),
 }
 UNIFORM_SHEET = SailParameters(model="sheet", n=5, ny=4, youngs_modulus=4.5e9)
 SHEETS = {
@@ -30,7 +33,9 @@ SHEETS = {
         beam_waist=0.6, beam_centre_y=0.7, reflectivity=0.7, absorptivity=0.2, pressure=0.3, body_force=-0.2
     ),
     "gaussian-moving": UNIFORM_SHEET.replace(beam_waist=0.6, reflectivity=0.8, absorptivity=0.15, velocity_terms=True),
+    "doppler-pressure": UNIFORM_SHEET.replace(pressure=0.2, velocity_terms=True, initial_beta=0.3),
 }
+TIME = 0.6  # s: the run's time at which the sums are compared (read by the Doppler term)
 
 
 def test_the_packed_layout_names_every_active_term_once():
@@ -64,9 +69,9 @@ def test_compiled_chain_terms_equal_their_numpy_forms(name):
     theta = np.concatenate([rng.uniform(-0.5, 0.5, p.n - 2), [1e-9, -3e-7]])
     x = np.sort(rng.uniform(0, 1, p.n))
     y, vx, vy, omega = rng.normal(0, [[0.01], [1], [1], [10]], (4, p.n))  # read by the velocity term
-    fx, fy = terms.chain_forces(p, x, theta, y, vx, vy, omega)
+    fx, fy = terms.chain_forces(p, x, theta, y, vx, vy, omega, time=TIME)
     forces = np.empty((2, p.n))
-    terms.chain_forces_into(terms.pack(p, "chain"), rows.chain_bodies(x, theta, y, vx, vy, omega), forces)
+    terms.chain_forces_into(terms.pack(p, "chain"), rows.chain_bodies(x, theta, y, vx, vy, omega), forces, TIME)
     scale = p.flat_force
     np.testing.assert_allclose(forces[0], fx, rtol=1e-14, atol=1e-16 * scale)
     np.testing.assert_allclose(forces[1], fy, rtol=1e-13, atol=1e-15 * scale)
@@ -80,9 +85,9 @@ def test_compiled_sheet_terms_equal_their_numpy_forms(name):
     normals = rng.normal(0, 0.2, (count, 3)) + [0, 0, 1]
     normals /= np.linalg.norm(normals, axis=1, keepdims=True)
     velocities, spins = rng.normal(0, 1, (2, count, 3))  # read by the velocity term
-    expected = terms.tile_forces(p, centres_, normals, velocities, spins)
+    expected = terms.tile_forces(p, centres_, normals, velocities, spins, time=TIME)
     forces = np.empty((3, count))
-    terms.tile_forces_into(terms.pack(p, "sheet"), rows.tile_bodies(centres_, normals, velocities, spins), forces)
+    terms.tile_forces_into(terms.pack(p, "sheet"), rows.tile_bodies(centres_, normals, velocities, spins), forces, TIME)
     scale = 2 * p.intensity * sheet.Tiles.of(p).area / 299_792_458.0
     np.testing.assert_allclose(forces.T, expected, rtol=1e-13, atol=1e-15 * scale)
 

@@ -192,7 +192,9 @@ def build(p: SailParameters, initial: shapes.ChainState | None = None):
     )
     tree = mbs.AddObject(
         ObjectKinematicTree(
-            nodeNumber=node, forceUserFunction=lambda mbs, t, i, q, q_t: load(q, q_t), **tree_arguments(p, layout, exu)
+            nodeNumber=node,
+            forceUserFunction=lambda mbs, t, i, q, q_t: load(q, q_t, t),
+            **tree_arguments(p, layout, exu),
         )
     )
     add_supports(p, mbs, node, tree, layout, q0)  # supports and tip load (validations; none for a sail)

@@ -202,28 +202,28 @@ class SheetSystem:
         self.load_calls, self.load_time = 0, 0.0
         self.generic = mbs.AddObject(ObjectGenericODE2(nodeNumbers=self.nodes, forceVector=self.force.tolist()))
         mbs.Assemble()
-        self.update_load()
-        mbs.SetPreNewtonResidualUserFunction(lambda _mbs, _t, _iteration, _discontinuous: self.update_load())
+        self.update_load(0.0)
+        mbs.SetPreNewtonResidualUserFunction(lambda _mbs, t, _iteration, _discontinuous: self.update_load(t))
 
-    def force_vector(self, q: np.ndarray, q_t: np.ndarray | None = None) -> np.ndarray:
+    def force_vector(self, q: np.ndarray, q_t: np.ndarray | None = None, t: float = 0.0) -> np.ndarray:
         """The load's generalised force (6N) at coordinates q (velocities q_t, read where a physics term
-        reads them): the terms' tile forces at the centres, no torques."""
+        reads them) and the time t: the terms' tile forces at the centres, no torques."""
         t0 = _time.perf_counter()
         q = np.asarray(q)[: 6 * self.tiles.count].reshape(-1, 6)
         rates = (None, None)
         if q_t is not None:
             q_t = np.asarray(q_t)[: 6 * self.tiles.count].reshape(-1, 6)
             rates = (q_t[:, :3], angular_velocity_xyz(q[:, 3:], q_t[:, 3:]))
-        forces = terms.tile_forces(self.p, self.flat + q[:, :3], sheet.normal_xyz(q[:, 3:]), *rates)
+        forces = terms.tile_forces(self.p, self.flat + q[:, :3], sheet.normal_xyz(q[:, 3:]), *rates, time=t)
         self.force.reshape(-1, 6)[:, :3] = forces
         self.load_calls += 1
         self.load_time += _time.perf_counter() - t0
         return self.force
 
-    def update_load(self) -> None:
+    def update_load(self, t: float) -> None:
         data = self.mbs.systemData
         q_t = data.GetODE2Coordinates_t() if self.reads_velocities else None
-        self.mbs.SetObjectParameter(self.generic, "forceVector", self.force_vector(data.GetODE2Coordinates(), q_t))
+        self.mbs.SetObjectParameter(self.generic, "forceVector", self.force_vector(data.GetODE2Coordinates(), q_t, t))
 
     def centres(self, q: np.ndarray) -> np.ndarray:
         """Tile centres (…, N, 3) of coordinate rows (…, 6N)."""

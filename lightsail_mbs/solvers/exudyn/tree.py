@@ -47,7 +47,7 @@ import numpy as np
 from lightsail_mbs.base.kernels import njit
 from lightsail_mbs.model import payload, shapes, terms
 from lightsail_mbs.model.parameters import SailParameters
-from lightsail_mbs.model.terms import chain_forces_into
+from lightsail_mbs.model.terms import beam_factor, chain_forces_into
 from lightsail_mbs.model.terms.bodies import (
     CHAIN_ROWS,
     COS,
@@ -140,7 +140,7 @@ def _exclusive_cumsum(a: np.ndarray) -> np.ndarray:
 
 
 def generalized_force(p: SailParameters, layout: ChainLayout):
-    """The force user function (q, q̇) ↦ Q: the physics terms' forces on the slice centres (model/terms: the
+    """The force user function (q, q̇, t) ↦ Q: the physics terms' forces on the slice centres (model/terms: the
     radiation with the frame force netted analytically, a payload's share of the frame force) and the
     follower tension, as generalized forces by virtual work (module docstring); q̇ (default 0) is read
     only when a packed term reads velocities.
@@ -169,9 +169,10 @@ def generalized_force(p: SailParameters, layout: ChainLayout):
     Q = np.zeros(layout.size)
     rest = np.zeros(layout.size)
 
-    def force(q, q_t=None) -> np.ndarray:
+    def force(q, q_t=None, t=0.0) -> np.ndarray:
         q_t = np.asarray(q_t, dtype=np.float64) if rates and q_t is not None else rest
-        _generalized_force_into(np.asarray(q, dtype=np.float64), q_t, angle_index, stretch_index, constants, packed, Q)
+        q = np.asarray(q, dtype=np.float64)
+        _generalized_force_into(q, q_t, float(t), angle_index, stretch_index, constants, packed, Q)
         return Q
 
     return force
@@ -221,22 +222,24 @@ def _slices_into(q, q_t, angle_index, stretch_index, l, reads, bodies):
 
 
 @njit(cache=True)
-def _generalized_force_into(q, q_t, angle_index, stretch_index, k, packed, Q):
+def _generalized_force_into(q, q_t, t, angle_index, stretch_index, k, packed, Q):
     """Q of the physics terms' slice forces, the end tensions and a payload's frame force at coordinates q
-    (velocities q̇), written into Q. Constants k: l, T, the payload's slice j (−1: none), its offsets along
-    e_j and p_j from the slice centre, and −m_p g₀; packed: the chain's physics terms (terms.pack).
+    (velocities q̇) and the time t, written into Q. Constants k: l, T, the payload's slice j (−1: none), its
+    offsets along e_j and p_j from the slice centre, and −m_p g₀ (times the beam's factor at t, terms.beam_factor);
+    packed: the chain's physics terms (terms.pack).
 
         P_j = Σ_{k>j} f_k + T eₙ,  G_j = e_j^⊥ · [(l + z_j) P_j + (l/2) f_j],
         Q_X, Q_Y = Σ_k f_k + T (eₙ − e₁),  Q_φk = Σ_{j≥k} G_j,  Q_zj = e_j · P_j.
     """
-    l, tension, payload_slice, along, across, payload_fy = k[0], k[1], int(k[2]), k[3], k[4], k[5]
+    l, tension, payload_slice, along, across = k[0], k[1], int(k[2]), k[3], k[4]
+    payload_fy = k[5] * beam_factor(packed, t) if payload_slice >= 0 else k[5]
     n = angle_index.size
     extensible = stretch_index.size > 0
     half = 0.5 * l
     bodies = np.zeros((CHAIN_ROWS, n))
     forces = np.empty((2, n))
     _slices_into(q, q_t, angle_index, stretch_index, l, int(packed[READS]), bodies)
-    chain_forces_into(packed, bodies, forces)
+    chain_forces_into(packed, bodies, forces, t)
     c, s, fx, fy = bodies[COS], bodies[SIN], forces[0], forces[1]
     px = tension * c[n - 1]  # P_j, carried across joint j, built from the free end
     py = tension * s[n - 1]

@@ -58,9 +58,9 @@ def finite(v):
 
 
 @njit(cache=True)
-def initial_step(y0, f0, k, t_span, rtol, atol, max_step, order):
-    """Hairer's starting step (Solving ODEs I, Sec. II.4) for an error estimator of this order,
-    as scipy's select_initial_step."""
+def initial_step(t0, y0, f0, k, t_span, rtol, atol, max_step, order):
+    """Hairer's starting step (Solving ODEs I, Sec. II.4) from the time t0 for an error estimator of this
+    order, as scipy's select_initial_step."""
     size = y0.size
     scale = np.empty(size)
     for i in range(size):
@@ -72,7 +72,7 @@ def initial_step(y0, f0, k, t_span, rtol, atol, max_step, order):
     for i in range(size):
         probe[i] = y0[i] + h0 * f0[i]
     f1 = np.empty(size)
-    rhs_into(probe, k, workspace(int(k[N])), f1)
+    rhs_into(t0 + h0, probe, k, workspace(int(k[N])), f1)
     for i in range(size):
         probe[i] = f1[i] - f0[i]
     d2 = scaled_rms(probe, scale) / h0
@@ -96,15 +96,15 @@ def _interpolate(interp, y_old, x, out):
 
 
 @njit(cache=True)
-def _stages(first, stop, y, h, K, stage, k, work):
-    """Stages first … stop − 1 of the tableau: K[s] = f(y + h Σ_{j<s} A[s, j] K[j])."""
+def _stages(first, stop, t, y, h, K, stage, k, work):
+    """Stages first … stop − 1 of the tableau: K[s] = f(t + C[s] h, y + h Σ_{j<s} A[s, j] K[j])."""
     for s in range(first, stop):
         for i in range(y.size):
             acc = 0.0
             for j in range(s):
                 acc += A[s, j] * K[j, i]
             stage[i] = y[i] + h * acc
-        rhs_into(stage, k, work, K[s])
+        rhs_into(t + C[s] * h, stage, k, work, K[s])
 
 
 @njit(cache=True)
@@ -115,10 +115,10 @@ def advance(k, state, y, f, interp, y_old, t_bound, rtol, atol, max_step, sample
     size = y.size
     work = workspace(int(k[N]))
     if state[3] == 0:
-        rhs_into(y, k, work, f)
+        rhs_into(state[0], y, k, work, f)
         state[3] = 1
         if state[1] <= 0:
-            state[1] = initial_step(y, f, k, t_bound, rtol, atol, max_step, 7)
+            state[1] = initial_step(state[0], y, f, k, t_bound, rtol, atol, max_step, 7)
             state[3] += 1
     K = np.empty((16, size))
     y_new = np.empty(size)
@@ -148,13 +148,13 @@ def advance(k, state, y, f, interp, y_old, t_bound, rtol, atol, max_step, sample
             h_abs = h
             for i in range(size):
                 K[0, i] = f[i]
-            _stages(1, STAGES, y, h, K, stage, k, work)
+            _stages(1, STAGES, t, y, h, K, stage, k, work)
             for i in range(size):
                 acc = 0.0
                 for j in range(STAGES):
                     acc += B[j] * K[j, i]
                 y_new[i] = y[i] + h * acc
-            rhs_into(y_new, k, work, f_new)
+            rhs_into(t_new, y_new, k, work, f_new)
             for i in range(size):
                 K[STAGES, i] = f_new[i]
             state[3] += STAGES
@@ -191,7 +191,7 @@ def advance(k, state, y, f, interp, y_old, t_bound, rtol, atol, max_step, sample
             state[0], state[1] = t, h_abs
             return NOT_FINITE, written
         if samples[written] <= t_new:
-            _stages(STAGES + 1, 16, y, h, K, stage, k, work)
+            _stages(STAGES + 1, 16, t, y, h, K, stage, k, work)
             state[3] += 3
             for i in range(size):
                 d0 = y_new[i] - y[i]

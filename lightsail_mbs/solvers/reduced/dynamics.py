@@ -54,7 +54,7 @@ import math
 import numpy as np
 
 from lightsail_mbs.base.kernels import njit
-from lightsail_mbs.model.terms import chain_forces_into
+from lightsail_mbs.model.terms import beam_factor, chain_forces_into
 from lightsail_mbs.model.terms.bodies import CHAIN_ROWS, POSITIONS, READS, VELOCITIES
 from lightsail_mbs.solvers.reduced.chain_constants import (
     ABSCISSA,
@@ -139,17 +139,17 @@ def slice_states_into(q, qd, k, work, extensible):
 
 
 @njit(cache=True)
-def _free_accelerations(q, qd, k, work, extensible):
-    """Sweep 1: the slices' states, the applied forces of the physics terms, and A⁰ = the accelerations under
-    them, the end tensions, springs and dampers (plus the prescribed axial joint forces of the extensible
-    chain)."""
+def _free_accelerations(t, q, qd, k, work, extensible):
+    """Sweep 1: the slices' states, the applied forces of the physics terms at the time t, and A⁰ = the
+    accelerations under them, the end tensions, springs and dampers (plus the prescribed axial joint forces
+    of the extensible chain)."""
     n = int(k[N])
     m, J, b = k[MASS], k[INERTIA], k[HALF]
     cth, sth = work[COS], work[SIN]
     ax, ay, al = work[AX], work[AY], work[AL]
     inv_m, inv_j = 1.0 / m, 1.0 / J
     slice_states_into(q, qd, k, work, extensible)
-    chain_forces_into(k[N_CONSTANTS:], work[:CHAIN_ROWS], work[AX : AY + 1])  # the physics terms (model/terms)
+    chain_forces_into(k[N_CONSTANTS:], work[:CHAIN_ROWS], work[AX : AY + 1], t)  # the physics terms (model/terms)
     tension = k[TENSION]
     if tension != 0.0:
         ax[0] -= tension * cth[0]
@@ -181,16 +181,17 @@ def _free_accelerations(q, qd, k, work, extensible):
         ay[i] = fy * inv_m
         al[i] = tau * inv_j
         if i == k[PAY_SLICE]:
-            _payload_free_acceleration(k, c, s, fx, fy, tau, ax, ay, al, i)
+            _payload_free_acceleration(k, c, s, fx, fy, tau, ax, ay, al, i, t)
 
 
 @njit(cache=True)
-def _payload_free_acceleration(k, c, s, fx, fy, tau, ax, ay, al, j):
+def _payload_free_acceleration(k, c, s, fx, fy, tau, ax, ay, al, j, t):
     """A⁰ of the composite slice j (slice + payload, model/payload.py) at its centre of mass: the applied
-    force F_j at the slice centre, the payload's frame force F_p = −m_p g₀ ŷ at the payload, the spring
-    torques τ; moments about the composite centre of mass ρ_c (offsets ρ_c, ρ in slice j's axes)."""
+    force F_j at the slice centre, the payload's frame force F_p = −m_p g₀ ŷ at the payload (times the beam's
+    factor at the time t, model/terms/doppler.py), the spring torques τ; moments about the composite centre
+    of mass ρ_c (offsets ρ_c, ρ in slice j's axes)."""
     mp = k[PAY_MASS] - k[MASS]
-    fpy = k[FRAME] * mp / k[MASS]  # −m_p g₀ (k[FRAME] = −m g₀)
+    fpy = k[FRAME] * mp / k[MASS] * beam_factor(k[N_CONSTANTS:], t)  # −m_p g₀ (k[FRAME] = −m g₀)
     cx = k[PAY_CE] * c - k[PAY_CP] * s  # ρ_c in inertial axes
     cy = k[PAY_CE] * s + k[PAY_CP] * c
     rx = k[PAY_RE] * c - k[PAY_RP] * s - cx  # payload from the composite centre of mass (x; F_p is along y)
@@ -201,15 +202,16 @@ def _payload_free_acceleration(k, c, s, fx, fy, tau, ax, ay, al, j):
 
 
 @njit(cache=True)
-def rhs_into(y, k, work, ydot):
-    """ẏ = (q̇, q̈) of y = (q, q̇) (Eq. 40 with M moved to the right) into ydot, with the workspace work."""
+def rhs_into(t, y, k, work, ydot):
+    """ẏ = (q̇, q̈) of y = (q, q̇) at the time t (Eq. 40 with M moved to the right) into ydot, with the
+    workspace work."""
     dof = y.size // 2
     q = y[:dof]
     qd = y[dof:]
     for i in range(dof):
         ydot[i] = qd[i]
     extensible = k[EXTENSIBLE] != 0.0
-    _free_accelerations(q, qd, k, work, extensible)
+    _free_accelerations(t, q, qd, k, work, extensible)
     if extensible:
         sliding_joints(qd, k, work, ydot[dof:])
     elif k[PAY_SLICE] >= 0.0:
@@ -219,13 +221,13 @@ def rhs_into(y, k, work, ydot):
 
 
 @njit(cache=True)
-def joint_forces(y, k, work, lam_x, lam_y):
-    """Λ_i (force of slice i on slice i+1, N) at the state y into lam_x, lam_y: one right-hand-side
+def joint_forces(t, y, k, work, lam_x, lam_y):
+    """Λ_i (force of slice i on slice i+1, N) at the time t and state y into lam_x, lam_y: one right-hand-side
     evaluation, read back from the workspace (extensible chain: s_i e_i + μ_i p_i)."""
     n = int(k[N])
     dof = y.size // 2
     ydot = np.empty_like(y)
-    rhs_into(y, k, work, ydot)
+    rhs_into(t, y, k, work, ydot)
     if k[EXTENSIBLE] != 0.0:
         for i in range(n - 1):
             s = -k[K_S] * y[n + 2 + i] - k[C_S] * y[dof + n + 2 + i]
@@ -239,8 +241,8 @@ def joint_forces(y, k, work, lam_x, lam_y):
 
 
 @njit(cache=True)
-def _batch_rhs(y, k):
-    """ẏ of every column of y (size, count)."""
+def _batch_rhs(t, y, k):
+    """ẏ of every column of y (size, count) at the time t."""
     work = workspace(int(k[N]))
     column = np.empty(y.shape[0])
     out = np.empty(y.shape[0])
@@ -248,14 +250,14 @@ def _batch_rhs(y, k):
     for j in range(y.shape[1]):
         for i in range(y.shape[0]):
             column[i] = y[i, j]
-        rhs_into(column, k, work, out)
+        rhs_into(t, column, k, work, out)
         for i in range(y.shape[0]):
             result[i, j] = out[i]
     return result
 
 
 @njit(cache=True)
-def jacobian_into(y, k, scales, jac):
+def jacobian_into(t, y, k, scales, jac):
     """∂ẏ/∂y into jac by forward differences (step √ε·max(abs(y_j), scale_j)); the q̇ rows are exact (0 | I).
     Dense, 2·dof + 1 right-hand sides: for scipy's implicit methods (the compiled Radau uses newton.py)."""
     size = y.size
@@ -265,13 +267,13 @@ def jacobian_into(y, k, scales, jac):
     for i in range(dof):
         jac[i, dof + i] = 1.0
     base = np.empty(size)
-    rhs_into(y, k, work, base)
+    rhs_into(t, y, k, work, base)
     moved = y.copy()
     out = np.empty(size)
     for j in range(size):
         moved[j] = y[j] + 1.4901161193847656e-08 * max(abs(y[j]), scales[j])
         step = moved[j] - y[j]
-        rhs_into(moved, k, work, out)
+        rhs_into(t, moved, k, work, out)
         for i in range(dof, size):
             jac[i, j] = (out[i] - base[i]) / step
         moved[j] = y[j]
@@ -285,30 +287,30 @@ class ChainDynamics:
         self.constants = constants(model)
         self._work = np.empty((WORK_ROWS, model.n))  # workspace(n), without loading a kernel
 
-    def accelerations(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
-        """q̈ for states q, q̇ of shape (dof,) or (dof, k)."""
+    def accelerations(self, q: np.ndarray, qd: np.ndarray, t: float = 0.0) -> np.ndarray:
+        """q̈ for states q, q̇ of shape (dof,) or (dof, k) at the time t."""
         q = np.asarray(q, float)
-        return self.rhs(0.0, np.concatenate([q, np.asarray(qd, float)]))[q.shape[0] :]
+        return self.rhs(t, np.concatenate([q, np.asarray(qd, float)]))[q.shape[0] :]
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
         """ẏ = (q̇, q̈) of y = (q, q̇), one state (size,) or a batch (size, k) (scipy's fun(t, y),
         vectorized or not)."""
         y = np.asarray(y, dtype=float)
         if y.ndim == 2:
-            return _batch_rhs(np.ascontiguousarray(y), self.constants)
+            return _batch_rhs(float(t), np.ascontiguousarray(y), self.constants)
         out = np.empty(y.size)
-        rhs_into(np.ascontiguousarray(y), self.constants, self._work, out)
+        rhs_into(float(t), np.ascontiguousarray(y), self.constants, self._work, out)
         return out
 
-    def joint_forces(self, y: np.ndarray) -> np.ndarray:
-        """Λ_i, the force of slice i on slice i+1 at the state y = (q, q̇), as an (n−1, 2) array (N)."""
+    def joint_forces(self, y: np.ndarray, t: float = 0.0) -> np.ndarray:
+        """Λ_i, the force of slice i on slice i+1 at the state y = (q, q̇) and time t, as an (n−1, 2) array (N)."""
         lam = np.empty((2, self.model.n - 1))
-        joint_forces(np.ascontiguousarray(y, dtype=float), self.constants, self._work, lam[0], lam[1])
+        joint_forces(float(t), np.ascontiguousarray(y, dtype=float), self.constants, self._work, lam[0], lam[1])
         return lam.T
 
     def jacobian(self, t: float, y: np.ndarray, scales: np.ndarray) -> np.ndarray:
         """∂ẏ/∂y (dense, 2 dof + 1 right-hand-side calls, compiled); scales: typical abs(y_j) (difference steps)."""
         y = np.ascontiguousarray(y, dtype=float)
         jac = np.empty((y.size, y.size))
-        jacobian_into(y, self.constants, np.ascontiguousarray(scales, float), jac)
+        jacobian_into(float(t), y, self.constants, np.ascontiguousarray(scales, float), jac)
         return jac

@@ -107,9 +107,9 @@ from lightsail_mbs.solvers.reduced.dynamics import joint_forces
 
 
 @njit(cache=True)
-def geometry_into(y, k, work, cth, sth, arm, k_geo, geometric):
+def geometry_into(t, y, k, work, cth, sth, arm, k_geo, geometric):
     """cos θ_i, sin θ_i, the joint arms a_i = b + z_i and (geometric=True) the geometric stiffness
-    k_g,j ≥ 0 of the state y = (q, q̇): everything J̃ needs from the configuration."""
+    k_g,j ≥ 0 of the state y = (q, q̇) at the time t: everything J̃ needs from the configuration."""
     n = int(k[N])
     b = k[HALF]
     extensible = k[EXTENSIBLE] != 0.0
@@ -123,7 +123,7 @@ def geometry_into(y, k, work, cth, sth, arm, k_geo, geometric):
     if geometric:
         lx = np.empty(n - 1)
         ly = np.empty(n - 1)
-        joint_forces(y, k, work, lx, ly)
+        joint_forces(t, y, k, work, lx, ly)
         for j in range(n):
             v = 0.0
             if j > 0:

@@ -110,12 +110,12 @@ def advance(k, state, y, f, geo, real_fac, cplx_fac, geometric, Z, y_old, t_boun
     n = int(k[N])
     work = workspace(n)
     if state[NFEV] == 0:
-        rhs_into(y, k, work, f)
+        rhs_into(state[T_NOW], y, k, work, f)
         state[NFEV] = 1
         if state[H_ABS] <= 0:
-            state[H_ABS] = initial_step(y, f, k, t_bound, rtol, atol, max_step, 3)
+            state[H_ABS] = initial_step(state[T_NOW], y, f, k, t_bound, rtol, atol, max_step, 3)
             state[NFEV] += 1
-        geometry_into(y, k, work, geo[0], geo[1], geo[2], geo[3], geometric)
+        geometry_into(state[T_NOW], y, k, work, geo[0], geo[1], geo[2], geo[3], geometric)
         state[NJEV] = 1
     lam_r = np.empty((n - 1, 3))
     lam_c = np.empty((n - 1, 3), dtype=np.complex128)
@@ -174,7 +174,7 @@ def advance(k, state, y, f, geo, real_fac, cplx_fac, geometric, Z, y_old, t_boun
             while not converged:
                 if state[LU_VALID] == 0 or state[H_FACTORED] != h:
                     if REFRESH_ON_REFACTOR and state[CURRENT_JAC] == 0:
-                        geometry_into(y, k, work, geo[0], geo[1], geo[2], geo[3], geometric)
+                        geometry_into(t, y, k, work, geo[0], geo[1], geo[2], geo[3], geometric)
                         state[NJEV] += 1
                         state[CURRENT_JAC] = 1
                     _factorise(k, h, geo, real_fac, cplx_fac)
@@ -186,6 +186,7 @@ def advance(k, state, y, f, geo, real_fac, cplx_fac, geometric, Z, y_old, t_boun
                         Znew[s, i] = Z0[s, i]
                 converged, iterations, rate = _collocation(
                     k,
+                    t,
                     y,
                     h,
                     Znew,
@@ -209,7 +210,7 @@ def advance(k, state, y, f, geo, real_fac, cplx_fac, geometric, Z, y_old, t_boun
                 if not converged:
                     if state[CURRENT_JAC] != 0:
                         break
-                    geometry_into(y, k, work, geo[0], geo[1], geo[2], geo[3], geometric)
+                    geometry_into(t, y, k, work, geo[0], geo[1], geo[2], geo[3], geometric)
                     state[NJEV] += 1
                     state[CURRENT_JAC] = 1
                     state[LU_VALID] = 0
@@ -229,7 +230,7 @@ def advance(k, state, y, f, geo, real_fac, cplx_fac, geometric, Z, y_old, t_boun
             if rejected and error > 1:
                 for i in range(size):
                     stage[i] = y[i] + err[i]
-                rhs_into(stage, k, work, probe)
+                rhs_into(t, stage, k, work, probe)
                 state[NFEV] += 1
                 for i in range(size):
                     err[i] = probe[i] + ZE[i]
@@ -248,10 +249,10 @@ def advance(k, state, y, f, geo, real_fac, cplx_fac, geometric, Z, y_old, t_boun
             factor_ = 1.0
         else:
             state[LU_VALID] = 0
-        rhs_into(y_new, k, work, f_new)
+        rhs_into(t_new, y_new, k, work, f_new)
         state[NFEV] += 1
         if recompute_jac:
-            geometry_into(y_new, k, work, geo[0], geo[1], geo[2], geo[3], geometric)
+            geometry_into(t_new, y_new, k, work, geo[0], geo[1], geo[2], geo[3], geometric)
             state[NJEV] += 1
             state[CURRENT_JAC] = 1
         else:
@@ -278,10 +279,10 @@ def advance(k, state, y, f, geo, real_fac, cplx_fac, geometric, Z, y_old, t_boun
 
 @njit(cache=True)
 def _collocation(
-    k, y, h, Z, scale, tol, geo, real_fac, cplx_fac, lam_r, lam_c, scr_r, scr_c, state, work, W, F, stage, real, cplx
+    k, t, y, h, Z, scale, tol, geo, real_fac, cplx_fac, lam_r, lam_c, scr_r, scr_c, state, work, W, F, stage, real, cplx
 ):
-    """Simplified Newton on the transformed stage equations (Z: stage increments, updated in place).
-    Returns (converged, iterations, rate)."""
+    """Simplified Newton on the transformed stage equations at the times t + C h (Z: stage increments, updated
+    in place). Returns (converged, iterations, rate)."""
     size = y.size
     for r in range(3):
         for i in range(size):
@@ -295,7 +296,7 @@ def _collocation(
         for s in range(3):
             for i in range(size):
                 stage[i] = y[i] + Z[s, i]
-            rhs_into(stage, k, work, F[s])
+            rhs_into(t + C[s] * h, stage, k, work, F[s])
         state[NFEV] += 3
         if not (finite(F[0]) and finite(F[1]) and finite(F[2])):
             return False, iterations, rate

@@ -127,6 +127,7 @@ class SheetModel:
             self.framed,
             *self.followers,
             self.load,
+            float(t),
             out,
         )
         return out

@@ -56,11 +56,12 @@ def rhs_kernel(
     fol_point,
     fol_force,
     packed,
+    time,
     out,
 ):
     """dy/dt of the sheet (solvers.reduced.sheet). Per tile: mass, inertia (3, 3) and its inverse, diagonal
     (its inertia is diagonal); per connector: frame (3, 3), a support's axes where framed; packed: the
-    sheet's physics terms (model/terms: terms.pack)."""
+    sheet's physics terms (model/terms: terms.pack), summed at the time `time` (s)."""
     N = flat.shape[0]
     R = np.empty((N, 3, 3))
     RmI = np.empty((N, 3, 3))
@@ -183,7 +184,7 @@ def rhs_kernel(
             bodies[TVX + i, k] = y[b + 7 + i]
             bodies[TWX + i, k] = W[k, i]
     loads = np.empty((3, N))
-    tile_forces_into(packed, bodies, loads)
+    tile_forces_into(packed, bodies, loads, time)
     for k in range(N):
         b = STATE * k
         F[k, 0] += loads[0, k]

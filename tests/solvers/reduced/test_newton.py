@@ -54,7 +54,7 @@ def structured_solve(model, y, sigma, r):
     k = constants(model)
     dtype = complex if isinstance(sigma, complex) else float
     cth, sth, arm, k_geo = (np.empty(n) for _ in range(4))
-    geometry_into(y, k, workspace(n), cth, sth, arm, k_geo, True)
+    geometry_into(0.0, y, k, workspace(n), cth, sth, arm, k_geo, True)
     inv_inertia = np.empty(n, dtype)
     inv_kt, inv_ks, has_moment = compliances(sigma, k, k_geo, inv_inertia)
     pivots, lower, couplings = (np.empty((n - 1, 3, 3), dtype) for _ in range(3))
@@ -90,7 +90,7 @@ def test_geometric_stiffness_of_a_straight_chain_in_tension_is_l_times_T():
     model = ChainModel.from_params(p)
     y = np.zeros(2 * model.dof)
     k_geo = np.empty(p.n)
-    geometry_into(y, constants(model), workspace(p.n), *(np.empty(p.n) for _ in range(3)), k_geo, True)
+    geometry_into(0.0, y, constants(model), workspace(p.n), *(np.empty(p.n) for _ in range(3)), k_geo, True)
     expected = p.slice_length * p.tension * np.r_[0.5, np.ones(p.n - 2), 0.5]
     np.testing.assert_allclose(k_geo, expected, rtol=1e-12)
     joint = ChainDynamics(model).joint_forces(y)
