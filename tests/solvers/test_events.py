@@ -122,3 +122,27 @@ def test_small_and_large_numbers_print_in_scientific_notation_with_their_digits(
     assert with_uncertainty(6.2948312e-6, 4.1e-11) == "(6.29483 ± 0.00005)e-06"
     assert with_uncertainty(2.111214, 3e-6) == "2.111214 ± 0.000003"
     assert with_uncertainty(123456.7, 3.0) == "(1.23457 ± 0.00003)e+05"
+
+
+def test_a_failure_that_the_finer_rerun_does_not_reproduce_is_kept_and_flagged():
+    """A solver whose finer-sampled rerun does not fail (as Exudyn's sheet near its connector round-off floor,
+    its step following the output interval): the refinement's run ends at about twice the failure time, so
+    reporting it would call the sail a survivor of a run cut short. The coarse run's failure is kept, its
+    location error stays in the record, and one warning says the failure is not confirmed."""
+    from lightsail_mbs.solvers import contract
+
+    p = paper_case("torsion-soft", beam_waist=0.5)
+    engine = contract.lookup("reduced", p)
+    settings = RunSettings(t_final=0.01)
+
+    class FlakyWhenFine:
+        def run(self, params, run_settings, progress=False, **options):
+            if run_settings.t_final < settings.t_final:  # a refinement: a run that grows no more
+                params = params.replace(intensity=params.intensity * 1e-6)
+            return engine.run(params, run_settings, progress=progress, **options)
+
+    result, kept = events.located_run(FlakyWhenFine(), p, settings, {})
+    assert result.failed and result.params == p and kept.t_final == settings.t_final
+    assert result.info["sampling"]["refinements"] == 1
+    assert result.info["sampling"]["location_error"] > events.LOCATE_RTOL * result.failure_time
+    assert sum("not confirmed" in w for w in result.warnings) == 1
