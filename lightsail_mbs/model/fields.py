@@ -106,13 +106,8 @@ FIELDS = {
     "defect_mode_count": FieldInfo(DEFECT, "", "multi-mode defect: modes ν_k = k/2, k = 1…K", "an integer 1 ≤ K ≤ 200"),
     "defect_spectrum": FieldInfo(DEFECT, "", "multi-mode defect: mean amplitude ∝ ν_k^(−β), the exponent β", "finite"),
     "roughness": FieldInfo(
-        DEFECT,
-        "m",
-        "seeded roughness at every wavelength the slices carry, added to the defect (a sheet's: film_rms)",
-        "0 ≤ … < L/(2πn)",
-        models=CHAINS,
-        instead="a sheet's film: film_rms",
-    ),
+        DEFECT, "m", "seeded roughness at every wavelength the slices carry", "0 ≤ … < L/(2πn)", models=CHAINS
+    )._replace(instead="a sheet's film: film_rms"),
     "roughness_seed": FieldInfo(DEFECT, "", "seed of the roughness", "an integer ≥ 0", models=CHAINS),
     "film_rms": FieldInfo(
         FILM,
