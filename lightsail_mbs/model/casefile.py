@@ -79,10 +79,14 @@ def read(path, fields: Mapping[str, tuple[str, str]]) -> tuple[dict, dict]:
     run = data.pop(RUN_TABLE, {})
     if not isinstance(run, dict):
         raise CaseFileError(f"{path}: {RUN_TABLE} = {run!r} is invalid: allowed a [run] table")
-    case = {}
+    case, keys = {}, {}
     for where, key, value in _flat(path, data, fields) if version == 1 else _sectioned(path, data, fields):
         name = LEGACY_NAMES.get(key, key)  # an older name of a field reads as the field
-        case[name] = _typed(path, where + key, value, *fields[name])
+        if name in keys:
+            raise CaseFileError(
+                f"{path}: {keys[name]} and {where + key} are the same field ({name}): allowed one of them"
+            )
+        keys[name], case[name] = where + key, _typed(path, where + key, value, *fields[name])
     for key, value in run.items():
         if key not in RUN_FIELDS:
             hint = _close(key, RUN_FIELDS)
@@ -234,7 +238,8 @@ def _unknown(key: str, value, fields) -> str:
     if isinstance(value, dict):
         tables = ", ".join(f"[{name}]" for name in (*SECTIONS, RUN_TABLE))
         return (
-            f"unknown table [{key}]: allowed in a version 1 file the fields at the top and [run]; in version 2 {tables}"
+            f"unknown table [{key}]{_close(key, SECTIONS)}: allowed in a version 1 file the fields at the top and "
+            f"[run]; in version 2 {tables}"
         )
     return f"unknown key {key}{_close(key, fields)}: allowed format, version, {', '.join(fields)}"
 

@@ -317,6 +317,8 @@ class SailParameters(DerivedQuantities):
         """The case of a dict from to_dict; the names of older saved runs (LEGACY_NAMES) are read too
         and their run-control entries (RUN_FIELDS) skipped. An unknown key raises ParameterError."""
         names = {f.name for f in dataclasses.fields(cls)}
+        for old, name in LEGACY_NAMES.items():
+            check(old, d.get(old), old not in d or name not in d, f"one of {old} and {name} (the same field)")
         known = current_names(d)
         for key in known:
             check("parameters", key, key in names, f"field names of SailParameters ({', '.join(sorted(names))})")

@@ -132,6 +132,12 @@ def test_from_dict_reads_the_beam_axis_under_its_older_spelling():
 LEGACY_SPELLING = {"beam_centre": "beam_center", "beam_centre_y": "beam_center_y"}
 
 
+def test_from_dict_refuses_a_field_under_both_its_names():
+    """A record with beam_center and beam_centre names one field twice: refused, not one of them dropped."""
+    with pytest.raises(ParameterError, match="one of beam_center and beam_centre"):
+        SailParameters.from_dict({"beam_centre": 0.3, "beam_center": 0.4})
+
+
 def test_from_dict_rejects_an_unknown_key():
     d = {**SailParameters().to_dict(), "colour": "gold"}
     with pytest.raises(ParameterError, match="colour"):
