@@ -27,6 +27,13 @@ from lightsail_mbs.model.derived import DerivedQuantities
 from lightsail_mbs.model.fields import BOUNDARIES, FIELDS, MIN_DEFECT_FRACTION, SHEET_BOUNDARIES
 from lightsail_mbs.model.records import LEGACY_NAMES, RUN_FIELDS, current_names, record  # noqa: F401
 
+# The fields an optical table replaces, at the values it requires, and why (model/optics.py).
+OPTICS_DEFAULTS = {"reflectivity": 1.0, "absorptivity": 0.0, "velocity_terms": False, "initial_beta": 0.0}
+OPTICS_REASONS = {
+    "velocity_terms": "the velocity-dependent load is derived for the R/α facet law",
+    "initial_beta": "the table holds at the laser's wavelength only, which the Doppler shift would move",
+}
+
 
 @dataclass(frozen=True)
 class SailParameters(DerivedQuantities):
@@ -140,12 +147,12 @@ class SailParameters(DerivedQuantities):
             "0 unless boundary='free' (the trajectory is a free sail's)",
         )
         if self.optics is not None:
-            for name in ("reflectivity", "absorptivity", "velocity_terms", "initial_beta"):
+            for name, default in OPTICS_DEFAULTS.items():
                 check(
                     name,
                     getattr(self, name),
-                    getattr(self, name) == (name == "reflectivity"),
-                    "its default with optics",
+                    getattr(self, name) == default,
+                    f"{default} with an optical table ({OPTICS_REASONS.get(name, 'the table gives the force law')})",
                 )
         if self.payload_mass != 0:
             check("payload_mass", self.payload_mass, self.boundary == "free", "0 unless boundary='free'")
