@@ -298,6 +298,7 @@ FIELDS = {
         "",
         "the film from the materials table: fills density and youngs_modulus (explicit values override)",
         _choices(MATERIALS),
+        follows="none: density and youngs_modulus as given",
     ),
     "velocity_terms": FieldInfo(
         BEAM,

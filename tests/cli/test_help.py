@@ -51,6 +51,11 @@ def test_no_number_in_any_help_is_written_out_in_full():
         assert not re.search(r"\d{7,}|\b0\.0000", text), name
 
 
+def test_no_default_is_shown_as_a_python_none():
+    for name, parser in parsers():
+        assert "[default: None]" not in " ".join(parser.format_help().split()), name
+
+
 def test_defaults_that_follow_other_fields_say_so():
     follows = [name for name, info in FIELDS.items() if info.follows]
     assert "beam_centre" in follows
