@@ -51,6 +51,14 @@ def test_no_number_in_any_help_is_written_out_in_full():
         assert not re.search(r"\d{7,}|\b0\.0000", text), name
 
 
+def test_each_case_option_group_names_its_case_file_table():
+    """A field's option sits under the title of its section, which names the case file's table that holds it."""
+    simulate = dict(parsers())["lightsail-mbs simulate"]
+    titles = {a.dest: g.title for g in simulate._action_groups for a in g._group_actions}
+    for name, info in FIELDS.items():
+        assert titles[name].startswith(f"case [{info.group}]"), (name, titles[name])
+
+
 def test_no_default_is_shown_as_a_python_none():
     for name, parser in parsers():
         assert "[default: None]" not in " ".join(parser.format_help().split()), name
