@@ -23,7 +23,7 @@ tables is then version 2, one without version 1); a file of a newer version is r
 names, tables and types here (:func:`read`); the values' ranges, and that a field the case's model does
 not use keeps its default, are checked by the classes built from them. Every problem is one line naming
 the file, the key and what is allowed (:class:`CaseFileError`). Older names of fields (LEGACY_NAMES) are
-read as the fields.
+read as the fields. An optical table's path (``optics``) is relative to the case file's folder, as written.
 
 The paper's cases ship as case files in the folder ``cases`` next to this module (:class:`CaseFolder`).
 """
@@ -34,6 +34,7 @@ import dataclasses
 import difflib
 import json
 import math
+import os
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -87,6 +88,9 @@ def read(path, fields: Mapping[str, tuple[str, str]]) -> tuple[dict, dict]:
                 f"{path}: {keys[name]} and {where + key} are the same field ({name}): allowed one of them"
             )
         keys[name], case[name] = where + key, _typed(path, where + key, value, *fields[name])
+    optics = case.get("optics")
+    if isinstance(optics, str) and optics not in ("", "mirror") and not Path(optics).is_absolute():
+        case["optics"] = str(path.parent / optics)  # a table file's path is relative to the case file's folder
     for key, value in run.items():
         if key not in RUN_FIELDS:
             hint = _close(key, RUN_FIELDS)
@@ -123,7 +127,14 @@ def write_case(path, params, settings=None) -> Path:
     """Write the case file of params (a SailParameters: its case_fields, each with its help as a comment)
     and of settings (a RunSettings, or None) as its [run] table."""
     notes = {k: f"{v.help} ({v.unit})" if v.unit else v.help for k, v in FIELDS.items()}
-    return write(path, case_fields(params), settings.to_dict() if settings else None, notes)
+    case = case_fields(params)
+    if params.optics_file:  # the table's path from the case file's folder, as read() takes it
+        table, folder = Path(params.optics).resolve(), Path(path).resolve().parent
+        try:
+            case["optics"] = os.path.relpath(table, folder)
+        except ValueError:  # on another drive
+            case["optics"] = str(table)
+    return write(path, case, settings.to_dict() if settings else None, notes)
 
 
 def case_fields(params) -> dict:

@@ -3,6 +3,7 @@ described; a case written and read back is the same case; a bad file is one line
 
 import dataclasses
 import math
+from pathlib import Path
 
 import pytest
 from hypothesis import given
@@ -155,3 +156,24 @@ def test_a_version_1_file_and_its_version_2_file_are_the_same_case(tmp_path):
         SailParameters.from_toml(old)
     old.write_text('[sail]\nmodel = "sheet"\nn = 4\n[sheet]\nny = 3\n[beam]\nbeam_waist = 0.5\nbeam_center = 0.3\n')
     assert SailParameters.from_toml(old) == p
+
+
+def test_a_table_path_in_a_case_file_is_relative_to_its_folder(tmp_path, monkeypatch):
+    """A case saved next to its optical table reads from any working folder, and a case saved into another
+    folder names the table from there; the case read is the one written (the same table, the same digest)."""
+    from lightsail_mbs.model import optics
+
+    project = tmp_path / "project"
+    project.mkdir()
+    monkeypatch.chdir(project)
+    optics.facet(0.9, 0.0).save("facet.npz")
+    p = SailParameters(optics="facet.npz")
+    p.to_toml("case.toml")
+    (tmp_path / "elsewhere").mkdir()
+    p.to_toml(tmp_path / "elsewhere" / "case.toml")
+    assert 'optics = "../project/facet.npz"' in (tmp_path / "elsewhere" / "case.toml").read_text()
+    monkeypatch.chdir(tmp_path)
+    for path in (project / "case.toml", tmp_path / "elsewhere" / "case.toml"):
+        back = SailParameters.from_toml(path)
+        assert Path(back.optics).resolve() == (project / "facet.npz").resolve()
+        assert back.optics_digest == p.replace(optics=str(project / "facet.npz")).optics_digest
