@@ -186,9 +186,11 @@ def _check_format(path: Path, data: dict) -> int:
     sectioned = any(key in SECTIONS and isinstance(value, dict) for key, value in data.items())
     version = data.pop("version", 2 if sectioned else 1)
     if isinstance(version, bool) or not isinstance(version, int) or not 1 <= version <= VERSION:
+        newer = isinstance(version, int) and not isinstance(version, bool) and version > VERSION
+        allowed = f"an integer ≤ {VERSION}" if newer else f"an integer 1 … {VERSION}"
         raise CaseFileError(
-            f"{path}: version = {_shown(version)} is invalid: allowed an integer ≤ {VERSION} (this lightsail-mbs "
-            f"reads case files up to version {VERSION}; a newer one wrote this file)"
+            f"{path}: version = {_shown(version)} is invalid: allowed {allowed} (this lightsail-mbs reads case "
+            f"files up to version {VERSION}" + ("; a newer one wrote this file)" if newer else ")")
         )
     return version
 

@@ -105,6 +105,7 @@ def test_a_case_file_holds_what_describes_the_sail(tmp_path):
         ("n = 1", ["n=1", "2 ≤ n ≤ 5000"]),
         ("ny = 3", ["ny=3", "unless model='sheet'"]),
         ("version = 3\nn = 12", ["version = 3", "up to version 2"]),
+        ('version = "2"\nn = 12', ['version = "2"', "an integer 1 … 2", "up to version 2)"]),
         ('format = "other"', ["format", "lightsail-mbs case"]),
         ("[hull]\nn = 3", ["[hull]", "allowed", "[sail]"]),
         ("version = 1\n[sheet]\nny = 3", ["[sheet]", "version 1"]),
