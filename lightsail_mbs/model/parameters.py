@@ -249,16 +249,26 @@ class SailParameters(DerivedQuantities):
 
     def section(self, name: str):
         """The case's section name (one of fields.SECTIONS) as its own frozen record
-        (:func:`lightsail_mbs.model.sections.records`), the defaults that follow other fields resolved."""
+        (:func:`lightsail_mbs.model.sections.records`). A field whose default follows other fields (FieldInfo
+        .follows: beam_centre, bending, …) is None there while it holds that default, as in a case file, so
+        that it follows the case the record joins (from_sections) rather than the one it came from."""
         check("section", name, name in SECTION_RECORDS, f"one of {', '.join(SECTION_RECORDS)}")
         record_class = SECTION_RECORDS[name]
-        return record_class(**{f.name: getattr(self, f.name) for f in dataclasses.fields(record_class)})
+        followed = type(self)(model=self.model, length=self.length, width=self.width)
+        values = {f.name: getattr(self, f.name) for f in dataclasses.fields(record_class)}
+        for key, value in values.items():
+            if FIELDS[key].follows and value == getattr(followed, key):
+                values[key] = None
+        return record_class(**values)
 
     @classmethod
     def from_sections(cls, *records, **fields) -> SailParameters:
         """The case of section records (one per section at most; a section left out keeps its defaults) and
         of fields given by name over them."""
         merged: dict = {}
+        kinds = tuple(SECTION_RECORDS.values())
+        for part in records:
+            check("sections", part, isinstance(part, kinds), "section records (SailParameters.section(name))")
         names = [part.name for part in records]
         for part in records:
             check("sections", names, names.count(part.name) == 1, "one record per section")

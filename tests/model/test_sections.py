@@ -32,6 +32,19 @@ def test_a_case_is_its_sections(case):
         SailParameters.from_sections(case.section("beam"), case.section("beam"))
     with pytest.raises(ParameterError, match="section='hull' is invalid: allowed one of sail, material"):
         case.section("hull")
+    with pytest.raises(ParameterError, match="allowed section records"):
+        SailParameters.from_sections({"n": 3})
+
+
+def test_a_followed_default_follows_the_case_its_section_joins():
+    """The beam section of the 1 m sail, joined to the sail section of a 2 m one, centres the beam on the 2 m
+    sail (x_c = L/2 = 1 m) as a case file would; a beam axis set away from the middle stays where it was set."""
+    long_sail = SailParameters(length=2.0).section("sail")
+    assert SailParameters.from_sections(long_sail, SailParameters().section("beam")).beam_centre == 1.0
+    offset = SailParameters(beam_centre=0.3).section("beam")
+    assert SailParameters.from_sections(long_sail, offset).beam_centre == 0.3
+    rigid = SailParameters.from_sections(SailParameters(model="rigid").section("sail"), model="torsion")
+    assert rigid.bending  # bending follows the model it joins: on for torsion
 
 
 @pytest.mark.parametrize(
