@@ -221,7 +221,7 @@ def test_sheet_fields_round_trip_and_defaults():
         (dict(tension=1.0), "tension", "edge_tension"),
         (dict(torsional_damping=1.0), "torsional_damping", "stiffness_damping"),
         (dict(beam_centre_y=math.nan), "beam_centre_y", "finite"),
-        (dict(optics="mirror"), "optics", "None unless model is one of rigid, torsion, tnt"),
+        (dict(optics="mirror"), "optics", "the R/α law, unless model is one of rigid, torsion, tnt"),
         (dict(payload_mass=1e-3), "payload_mass", "0 unless model is one of rigid, torsion, tnt"),
         (dict(initial_tilt=0.1), "initial_tilt", "0 unless model is one of rigid, torsion, tnt"),
         (dict(billow_radius=0.2), "billow_radius", "90° from its apex"),
