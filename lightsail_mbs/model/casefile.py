@@ -198,6 +198,8 @@ def _check_format(path: Path, data: dict) -> int:
 def _flat(path: Path, data: dict, fields):
     """(where, key, value) of a version 1 file: the case's fields at the top."""
     for key, value in data.items():
+        if key in RUN_FIELDS:
+            raise CaseFileError(f"{path}: {key} at the top is invalid: allowed in [{RUN_TABLE}] ({RUN_TABLE}.{key})")
         if LEGACY_NAMES.get(key, key) not in fields:
             raise CaseFileError(f"{path}: {_unknown(key, value, fields)}")
         yield "", key, value
@@ -219,6 +221,10 @@ def _sectioned(path: Path, data: dict, fields):
             raise CaseFileError(f"{path}: unknown table [{table}]{_close(table, SECTIONS)}: allowed {tables}")
         for key, value in entries.items():
             name = LEGACY_NAMES.get(key, key)
+            if key in RUN_FIELDS:
+                raise CaseFileError(
+                    f"{path}: {table}.{key} is in the wrong table: allowed in [{RUN_TABLE}] ({RUN_TABLE}.{key})"
+                )
             if name in fields and FIELDS[name].group != table:
                 raise CaseFileError(
                     f"{path}: {table}.{key} is in the wrong table: allowed in [{FIELDS[name].group}] "

@@ -119,6 +119,8 @@ def test_a_case_file_holds_what_describes_the_sail(tmp_path):
         ("[beam]\nbeam_centre = 0.3\nbeam_center = 0.4", ["beam.beam_centre and beam.beam_center", "one of them"]),
         ("amplitude = 1e-5\ndefect_amplitude = 2e-5", ["amplitude and defect_amplitude", "same field"]),
         ("[beams]\nintensity = 1e8", ["[beams]", "did you mean beam?"]),
+        ("t_final = 2.0", ["t_final at the top", "allowed in [run] (run.t_final)"]),
+        ("[sail]\nfailure_ratio = 3.0", ["sail.failure_ratio is in the wrong table", "allowed in [run]"]),
     ],
 )
 def test_a_bad_case_file_is_one_line_naming_the_file_and_the_key(text, words, tmp_path):
