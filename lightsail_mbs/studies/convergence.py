@@ -407,6 +407,8 @@ def wave_text(verdict: dict | None) -> str:
     if not verdict["growth_rate"]:
         return "none grows"
     state = "well posed" if verdict["well_posed"] else "grid scale: ill-posed"
+    if verdict["well_posed"] and verdict.get("resolved") is False:  # the run's warning: not resolved in n
+        state = "well posed, not resolved"
     return f"{verdict['slices_per_wavelength']:.3g} sl., σ = {verdict['growth_rate']:.3g} /s ({state})"
 
 

@@ -167,3 +167,15 @@ def test_ill_posed_verdict_says_which_way_the_failure_time_moved():
     assert study.ill_posed and all(r.kind == "failure_time" for r in study.rows)
     assert all(c > 0 for c in changes)
     assert "keeps falling" not in study.fit.verdict and "still rising" in study.fit.verdict
+
+
+def test_a_row_not_yet_resolved_in_n_says_so_as_the_runs_warning_does():
+    """At n = 120 the sail at E_cr,max/1000 is well posed but its fastest rate still moves by 38 % to 2n: the run
+    warns "not resolved in n", and the study's row must say the same, not just "well posed"."""
+    from lightsail_mbs import RunSettings, SailParameters
+
+    p = SailParameters(model="torsion", youngs_modulus=450628119.28)
+    study = convergence.converge(p, RunSettings(t_final=0.05), [120], noise=False)
+    verdict = study.rows[0].resolvedness
+    assert verdict["well_posed"] and verdict["resolved"] is False
+    assert "(well posed, not resolved)" in convergence.markdown_table(study)
