@@ -21,6 +21,7 @@ import math
 from dataclasses import dataclass
 
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT  # noqa: F401 - re-exported
+from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError, check
 from lightsail_mbs.model import casefile, materials, planforms, sections
 from lightsail_mbs.model.derived import DerivedQuantities
@@ -315,7 +316,8 @@ class SailParameters(DerivedQuantities):
 
     @classmethod
     def from_toml(cls, path) -> SailParameters:
-        """The case of a case file (:mod:`lightsail_mbs.model.casefile`; its [run] table is not read here).
+        """The case of a case file (:mod:`lightsail_mbs.model.casefile`; its [run] table:
+        :func:`run_settings_of_case_file`).
         ParameterError, naming the file and the key, for a bad file or value."""
         return case_of(path, **read_case_file(path)[0])
 
@@ -358,6 +360,18 @@ def read_case_file(path) -> tuple[dict, dict]:
         raise ParameterError(str(exc)) from None
     except ParameterError as exc:
         raise ParameterError(f"{path}: {exc}") from None
+
+
+def run_settings_of_case_file(path):
+    """The RunSettings of a case file's [run] table (the counterpart of SailParameters.to_toml's settings), or
+    None when it has none; ParameterError naming the file and the key."""
+    run = read_case_file(path)[1]
+    if not run:
+        return None
+    try:
+        return RunSettings(**run)
+    except ParameterError as exc:
+        raise ParameterError(f"{path}: [run] {exc}") from None
 
 
 def case_of(source, **fields) -> SailParameters:

@@ -180,3 +180,14 @@ def test_a_table_path_in_a_case_file_is_relative_to_its_folder(tmp_path, monkeyp
         back = SailParameters.from_toml(path)
         assert Path(back.optics).resolve() == (project / "facet.npz").resolve()
         assert back.optics_digest == p.replace(optics=str(project / "facet.npz")).optics_digest
+
+
+def test_the_run_settings_written_with_a_case_read_back(tmp_path):
+    from lightsail_mbs.model.parameters import run_settings_of_case_file
+
+    path = SailParameters().to_toml(tmp_path / "c.toml", RunSettings(t_final=0.25, failure_ratio=3.0))
+    assert run_settings_of_case_file(path) == RunSettings(t_final=0.25, failure_ratio=3.0)
+    assert run_settings_of_case_file(SailParameters().to_toml(tmp_path / "bare.toml")) is None
+    (tmp_path / "bad.toml").write_text("[run]\nt_final = -1.0\n")
+    with pytest.raises(ParameterError, match=r"bad.toml: \[run\] t_final=-1.0 is invalid"):
+        run_settings_of_case_file(tmp_path / "bad.toml")
