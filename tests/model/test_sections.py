@@ -7,6 +7,7 @@ import dataclasses
 import pytest
 
 from lightsail_mbs import ParameterError, SailParameters
+from lightsail_mbs.base.validation import shown
 from lightsail_mbs.model.fields import FIELDS, MODELS, SECTIONS
 from lightsail_mbs.model.parameters import DEFAULTS, SECTION_RECORDS
 from lightsail_mbs.model.sections import shown_default
@@ -121,7 +122,9 @@ def test_every_field_a_model_does_not_use_is_refused_in_the_line_its_declaration
         for model in (m for m in MODELS if m not in info.models):
             with pytest.raises(ParameterError) as err:
                 SailParameters(model=model, **{name: value})
-            expected = f"{name}={value!r} is invalid: allowed {info.unused_text(shown_default(info, DEFAULTS[name]))}"
+            expected = (
+                f"{name}={shown(value)} is invalid: allowed {info.unused_text(shown_default(info, DEFAULTS[name]))}"
+            )
             assert "allowed None" not in str(err.value) and "allowed True" not in str(err.value)
             assert str(err.value) == expected or (name in REFUSED_BY_THEIR_SECTION and str(err.value).startswith(name))
         SailParameters(**{"model": info.models[0], **COMPANIONS.get(name, {}), name: value})  # its models take it
