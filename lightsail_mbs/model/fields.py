@@ -313,6 +313,6 @@ FIELDS = {
         "the sail's speed along the beam at t = 0, β₀ (a fraction of c); > 0: the beam's loads follow the "
         "Doppler factor (1 − β)/(1 + β) of the speed β(t) along the constant-power trajectory from β₀ "
         "(intensity: the lab frame's); 0: at rest, no Doppler term",
-        "0 ≤ β₀ < 1",
+        "0 ≤ β₀ < 1; 0 with supports (boundary other than free) or an optical table",
     ),
 }

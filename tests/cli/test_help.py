@@ -81,3 +81,9 @@ def test_tension_is_named_with_its_unit_per_model():
     assert option_name("tension") != option_name("edge_tension")
     assert "(N)" in field_help("tension") and "tnt" in field_help("tension")
     assert "(N/m)" in field_help("edge_tension")
+
+
+def test_the_initial_beta_help_names_the_cases_that_refuse_it():
+    """A free sail only, and no optical table (the case refuses both): the help says so before a run does."""
+    text = field_help("initial_beta")
+    assert "0 ≤ β₀ < 1" in text and "boundary" in text and "optical table" in text
