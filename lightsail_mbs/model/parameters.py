@@ -153,7 +153,8 @@ class SailParameters(DerivedQuantities):
                     name,
                     getattr(self, name),
                     getattr(self, name) == default,
-                    f"{default} with an optical table ({OPTICS_REASONS.get(name, 'the table gives the force law')})",
+                    f"{sections.shown_default(FIELDS[name], default)} with an optical table "
+                    f"({OPTICS_REASONS.get(name, 'the table gives the force law')})",
                 )
         if self.payload_mass != 0:
             check("payload_mass", self.payload_mass, self.boundary == "free", "0 unless boundary='free'")
