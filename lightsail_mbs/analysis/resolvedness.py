@@ -138,9 +138,11 @@ class Resolvedness:
 
 
 def stiffness_ratios(p: SailParameters) -> dict:
-    """E/E_cr,max (where the chain bends) and T/T_cr,max (the membrane), Eqs 8 and 10; empty without a defect."""
+    """E/E_cr,max (where the chain bends) and T/T_cr,max (the membrane), Eqs 8 and 10, at the intensity of the
+    run's start (theory.at_start: Doppler-dimmed from β₀); empty without a defect."""
     if p.defect_amplitude <= 0 or p.intensity <= 0:
         return {}
+    p = theory.at_start(p)
     ratios = {}
     if p.torsional_stiffness > 0:
         ratios["E/E_cr,max"] = p.youngs_modulus / theory.critical_modulus_max(p)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 from lightsail_mbs.model.fields import number
 
@@ -11,7 +12,7 @@ def register(sub) -> None:
     p = sub.add_parser(
         "info", help="what a saved run (.npz) found, with its uncertainty and conditioning, and what made it"
     )
-    p.add_argument("run", help="a Result saved by `lightsail-mbs simulate --out RUN.npz`")
+    p.add_argument("run", help="a Result saved by `lightsail-mbs simulate --out RUN.npz` (or its summary RUN.json)")
     p.add_argument("--json", action="store_true", help="print the summary (with provenance) as one JSON object")
     p.set_defaults(func=run)
 
@@ -19,14 +20,17 @@ def register(sub) -> None:
 def run(args) -> int:
     from lightsail_mbs.result import Result
 
-    result = Result.load(args.run)
+    path = Path(args.run)
+    if path.suffix == ".json" and path.with_suffix(".npz").exists():  # the summary beside its run
+        path = path.with_suffix(".npz")
+    result = Result.load(path)
     summary = result.summary()
     if args.json:
         print(json.dumps(summary, default=str))
         return 0
     p = result.params
     size = f"{p.n} x {p.ny} tiles" if p.model == "sheet" else f"n = {p.n}"
-    print(f"{args.run}: {summary['solver']} run of a {p.model} sail, {size}, t_end = {summary['t_end']:.6g} s")
+    print(f"{path}: {summary['solver']} run of a {p.model} sail, {size}, t_end = {summary['t_end']:.6g} s")
     print(f"  answer: {result.answer_text()}")
     print(f"  conditioning: {conditioning(summary['uncertainty'])}")
     film = result.film_text()

@@ -91,7 +91,9 @@ def add_case_options(parser: argparse.ArgumentParser, run: bool = True) -> None:
     for name, field in CASE_FIELDS.items():
         info = FIELDS[name]
         if info.group not in groups:
-            groups[info.group] = parser.add_argument_group(f"case: {SECTIONS[info.group]}")
+            title = SECTIONS[info.group]
+            heading = f"case [{info.group}]" + ("" if title == info.group else f": {title}")  # its case file table
+            groups[info.group] = parser.add_argument_group(heading)
         kind = field.type.split("|")[0].strip()
         how = {"action": argparse.BooleanOptionalAction} if kind == "bool" else {"type": OPTION_TYPES[kind]}
         option = option_name(name)

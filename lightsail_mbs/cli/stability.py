@@ -72,6 +72,13 @@ def run(args) -> int:
     from lightsail_mbs.model import theory
 
     p = params_from_args(args)
+    check(
+        "initial_beta",
+        p.initial_beta,
+        p.initial_beta == 0,
+        "0 with stability (its scaled problem is a sail at rest under a constant beam; for a sail receding at "
+        f"β₀ give the intensity it meets, --intensity {theory.at_start(p).intensity:.6g} --initial-beta 0)",
+    )
     if args.run_time is not None:
         check("run_time", args.run_time, finite("run_time", args.run_time) > 0, "> 0 s")
     if p.model == "sheet":

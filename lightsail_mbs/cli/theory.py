@@ -23,7 +23,14 @@ def run(args) -> int:
     from lightsail_mbs.model import theory
 
     p = params_from_args(args)
-    numbers = {**theory.summary(p), **criteria(p)}
+    start = theory.at_start(p)
+    numbers = {**theory.summary(start), **criteria(start)}
+    if start is not p:  # the sail recedes at β₀: every number is at the Doppler-dimmed intensity of its start
+        numbers = {"initial_beta": p.initial_beta, "intensity_at_start": start.intensity, **numbers}
+        numbers["paper_prediction"] += (
+            "; at the run's start, the beam dimmed by the Doppler factor (1 − β₀)/(1 + β₀) to "
+            f"{start.intensity:.6g} W/m² (it dims further during the run)"
+        )
     if args.json:
         print(json.dumps(numbers))
     else:

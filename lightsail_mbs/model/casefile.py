@@ -23,7 +23,7 @@ tables is then version 2, one without version 1); a file of a newer version is r
 names, tables and types here (:func:`read`); the values' ranges, and that a field the case's model does
 not use keeps its default, are checked by the classes built from them. Every problem is one line naming
 the file, the key and what is allowed (:class:`CaseFileError`). Older names of fields (LEGACY_NAMES) are
-read as the fields.
+read as the fields. An optical table's path (``optics``) is relative to the case file's folder, as written.
 
 The paper's cases ship as case files in the folder ``cases`` next to this module (:class:`CaseFolder`).
 """
@@ -34,6 +34,7 @@ import dataclasses
 import difflib
 import json
 import math
+import os
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -79,10 +80,17 @@ def read(path, fields: Mapping[str, tuple[str, str]]) -> tuple[dict, dict]:
     run = data.pop(RUN_TABLE, {})
     if not isinstance(run, dict):
         raise CaseFileError(f"{path}: {RUN_TABLE} = {run!r} is invalid: allowed a [run] table")
-    case = {}
+    case, keys = {}, {}
     for where, key, value in _flat(path, data, fields) if version == 1 else _sectioned(path, data, fields):
         name = LEGACY_NAMES.get(key, key)  # an older name of a field reads as the field
-        case[name] = _typed(path, where + key, value, *fields[name])
+        if name in keys:
+            raise CaseFileError(
+                f"{path}: {keys[name]} and {where + key} are the same field ({name}): allowed one of them"
+            )
+        keys[name], case[name] = where + key, _typed(path, where + key, value, *fields[name])
+    optics = case.get("optics")
+    if isinstance(optics, str) and optics not in ("", "mirror") and not Path(optics).is_absolute():
+        case["optics"] = str(path.parent / optics)  # a table file's path is relative to the case file's folder
     for key, value in run.items():
         if key not in RUN_FIELDS:
             hint = _close(key, RUN_FIELDS)
@@ -119,7 +127,14 @@ def write_case(path, params, settings=None) -> Path:
     """Write the case file of params (a SailParameters: its case_fields, each with its help as a comment)
     and of settings (a RunSettings, or None) as its [run] table."""
     notes = {k: f"{v.help} ({v.unit})" if v.unit else v.help for k, v in FIELDS.items()}
-    return write(path, case_fields(params), settings.to_dict() if settings else None, notes)
+    case = case_fields(params)
+    if params.optics_file:  # the table's path from the case file's folder, as read() takes it
+        table, folder = Path(params.optics).resolve(), Path(path).resolve().parent
+        try:
+            case["optics"] = os.path.relpath(table, folder)
+        except ValueError:  # on another drive
+            case["optics"] = str(table)
+    return write(path, case, settings.to_dict() if settings else None, notes)
 
 
 def case_fields(params) -> dict:
@@ -171,9 +186,11 @@ def _check_format(path: Path, data: dict) -> int:
     sectioned = any(key in SECTIONS and isinstance(value, dict) for key, value in data.items())
     version = data.pop("version", 2 if sectioned else 1)
     if isinstance(version, bool) or not isinstance(version, int) or not 1 <= version <= VERSION:
+        newer = isinstance(version, int) and not isinstance(version, bool) and version > VERSION
+        allowed = f"an integer ≤ {VERSION}" if newer else f"an integer 1 … {VERSION}"
         raise CaseFileError(
-            f"{path}: version = {_shown(version)} is invalid: allowed an integer ≤ {VERSION} (this lightsail-mbs "
-            f"reads case files up to version {VERSION}; a newer one wrote this file)"
+            f"{path}: version = {_shown(version)} is invalid: allowed {allowed} (this lightsail-mbs reads case "
+            f"files up to version {VERSION}" + ("; a newer one wrote this file)" if newer else ")")
         )
     return version
 
@@ -181,6 +198,8 @@ def _check_format(path: Path, data: dict) -> int:
 def _flat(path: Path, data: dict, fields):
     """(where, key, value) of a version 1 file: the case's fields at the top."""
     for key, value in data.items():
+        if key in RUN_FIELDS:
+            raise CaseFileError(f"{path}: {key} at the top is invalid: allowed in [{RUN_TABLE}] ({RUN_TABLE}.{key})")
         if LEGACY_NAMES.get(key, key) not in fields:
             raise CaseFileError(f"{path}: {_unknown(key, value, fields)}")
         yield "", key, value
@@ -202,6 +221,10 @@ def _sectioned(path: Path, data: dict, fields):
             raise CaseFileError(f"{path}: unknown table [{table}]{_close(table, SECTIONS)}: allowed {tables}")
         for key, value in entries.items():
             name = LEGACY_NAMES.get(key, key)
+            if key in RUN_FIELDS:
+                raise CaseFileError(
+                    f"{path}: {table}.{key} is in the wrong table: allowed in [{RUN_TABLE}] ({RUN_TABLE}.{key})"
+                )
             if name in fields and FIELDS[name].group != table:
                 raise CaseFileError(
                     f"{path}: {table}.{key} is in the wrong table: allowed in [{FIELDS[name].group}] "
@@ -234,7 +257,8 @@ def _unknown(key: str, value, fields) -> str:
     if isinstance(value, dict):
         tables = ", ".join(f"[{name}]" for name in (*SECTIONS, RUN_TABLE))
         return (
-            f"unknown table [{key}]: allowed in a version 1 file the fields at the top and [run]; in version 2 {tables}"
+            f"unknown table [{key}]{_close(key, SECTIONS)}: allowed in a version 1 file the fields at the top and "
+            f"[run]; in version 2 {tables}"
         )
     return f"unknown key {key}{_close(key, fields)}: allowed format, version, {', '.join(fields)}"
 

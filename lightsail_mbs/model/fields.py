@@ -8,9 +8,9 @@ every field of the class and nothing else). The defaults themselves are the clas
 
 from __future__ import annotations
 
-import math
 from typing import NamedTuple
 
+from lightsail_mbs.base.validation import number  # noqa: F401 - re-exported
 from lightsail_mbs.model import planforms
 from lightsail_mbs.model.materials import MATERIALS
 
@@ -293,6 +293,7 @@ FIELDS = {
         "",
         "the film from the materials table: fills density and youngs_modulus (explicit values override)",
         _choices(MATERIALS),
+        follows="none: density and youngs_modulus as given",
     ),
     "velocity_terms": FieldInfo(
         BEAM,
@@ -307,20 +308,6 @@ FIELDS = {
         "the sail's speed along the beam at t = 0, β₀ (a fraction of c); > 0: the beam's loads follow the "
         "Doppler factor (1 − β)/(1 + β) of the speed β(t) along the constant-power trajectory from β₀ "
         "(intensity: the lab frame's); 0: at rest, no Doppler term",
-        "0 ≤ β₀ < 1",
+        "0 ≤ β₀ < 1; 0 with supports (boundary other than free) or an optical table",
     ),
 }
-
-
-def number(value) -> str:
-    """A number as a user reads it: the shortest text that reads back to the same float, in scientific
-    notation when large or small (4.5e+13, 1e-06, not 45000000000000.0); other values as str()."""
-    if isinstance(value, bool) or not isinstance(value, float):
-        return str(value)
-    if value == 0 or not math.isfinite(value) or 1e-4 <= abs(value) < 1e6:
-        return repr(value)
-    for digits in range(17):
-        text = f"{value:.{digits}e}"
-        if float(text) == value:
-            return text
-    return repr(value)

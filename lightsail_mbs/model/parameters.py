@@ -21,11 +21,19 @@ import math
 from dataclasses import dataclass
 
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT  # noqa: F401 - re-exported
+from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError, check
 from lightsail_mbs.model import casefile, materials, planforms, sections
 from lightsail_mbs.model.derived import DerivedQuantities
 from lightsail_mbs.model.fields import BOUNDARIES, FIELDS, MIN_DEFECT_FRACTION, SHEET_BOUNDARIES
 from lightsail_mbs.model.records import LEGACY_NAMES, RUN_FIELDS, current_names, record  # noqa: F401
+
+# The fields an optical table replaces, at the values it requires, and why (model/optics.py).
+OPTICS_DEFAULTS = {"reflectivity": 1.0, "absorptivity": 0.0, "velocity_terms": False, "initial_beta": 0.0}
+OPTICS_REASONS = {
+    "velocity_terms": "the velocity-dependent load is derived for the R/α facet law",
+    "initial_beta": "the table holds at the laser's wavelength only, which the Doppler shift would move",
+}
 
 
 @dataclass(frozen=True)
@@ -140,12 +148,13 @@ class SailParameters(DerivedQuantities):
             "0 unless boundary='free' (the trajectory is a free sail's)",
         )
         if self.optics is not None:
-            for name in ("reflectivity", "absorptivity", "velocity_terms", "initial_beta"):
+            for name, default in OPTICS_DEFAULTS.items():
                 check(
                     name,
                     getattr(self, name),
-                    getattr(self, name) == (name == "reflectivity"),
-                    "its default with optics",
+                    getattr(self, name) == default,
+                    f"{sections.shown_default(FIELDS[name], default)} with an optical table "
+                    f"({OPTICS_REASONS.get(name, 'the table gives the force law')})",
                 )
         if self.payload_mass != 0:
             check("payload_mass", self.payload_mass, self.boundary == "free", "0 unless boundary='free'")
@@ -242,16 +251,26 @@ class SailParameters(DerivedQuantities):
 
     def section(self, name: str):
         """The case's section name (one of fields.SECTIONS) as its own frozen record
-        (:func:`lightsail_mbs.model.sections.records`), the defaults that follow other fields resolved."""
+        (:func:`lightsail_mbs.model.sections.records`). A field whose default follows other fields (FieldInfo
+        .follows: beam_centre, bending, …) is None there while it holds that default, as in a case file, so
+        that it follows the case the record joins (from_sections) rather than the one it came from."""
         check("section", name, name in SECTION_RECORDS, f"one of {', '.join(SECTION_RECORDS)}")
         record_class = SECTION_RECORDS[name]
-        return record_class(**{f.name: getattr(self, f.name) for f in dataclasses.fields(record_class)})
+        followed = type(self)(model=self.model, length=self.length, width=self.width)
+        values = {f.name: getattr(self, f.name) for f in dataclasses.fields(record_class)}
+        for key, value in values.items():
+            if FIELDS[key].follows and value == getattr(followed, key):
+                values[key] = None
+        return record_class(**values)
 
     @classmethod
     def from_sections(cls, *records, **fields) -> SailParameters:
         """The case of section records (one per section at most; a section left out keeps its defaults) and
         of fields given by name over them."""
         merged: dict = {}
+        kinds = tuple(SECTION_RECORDS.values())
+        for part in records:
+            check("sections", part, isinstance(part, kinds), "section records (SailParameters.section(name))")
         names = [part.name for part in records]
         for part in records:
             check("sections", names, names.count(part.name) == 1, "one record per section")
@@ -298,7 +317,8 @@ class SailParameters(DerivedQuantities):
 
     @classmethod
     def from_toml(cls, path) -> SailParameters:
-        """The case of a case file (:mod:`lightsail_mbs.model.casefile`; its [run] table is not read here).
+        """The case of a case file (:mod:`lightsail_mbs.model.casefile`; its [run] table:
+        :func:`run_settings_of_case_file`).
         ParameterError, naming the file and the key, for a bad file or value."""
         return case_of(path, **read_case_file(path)[0])
 
@@ -317,6 +337,8 @@ class SailParameters(DerivedQuantities):
         """The case of a dict from to_dict; the names of older saved runs (LEGACY_NAMES) are read too
         and their run-control entries (RUN_FIELDS) skipped. An unknown key raises ParameterError."""
         names = {f.name for f in dataclasses.fields(cls)}
+        for old, name in LEGACY_NAMES.items():
+            check(old, d.get(old), old not in d or name not in d, f"one of {old} and {name} (the same field)")
         known = current_names(d)
         for key in known:
             check("parameters", key, key in names, f"field names of SailParameters ({', '.join(sorted(names))})")
@@ -339,6 +361,18 @@ def read_case_file(path) -> tuple[dict, dict]:
         raise ParameterError(str(exc)) from None
     except ParameterError as exc:
         raise ParameterError(f"{path}: {exc}") from None
+
+
+def run_settings_of_case_file(path):
+    """The RunSettings of a case file's [run] table (the counterpart of SailParameters.to_toml's settings), or
+    None when it has none; ParameterError naming the file and the key."""
+    run = read_case_file(path)[1]
+    if not run:
+        return None
+    try:
+        return RunSettings(**run)
+    except ParameterError as exc:
+        raise ParameterError(f"{path}: [run] {exc}") from None
 
 
 def case_of(source, **fields) -> SailParameters:

@@ -215,8 +215,17 @@ def check_unused_at_defaults(case, defaults: dict) -> None:
     for name, info in FIELDS.items():
         if case.model not in info.models:
             value, default = getattr(case, name), defaults[name]
-            shown = number(default) if isinstance(default, float) else repr(default)
-            check(name, value, value == default, info.unused_text(shown))
+            check(name, value, value == default, info.unused_text(shown_default(info, default)))
+
+
+def shown_default(info, default) -> str:
+    """A default as the error messages state it: a number as a user reads it, on/off for a switch, and for
+    None, which neither a case file nor an option can spell, what it follows (FieldInfo.follows)."""
+    if default is None:
+        return f"its default, {info.follows}," if info.follows else "unset"
+    if isinstance(default, bool):
+        return "on" if default else "off"
+    return number(default) if isinstance(default, float) else repr(default)
 
 
 def table_of(optics: str):

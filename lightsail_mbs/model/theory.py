@@ -13,7 +13,18 @@ import numpy as np
 
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT
 from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model import relativity
 from lightsail_mbs.model.parameters import SailParameters
+
+
+def at_start(p: SailParameters) -> SailParameters:
+    """The case as its sail meets the beam at the run's start. With initial_beta β₀ > 0 the sail recedes at
+    β₀c and its rest frame sees the intensity I₀ D₀, D₀ = (1 − β₀)/(1 + β₀) (the Doppler term's factor at
+    τ = 0, :mod:`lightsail_mbs.model.terms.doppler`), so the closed forms of its start (Eqs 4, 8, 10) are those
+    of the case at I₀ D₀ and β₀ = 0 (the beam dims further during the run); without β₀, the case itself."""
+    if p.initial_beta == 0:
+        return p
+    return p.replace(intensity=p.intensity * float(relativity.intensity_factor(p.initial_beta)), initial_beta=0.0)
 
 
 def radiation_pressure(p: SailParameters) -> float:

@@ -32,9 +32,10 @@ across (square tiles); a sheet of one row (ny = 1) stays one row. Its in-house s
 Every run carries the resolvedness verdict of :mod:`lightsail_mbs.analysis.resolvedness` (the growth-rate
 spectrum at its initial state, at n and 2n). The study is ill-posed in n when the verdict at its largest
 assessed size says so: the fastest-growing wave sits at the grid scale, a finer chain adds faster-growing
-waves and the failure time keeps falling — a falling sequence can mimic a slow power law, so no fit is
-offered. Where no size is assessed (sheets, n above the verdict's limit) a chain or sheet without bending
-stiffness is flagged, as every wavelength down to the slice is then unstable under a compressive load.
+waves and the failure time falls once they outgrow the defect — a falling (or still rising) sequence can
+mimic a slow power law, so no fit is offered; the verdict says which way the failure time moved. Where no
+size is assessed (sheets, n above the verdict's limit) a chain or sheet without bending stiffness is
+flagged, as every wavelength down to the slice is then unstable under a compressive load.
 Whether such a sail survives can still be robust in n.
 """
 
@@ -346,8 +347,7 @@ def converge(
     values = [r.value for r in rows]
     ill_posed, why = ill_posed_in_n(params, rows)
     if ill_posed:
-        what = "failure time keeps falling" if "failure_time" in kinds else "answer is not a limit"
-        fit = PowerLawFit(None, None, None, f"not converging: ill-posed in n ({why}; {what})")
+        fit = PowerLawFit(None, None, None, f"not converging: ill-posed in n ({why}; {ill_posed_trend(rows)})")
     elif len(kinds) > 1:
         fit = PowerLawFit(None, None, None, "not converging (fails at some n, survives at others)")
     else:
@@ -356,6 +356,20 @@ def converge(
     converged = len(kinds) == 1 and fit.verdict in CONVERGED
     empirical = empirical_n_for_one_percent([r.n for r in rows], values) if converged else None
     return ConvergenceStudy(params, settings, rows, fit, empirical, ill_posed, notes)
+
+
+def ill_posed_trend(rows: list[ConvergenceRow]) -> str:
+    """How the answer of an ill-posed study moves with n, read from its rows: the failure time falling (or
+    rising) at every refinement of the last three sizes, or neither."""
+    last = rows[-3:]
+    changes = [r.change for r in last[1:]]
+    if not changes or any(r.kind != "failure_time" for r in last) or None in changes:
+        return "answer is not a limit"
+    if all(c < 0 for c in changes):
+        return "failure time keeps falling"
+    if all(c > 0 for c in changes):
+        return "failure time still rising over these sizes"
+    return "failure time moves both ways"
 
 
 def ill_posed_in_n(params: SailParameters, rows: list[ConvergenceRow]) -> tuple[bool, str]:
@@ -393,6 +407,8 @@ def wave_text(verdict: dict | None) -> str:
     if not verdict["growth_rate"]:
         return "none grows"
     state = "well posed" if verdict["well_posed"] else "grid scale: ill-posed"
+    if verdict["well_posed"] and verdict.get("resolved") is False:  # the run's warning: not resolved in n
+        state = "well posed, not resolved"
     return f"{verdict['slices_per_wavelength']:.3g} sl., σ = {verdict['growth_rate']:.3g} /s ({state})"
 
 

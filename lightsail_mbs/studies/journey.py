@@ -145,6 +145,13 @@ class Journey:
     (:meth:`run`), and the verdict (:meth:`verdict`)."""
 
     def __init__(self, p: SailParameters, s: JourneySettings):
+        check(
+            "initial_beta",
+            p.initial_beta,
+            p.initial_beta == 0,
+            "0 for a journey (it follows the sail from rest; each snapshot's shape run is lit at its moment's "
+            "Doppler-shifted intensity)",
+        )
         self.case, self.settings, self.film = p, s, Film.of(p, s)
         self.mass = craft_mass(p, s.carried_mass)
         self.trajectory = relativity.Trajectory(s.power, self.mass, p.normal_momentum)

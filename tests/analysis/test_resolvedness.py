@@ -3,6 +3,7 @@ ill-posed in n and says so in one warning; bending or tension that cuts the shor
 posed; the verdict follows the continuum's cut-off wavelength λ* = 2π √(2EI/P) on seeded random cases either side
 of it, and its compression estimate is the trough compression p a₀ W of the sine defect."""
 
+import json
 import math
 
 import numpy as np
@@ -145,3 +146,23 @@ def test_soft_sail_n_error_estimate_covers_its_distance_to_the_converged_answer(
     assert record["well_posed"] and fine.info["resolvedness"]["assessed"] is False
     difference = abs(fine.failure_time - coarse.failure_time)
     assert 0.05 < difference < record["failure_time_n_error"] < 3 * difference
+
+
+def test_a_receding_sail_is_judged_at_its_doppler_dimmed_start(capsys):
+    """β₀ = 0.1: the sail's frame sees I₀ (1 − β₀)/(1 + β₀) = (9/11) I₀ at the start, so g₀ and E_cr,max (Eqs 4,
+    8) are 9/11 of the sail at rest's and E/E_cr,max is 11/9 of it, in `theory` and in the run's verdict; the
+    verdict's growth rate, from the dimmed load, is that of the case lit at (9/11) I₀."""
+    rest, moving = SailParameters(youngs_modulus=4.5e9), SailParameters(youngs_modulus=4.5e9, initial_beta=0.1)
+    dimmed = rest.replace(intensity=rest.intensity * 9 / 11)
+    ratio = resolvedness.stiffness_ratios(moving)["E/E_cr,max"]
+    assert ratio == pytest.approx(resolvedness.stiffness_ratios(rest)["E/E_cr,max"] * 11 / 9, rel=1e-12)
+    assert resolvedness.assess(moving).growth_rate == pytest.approx(resolvedness.assess(dimmed).growth_rate, rel=1e-9)
+    printed = []
+    for args in ([], ["--initial-beta", "0.1"]):
+        assert main(["theory", "--modulus", "4.5e9", "--json", *args]) == 0
+        printed.append(json.loads(capsys.readouterr().out))
+    assert printed[1]["g0"] == pytest.approx(printed[0]["g0"] * 9 / 11, rel=1e-12)
+    assert printed[1]["e_cr_max"] == pytest.approx(printed[0]["e_cr_max"] * 9 / 11, rel=1e-12)
+    assert printed[1]["e_over_e_cr_max"] == pytest.approx(ratio, rel=1e-12)
+    assert printed[1]["intensity_at_start"] == pytest.approx(1e8 * 9 / 11, rel=1e-12)
+    assert "Doppler" in printed[1]["paper_prediction"] and "initial_beta" not in printed[0]

@@ -189,3 +189,5 @@ def test_info_prints_the_answer_with_its_error_bar_and_the_verdict(tmp_path, cap
     out = capsys.readouterr().out
     assert "answer: FAILED at t = " in out and " ± " in out
     assert "conditioning: well-conditioned" in out or "conditioning: ILL-CONDITIONED" in out
+    assert main(["info", str(run.with_suffix(".json"))]) == 0  # the summary written beside the run names it
+    assert capsys.readouterr().out == out

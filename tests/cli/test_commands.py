@@ -195,6 +195,16 @@ def test_reproduce_prints_the_wall_time_of_each_pipeline(tmp_path, capsys, monke
     assert kwargs["solver"] == "reduced"
 
 
+@pytest.mark.parametrize("model", ["torsion", "sheet"])
+def test_stability_refuses_a_receding_sail_before_any_run(model, capsys):
+    """The scaled problem (E/E_cr,max, runs in t_c) is a sail at rest under a constant beam; a run with
+    initial_beta has neither, so the command names the intensity the sail meets instead (I₀ · 9/11 at 0.1)."""
+    assert main(["stability", "--model", model, "--n", "6", "--initial-beta", "0.1"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "initial_beta=0.1 is invalid: allowed 0 with stability" in err
+    assert "--intensity 8.18182e+07 --initial-beta 0" in err
+
+
 @pytest.mark.parametrize("model, key", [("torsion", "critical_modulus"), ("tnt", "critical_tension")])
 def test_stability_command_json(model, key, capsys):
     code = main(

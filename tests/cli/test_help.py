@@ -51,6 +51,19 @@ def test_no_number_in_any_help_is_written_out_in_full():
         assert not re.search(r"\d{7,}|\b0\.0000", text), name
 
 
+def test_each_case_option_group_names_its_case_file_table():
+    """A field's option sits under the title of its section, which names the case file's table that holds it."""
+    simulate = dict(parsers())["lightsail-mbs simulate"]
+    titles = {a.dest: g.title for g in simulate._action_groups for a in g._group_actions}
+    for name, info in FIELDS.items():
+        assert titles[name].startswith(f"case [{info.group}]"), (name, titles[name])
+
+
+def test_no_default_is_shown_as_a_python_none():
+    for name, parser in parsers():
+        assert "[default: None]" not in " ".join(parser.format_help().split()), name
+
+
 def test_defaults_that_follow_other_fields_say_so():
     follows = [name for name, info in FIELDS.items() if info.follows]
     assert "beam_centre" in follows
@@ -68,3 +81,9 @@ def test_tension_is_named_with_its_unit_per_model():
     assert option_name("tension") != option_name("edge_tension")
     assert "(N)" in field_help("tension") and "tnt" in field_help("tension")
     assert "(N/m)" in field_help("edge_tension")
+
+
+def test_the_initial_beta_help_names_the_cases_that_refuse_it():
+    """A free sail only, and no optical table (the case refuses both): the help says so before a run does."""
+    text = field_help("initial_beta")
+    assert "0 ≤ β₀ < 1" in text and "boundary" in text and "optical table" in text

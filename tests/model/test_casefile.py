@@ -3,6 +3,7 @@ described; a case written and read back is the same case; a bad file is one line
 
 import dataclasses
 import math
+from pathlib import Path
 
 import pytest
 from hypothesis import given
@@ -104,6 +105,7 @@ def test_a_case_file_holds_what_describes_the_sail(tmp_path):
         ("n = 1", ["n=1", "2 ≤ n ≤ 5000"]),
         ("ny = 3", ["ny=3", "unless model='sheet'"]),
         ("version = 3\nn = 12", ["version = 3", "up to version 2"]),
+        ('version = "2"\nn = 12', ['version = "2"', "an integer 1 … 2", "up to version 2)"]),
         ('format = "other"', ["format", "lightsail-mbs case"]),
         ("[hull]\nn = 3", ["[hull]", "allowed", "[sail]"]),
         ("version = 1\n[sheet]\nny = 3", ["[sheet]", "version 1"]),
@@ -114,6 +116,11 @@ def test_a_case_file_holds_what_describes_the_sail(tmp_path):
         ('[sail]\nmodel = "torsion"\n[sheet]\nny = 3', ["ny=3", "unless model='sheet'"]),
         ('[sail]\nmodel = "sheet"\n[payload]\npayload_mass = 1e-3', ["payload_mass", "unless model is one of"]),
         ("[run]\nt_fnal = 1.0", ["run.t_fnal", "t_final"]),
+        ("[beam]\nbeam_centre = 0.3\nbeam_center = 0.4", ["beam.beam_centre and beam.beam_center", "one of them"]),
+        ("amplitude = 1e-5\ndefect_amplitude = 2e-5", ["amplitude and defect_amplitude", "same field"]),
+        ("[beams]\nintensity = 1e8", ["[beams]", "did you mean beam?"]),
+        ("t_final = 2.0", ["t_final at the top", "allowed in [run] (run.t_final)"]),
+        ("[sail]\nfailure_ratio = 3.0", ["sail.failure_ratio is in the wrong table", "allowed in [run]"]),
     ],
 )
 def test_a_bad_case_file_is_one_line_naming_the_file_and_the_key(text, words, tmp_path):
@@ -152,3 +159,35 @@ def test_a_version_1_file_and_its_version_2_file_are_the_same_case(tmp_path):
         SailParameters.from_toml(old)
     old.write_text('[sail]\nmodel = "sheet"\nn = 4\n[sheet]\nny = 3\n[beam]\nbeam_waist = 0.5\nbeam_center = 0.3\n')
     assert SailParameters.from_toml(old) == p
+
+
+def test_a_table_path_in_a_case_file_is_relative_to_its_folder(tmp_path, monkeypatch):
+    """A case saved next to its optical table reads from any working folder, and a case saved into another
+    folder names the table from there; the case read is the one written (the same table, the same digest)."""
+    from lightsail_mbs.model import optics
+
+    project = tmp_path / "project"
+    project.mkdir()
+    monkeypatch.chdir(project)
+    optics.facet(0.9, 0.0).save("facet.npz")
+    p = SailParameters(optics="facet.npz")
+    p.to_toml("case.toml")
+    (tmp_path / "elsewhere").mkdir()
+    p.to_toml(tmp_path / "elsewhere" / "case.toml")
+    assert 'optics = "../project/facet.npz"' in (tmp_path / "elsewhere" / "case.toml").read_text()
+    monkeypatch.chdir(tmp_path)
+    for path in (project / "case.toml", tmp_path / "elsewhere" / "case.toml"):
+        back = SailParameters.from_toml(path)
+        assert Path(back.optics).resolve() == (project / "facet.npz").resolve()
+        assert back.optics_digest == p.replace(optics=str(project / "facet.npz")).optics_digest
+
+
+def test_the_run_settings_written_with_a_case_read_back(tmp_path):
+    from lightsail_mbs.model.parameters import run_settings_of_case_file
+
+    path = SailParameters().to_toml(tmp_path / "c.toml", RunSettings(t_final=0.25, failure_ratio=3.0))
+    assert run_settings_of_case_file(path) == RunSettings(t_final=0.25, failure_ratio=3.0)
+    assert run_settings_of_case_file(SailParameters().to_toml(tmp_path / "bare.toml")) is None
+    (tmp_path / "bad.toml").write_text("[run]\nt_final = -1.0\n")
+    with pytest.raises(ParameterError, match=r"bad.toml: \[run\] t_final=-1.0 is invalid"):
+        run_settings_of_case_file(tmp_path / "bad.toml")

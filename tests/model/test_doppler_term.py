@@ -106,8 +106,14 @@ def test_initial_beta_is_checked():
     for bad in (-0.1, 1.0, math.nan, math.inf):
         with pytest.raises(ParameterError, match="initial_beta"):
             SailParameters(initial_beta=bad)
-    with pytest.raises(ParameterError, match="initial_beta"):
+    with pytest.raises(
+        ParameterError, match=r"initial_beta=0.1 is invalid: allowed 0.0 with an optical table \(.*wavelength"
+    ):
         SailParameters(n=8, optics="mirror", initial_beta=0.1)
+    with pytest.raises(ParameterError, match=r"reflectivity=0.9 is invalid: allowed 1.0 with an optical table"):
+        SailParameters(n=8, optics="mirror", reflectivity=0.9)
+    with pytest.raises(ParameterError, match=r"velocity_terms=True is invalid: allowed off with an optical table"):
+        SailParameters(n=8, optics="mirror", velocity_terms=True)
     assert SailParameters().to_dict().get("initial_beta", 0.0) == 0.0
 
 

@@ -132,6 +132,12 @@ def test_from_dict_reads_the_beam_axis_under_its_older_spelling():
 LEGACY_SPELLING = {"beam_centre": "beam_center", "beam_centre_y": "beam_center_y"}
 
 
+def test_from_dict_refuses_a_field_under_both_its_names():
+    """A record with beam_center and beam_centre names one field twice: refused, not one of them dropped."""
+    with pytest.raises(ParameterError, match="one of beam_center and beam_centre"):
+        SailParameters.from_dict({"beam_centre": 0.3, "beam_center": 0.4})
+
+
 def test_from_dict_rejects_an_unknown_key():
     d = {**SailParameters().to_dict(), "colour": "gold"}
     with pytest.raises(ParameterError, match="colour"):
@@ -215,7 +221,7 @@ def test_sheet_fields_round_trip_and_defaults():
         (dict(tension=1.0), "tension", "edge_tension"),
         (dict(torsional_damping=1.0), "torsional_damping", "stiffness_damping"),
         (dict(beam_centre_y=math.nan), "beam_centre_y", "finite"),
-        (dict(optics="mirror"), "optics", "None unless model is one of rigid, torsion, tnt"),
+        (dict(optics="mirror"), "optics", "the R/α law, unless model is one of rigid, torsion, tnt"),
         (dict(payload_mass=1e-3), "payload_mass", "0 unless model is one of rigid, torsion, tnt"),
         (dict(initial_tilt=0.1), "initial_tilt", "0 unless model is one of rigid, torsion, tnt"),
         (dict(billow_radius=0.2), "billow_radius", "90° from its apex"),

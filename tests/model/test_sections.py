@@ -7,8 +7,10 @@ import dataclasses
 import pytest
 
 from lightsail_mbs import ParameterError, SailParameters
-from lightsail_mbs.model.fields import FIELDS, MODELS, SECTIONS, number
+from lightsail_mbs.base.validation import shown
+from lightsail_mbs.model.fields import FIELDS, MODELS, SECTIONS
 from lightsail_mbs.model.parameters import DEFAULTS, SECTION_RECORDS
+from lightsail_mbs.model.sections import shown_default
 
 SHEET = SailParameters(model="sheet", n=4, ny=3, edge_tension=1e-3, beam_waist=0.6, beam_centre_y=0.4)
 TNT = SailParameters(model="tnt", tension=1e-3, youngs_modulus=1e11, payload_mass=0.0, torsional_damping=1e-9)
@@ -32,6 +34,19 @@ def test_a_case_is_its_sections(case):
         SailParameters.from_sections(case.section("beam"), case.section("beam"))
     with pytest.raises(ParameterError, match="section='hull' is invalid: allowed one of sail, material"):
         case.section("hull")
+    with pytest.raises(ParameterError, match="allowed section records"):
+        SailParameters.from_sections({"n": 3})
+
+
+def test_a_followed_default_follows_the_case_its_section_joins():
+    """The beam section of the 1 m sail, joined to the sail section of a 2 m one, centres the beam on the 2 m
+    sail (x_c = L/2 = 1 m) as a case file would; a beam axis set away from the middle stays where it was set."""
+    long_sail = SailParameters(length=2.0).section("sail")
+    assert SailParameters.from_sections(long_sail, SailParameters().section("beam")).beam_centre == 1.0
+    offset = SailParameters(beam_centre=0.3).section("beam")
+    assert SailParameters.from_sections(long_sail, offset).beam_centre == 0.3
+    rigid = SailParameters.from_sections(SailParameters(model="rigid").section("sail"), model="torsion")
+    assert rigid.bending  # bending follows the model it joins: on for torsion
 
 
 @pytest.mark.parametrize(
@@ -107,9 +122,10 @@ def test_every_field_a_model_does_not_use_is_refused_in_the_line_its_declaration
         for model in (m for m in MODELS if m not in info.models):
             with pytest.raises(ParameterError) as err:
                 SailParameters(model=model, **{name: value})
-            default = DEFAULTS[name]
-            shown = number(default) if isinstance(default, float) else repr(default)
-            expected = f"{name}={value!r} is invalid: allowed {info.unused_text(shown)}"
+            expected = (
+                f"{name}={shown(value)} is invalid: allowed {info.unused_text(shown_default(info, DEFAULTS[name]))}"
+            )
+            assert "allowed None" not in str(err.value) and "allowed True" not in str(err.value)
             assert str(err.value) == expected or (name in REFUSED_BY_THEIR_SECTION and str(err.value).startswith(name))
         SailParameters(**{"model": info.models[0], **COMPANIONS.get(name, {}), name: value})  # its models take it
 
@@ -119,5 +135,7 @@ def test_the_generated_line_says_which_models_use_the_field_and_what_the_others_
         SailParameters(model="sheet", tension=1.0)
     with pytest.raises(ParameterError, match="ny=3 is invalid: allowed 1 unless model='sheet'$"):
         SailParameters(ny=3)
-    with pytest.raises(ParameterError, match="allowed None unless model is one of rigid, torsion, tnt"):
+    with pytest.raises(ParameterError, match="allowed its default, the R/α law, unless model is one of rigid, torsion"):
         SailParameters(model="sheet", optics="mirror")
+    with pytest.raises(ParameterError, match="allowed on unless model is one of rigid, torsion, tnt"):
+        SailParameters(model="sheet", axial_springs=False)

@@ -153,3 +153,29 @@ def test_a_sheet_is_refined_in_both_directions():
     assert [r.ny for r in strip.rows] == [1, 1]
     with pytest.raises(ParameterError, match="method"):
         convergence.converge(p, RunSettings(t_final=0.1), [4], method="DOP853")
+
+
+def test_ill_posed_verdict_says_which_way_the_failure_time_moved():
+    """A torsion sail at E_cr,max/1000 is ill-posed in n (its fastest wave at the grid scale, its rate doubling
+    with n) while its failure time, set by the seeded ν = 3/2 defect, still rises over n = 15, 30, 60: the
+    verdict must say it rises, not that it keeps falling."""
+    from lightsail_mbs import RunSettings, SailParameters
+
+    p = SailParameters(model="torsion", youngs_modulus=450628119.28)
+    study = convergence.converge(p, RunSettings(t_final=3.0), [15, 30, 60], noise=False)
+    changes = [r.change for r in study.rows[1:]]
+    assert study.ill_posed and all(r.kind == "failure_time" for r in study.rows)
+    assert all(c > 0 for c in changes)
+    assert "keeps falling" not in study.fit.verdict and "still rising" in study.fit.verdict
+
+
+def test_a_row_not_yet_resolved_in_n_says_so_as_the_runs_warning_does():
+    """At n = 120 the sail at E_cr,max/1000 is well posed but its fastest rate still moves by 38 % to 2n: the run
+    warns "not resolved in n", and the study's row must say the same, not just "well posed"."""
+    from lightsail_mbs import RunSettings, SailParameters
+
+    p = SailParameters(model="torsion", youngs_modulus=450628119.28)
+    study = convergence.converge(p, RunSettings(t_final=0.05), [120], noise=False)
+    verdict = study.rows[0].resolvedness
+    assert verdict["well_posed"] and verdict["resolved"] is False
+    assert "(well posed, not resolved)" in convergence.markdown_table(study)

@@ -105,3 +105,10 @@ def test_both_solvers_agree_on_a_heated_doppler_shifted_snapshot_run_to_failure(
     runs = [shape_run(p, row, 20.0, solver) for solver in ("reduced", "exudyn")]
     assert all(r["shape_failed"] for r in runs)
     assert runs[0]["shape_failure_time"] == pytest.approx(runs[1]["shape_failure_time"], rel=1e-3)
+
+
+def test_a_journey_refuses_a_case_that_starts_receding():
+    """The journey follows the sail from rest and lights each snapshot's shape run at its moment's Doppler-shifted
+    intensity; a case with initial_beta would dim those runs a second time, so it is refused before any work."""
+    with pytest.raises(ParameterError, match="initial_beta=0.1 is invalid: allowed 0 for a journey"):
+        Journey(starshot_like().replace(initial_beta=0.1), JourneySettings(power=4e10, shape_runs=True))
