@@ -40,10 +40,9 @@ def summary_row(label, study, paper_n) -> str:
     at_paper = next((r for r in rows if r.n == paper_n), None)
     finest = rows[-1]
     fit = study.fit
-    reference = fit.limit if fit.limit is not None else finest.value
-    paper_error = "—"
-    if at_paper is not None and at_paper.value is not None and reference and not study.ill_posed:
-        paper_error = f"{(at_paper.value - reference) / reference:+.1%}"
+    paper_error = "—"  # against the limit; a study that gives none (not converging) is compared with nothing
+    if at_paper is not None and at_paper.value is not None and fit.limit:
+        paper_error = f"{(at_paper.value - fit.limit) / fit.limit:+.1%}"
     kind = UNITS[finest.kind]
     return (
         f"| {label} | {kind} | {rows[0].n}–{finest.n} | {fmt(at_paper.value if at_paper else None)} "

@@ -144,8 +144,15 @@ def blocks_row(grid: int, ratio: float) -> dict:
 FAMILY_HEADER = " | ".join(ss.FAMILIES)
 
 
+def ratio_key(grid: int, ratio: float) -> tuple[int, float]:
+    """A run's (grid, E/E_cr,max) as a lookup key: a run's ratio is recomputed from its modulus
+    (3 × E_cr,max / E_cr,max = 2.9999999999999996), so it is rounded to 9 digits."""
+    return grid, round(ratio, 9)
+
+
 def table_a(rows: list[dict], long_rows: list[dict]) -> list[str]:
-    late = {(r["grid"], r["ratio"]): r["late_rate"] for r in long_rows}
+    late = {ratio_key(r["grid"], r["ratio"]): r["late_rate"] for r in long_rows}
+    long_ratios = {ratio_key(grid, ratio)[1] for grid, ratio in LONG_RUNS}
     lines = [
         "| E/E_cr,max | grid | fastest rate (1/s) | its family | "
         + FAMILY_HEADER
@@ -154,11 +161,11 @@ def table_a(rows: list[dict], long_rows: list[dict]) -> list[str]:
         "|---|---|---|---|" + "---|" * len(ss.FAMILIES) + "---|",
     ]
     for r in sorted(rows, key=lambda r: (r["ratio"], r["grid"])):
-        runs_ = " / ".join(fmt(late.get((g, r["ratio"])), ".3f") for g in (18, 24))
+        runs_ = " / ".join(fmt(late.get(ratio_key(g, r["ratio"])), ".3f") for g in (18, 24))
         lines.append(
             f"| {r['ratio']:.3g} | {r['grid']} | {_rate(r['rate'])} | {r['family']} | "
             + " | ".join(_rate(r[f"rate_{f}"]) for f in ss.FAMILIES)
-            + f" | {runs_ if r['ratio'] in (2.0, 3.0, 4.0) else ''} |"
+            + f" | {runs_ if ratio_key(r['grid'], r['ratio'])[1] in long_ratios else ''} |"
         )
     return lines
 
