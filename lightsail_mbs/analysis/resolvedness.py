@@ -81,6 +81,7 @@ class Resolvedness:
     slices_per_wavelength: float | None = None  # of the fastest-growing wave at n
     stiffness_ratios: dict | None = None  # E/E_cr,max, T/T_cr,max where they apply
     stabilising_tension: float | None = None  # T + (P − T): the edge tension (N) that outweighs the compression
+    model: str | None = None  # the case's model (only the tnt chain takes a boundary tension)
     cutoff_wavelength: float | None = None  # λ* (m) at which bending cuts the growth off (0: no bending)
     carrying_n: float | None = None  # n = 2L/λ* from which the chain carries λ*
     relative_n_error: float | None = None  # abs(σ(n) − σ(2n))/σ(2n), well-posed cases
@@ -128,7 +129,10 @@ class Resolvedness:
             )
         else:
             limit = f" ({ratios + '; ' if ratios else ''}no bending stiffness: nothing cuts the short waves off)"
-        tension = f"tension above ≈ {self.stabilising_tension:.2g} N, " if self.stabilising_tension else "tension, "
+        tension = "tension, "
+        if self.stabilising_tension:
+            where = "" if self.model == "tnt" else " (a boundary tension, as the tnt model has)"
+            tension = f"tension above ≈ {self.stabilising_tension:.2g} N{where}, "
         return (
             f"ill-posed in n: the fastest-growing wave sits at the grid scale ({self.slices_per_wavelength:.3g} "
             f"slices per wavelength, growth rate σ = {self.growth_rate:.3g} /s at n = {self.n} and "
@@ -195,6 +199,7 @@ def assess(p: SailParameters) -> Resolvedness:
     sigma, sigma2 = coarse.growth_rate, fine.growth_rate
     common = dict(
         n=p.n,
+        model=p.model,
         growth_rate=sigma,
         growth_rate_refined=sigma2,
         slices_per_wavelength=coarse.slices_per_wavelength,

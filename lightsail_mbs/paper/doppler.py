@@ -69,17 +69,12 @@ def heated_case() -> tuple:
 CASES = {"soft torsion sail, 1e13 W/m², β₀ = 0.1": soft_case, "heated TnT snapshot, β₀ = 0.15": heated_case}
 
 
-def constant(p):
-    """The case at the constant sail-frame intensity of its start, I₀ D(β₀), without the Doppler term."""
-    return p.replace(intensity=p.intensity * float(relativity.intensity_factor(p.initial_beta)), initial_beta=0.0)
-
-
 def measure(p, settings, solver: str) -> dict:
     """One solver on the case with the Doppler term and at its constant start: the failure times (s) with their
     numerical ± (twin runs, solvers.uncertainty), the shift (t_D − t_const)/t_const, and the trajectory's numbers
     over the run (g₀ t_f/c, r t_f and the estimate r t_f/4)."""
     doppler = solvers.solve(p, solver, settings)
-    still = solvers.solve(constant(p), solver, settings)
+    still = solvers.solve(theory.at_start(p), solver, settings)  # the constant intensity I₀ D(β₀)
     rate = 2.0 * float(relativity.intensity_factor(p.initial_beta)) * p.nominal_acceleration / SPEED_OF_LIGHT
     t = doppler.failure_time
     return {

@@ -85,6 +85,7 @@ def test_paper_cases_without_bending_are_ill_posed(name):
     result = solve(paper_case(name), "reduced", paper_settings(name, t_final=1e-4), uncertainty=False)
     assert sum("ill-posed in n" in w for w in result.warnings) == 1
     assert "no bending stiffness" in result.warnings[-1]
+    assert ("as the tnt model has" in result.warnings[-1]) == (name == "rigid")  # only tnt takes --tension
     assert result.info["resolvedness"]["rate_ratio"] > 1.9
 
 
