@@ -159,13 +159,13 @@ def test_both_sheet_solvers_give_the_same_doppler_delay():
     """A soft 4 × 4 sheet at 1e13 W/m² from β₀ = 0.1 (g₀ t_f/c = 1.2e-3): the Doppler term delays its failure
     (by 3.4e-4 of t_f) against the constant intensity of the start, and both sheet solvers give the failure
     time to 1e-6 and the delay to 1e-3 of itself."""
-    from lightsail_mbs.paper.doppler import constant
+    from lightsail_mbs.model.theory import at_start
 
     p = SailParameters(model="sheet", n=4, ny=4, youngs_modulus=4.5e9, intensity=1e13, initial_beta=BETA)
     settings = RunSettings(t_final=6.0 / math.sqrt(HOT), output_interval=2e-5)
     times = {}
     for solver in ("reduced", "exudyn"):
-        runs = [solve(case, solver, settings, uncertainty=False) for case in (p, constant(p))]
+        runs = [solve(case, solver, settings, uncertainty=False) for case in (p, at_start(p))]
         times[solver] = [run.failure_time for run in runs]
     shifts = {solver: (t[0] - t[1]) / t[1] for solver, t in times.items()}
     assert times["exudyn"][0] == pytest.approx(times["reduced"][0], rel=1e-6)
