@@ -85,6 +85,8 @@ def run(args) -> int:
         f"(limit {report['film']['limit_temperature']:.4g} K), margin {first['margin']:.4g}; "
         f"T lags its steady field by ≤ {report['thermal_lag']:.2g} of T; wrote {out}/journey.{{csv,json,png}}"
     )
+    if report["optics"]["wavelength_axis"]:
+        print(f"optics: {report['optics']['text']}")
     for note in report["notes"]:
         print(f"note: {note}", file=sys.stderr)
     return 0
