@@ -27,6 +27,14 @@ from lightsail_mbs.model.derived import DerivedQuantities
 from lightsail_mbs.model.fields import BOUNDARIES, FIELDS, MIN_DEFECT_FRACTION, SHEET_BOUNDARIES
 from lightsail_mbs.model.records import LEGACY_NAMES, RUN_FIELDS, current_names, record  # noqa: F401
 
+# why a run with an optical table refuses the Doppler term, and what to do instead
+DOPPLER_WITH_TABLE = (
+    "0 with optics (a run holds its table at one wavelength, and the Doppler-shifted light is at another: for a "
+    "grating at the sail-frame wavelength along the acceleration, tabulate it with `lightsail-mbs optics grating "
+    "--wavelengths …` and run `lightsail-mbs journey --optics TABLE` (each snapshot at its λ'); for the dimming "
+    "inside a run, a reflectivity and absorptivity without optics, which hold at every wavelength)"
+)
+
 
 @dataclass(frozen=True)
 class SailParameters(DerivedQuantities):
@@ -140,13 +148,14 @@ class SailParameters(DerivedQuantities):
             "0 unless boundary='free' (the trajectory is a free sail's)",
         )
         if self.optics is not None:
-            for name in ("reflectivity", "absorptivity", "velocity_terms", "initial_beta"):
+            for name in ("reflectivity", "absorptivity", "velocity_terms"):
                 check(
                     name,
                     getattr(self, name),
                     getattr(self, name) == (name == "reflectivity"),
                     "its default with optics",
                 )
+            check("initial_beta", self.initial_beta, self.initial_beta == 0, DOPPLER_WITH_TABLE)
         if self.payload_mass != 0:
             check("payload_mass", self.payload_mass, self.boundary == "free", "0 unless boundary='free'")
             check("payload_mass", self.payload_mass, self.n >= 3, "0 for n < 3 (the payload slice is not an end slice)")
