@@ -17,7 +17,8 @@ JOURNEY_OPTIONS = {
     "--absorptance": (
         "absorptance",
         float,
-        "the film's absorptance at the laser's wavelength [default: the material's]",
+        "the film's absorptance at the laser's wavelength [default: the material's; with an optical table that has "
+        "a wavelength axis and records absorption, the table's at each sail-frame wavelength]",
     ),
     "--emissivity-front": ("emissivity_front", float, "the laser-facing face's emissivity [default: the material's]"),
     "--emissivity-back": ("emissivity_back", float, "the back face's emissivity [default: the material's]"),
