@@ -24,9 +24,7 @@ TABLES = {
 
 # over the limit while they are being shrunk (remove an entry when its module or function is within it)
 KNOWN_LONG_MODULES: set = set()
-KNOWN_LONG_FUNCTIONS = {
-    "model/optics_grating.py:grating_table",
-}
+KNOWN_LONG_FUNCTIONS: set = set()
 
 COMPILERS = ("njit", "jit")  # @njit, @numba.njit, @jit, with or without arguments
 

@@ -17,7 +17,8 @@ JOURNEY_OPTIONS = {
     "--absorptance": (
         "absorptance",
         float,
-        "the film's absorptance at the laser's wavelength [default: the material's]",
+        "the film's absorptance at the laser's wavelength [default: the material's; with an optical table that has "
+        "a wavelength axis and records absorption, the table's at each sail-frame wavelength]",
     ),
     "--emissivity-front": ("emissivity_front", float, "the laser-facing face's emissivity [default: the material's]"),
     "--emissivity-back": ("emissivity_back", float, "the back face's emissivity [default: the material's]"),
@@ -85,6 +86,8 @@ def run(args) -> int:
         f"(limit {report['film']['limit_temperature']:.4g} K), margin {first['margin']:.4g}; "
         f"T lags its steady field by ≤ {report['thermal_lag']:.2g} of T; wrote {out}/journey.{{csv,json,png}}"
     )
+    if report["optics"]["wavelength_axis"]:
+        print(f"optics: {report['optics']['text']}")
     for note in report["notes"]:
         print(f"note: {note}", file=sys.stderr)
     return 0

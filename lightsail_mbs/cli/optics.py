@@ -5,11 +5,13 @@ what a table file holds::
     lightsail-mbs optics grating --period 1.8e-6 --bar-height 0.4e-6 --bar-index Si --fill-factor 0.4 \\
         --film-thickness 0.3e-6 --film-index SiO2 --polarization mean --out table.npz
     lightsail-mbs optics grating --layer "0.4e-6,1.0,0.05:0.34=3.48,0.47:0.54=3.48" --layer "0.3e-6,1.45" ...
+    lightsail-mbs optics grating --design symmetric --wavelengths 1.2e-6:1.5e-6:7 --out spectrum.npz
     lightsail-mbs optics mirror --out mirror.npz
     lightsail-mbs optics info table.npz
 
 Refractive indices are numbers (``3.48``, ``3.48+0.01j``, κ ≥ 0 absorbing), permittivities (``eps=12.1``)
-or material names of meent's tables (``Si``, ``SiO2``, …) evaluated at the wavelength.
+or material names of meent's tables (``Si``, ``SiO2``, …) evaluated at the wavelength (with ``--wavelengths``,
+at each of them: model/optics_spectrum.py).
 """
 
 from __future__ import annotations
@@ -37,6 +39,13 @@ def register(sub) -> None:
 
     geo.add_argument("--design", choices=sorted(GRATINGS), help="a named grating (the other options override it)")
     geo.add_argument("--wavelength", type=float, help="vacuum wavelength λ (m) [default: design's, else 1.2e-6]")
+    geo.add_argument(
+        "--wavelengths",
+        nargs="+",
+        metavar="λ",
+        help="tabulate at these vacuum wavelengths (m), or START:STOP:COUNT evenly spaced, into one table with "
+        "a wavelength axis; --wavelength (the laser's, the table at rest) must lie in their range",
+    )
     geo.add_argument("--period", type=float, help="grating period Λ (m) [default: design's]")
     geo.add_argument("--bar-height", type=float, help="thickness of the bar layer (m)")
     geo.add_argument("--bar-index", help="refractive index of the bars [default: 3.48]")
@@ -183,27 +192,36 @@ def run_grating(args) -> int:
             bar.refresh()
 
     cache = False if args.no_cache else args.cache_dir
+    settings = dict(
+        harmonics=args.harmonics,
+        theta_max=math.radians(args.theta_max),
+        step=math.radians(args.step),
+        backend=args.backend,
+        cache_dir=cache,
+        progress=progress,
+        tolerance=args.tolerance,
+        grade=args.grade,
+    )
     try:
-        table = optics.grating_table(
-            g,
-            args.polarization,
-            harmonics=args.harmonics,
-            theta_max=math.radians(args.theta_max),
-            step=math.radians(args.step),
-            backend=args.backend,
-            cache_dir=cache,
-            progress=progress,
-            tolerance=args.tolerance,
-            grade=args.grade,
-        )
+        if args.wavelengths:
+            spectrum = grating_spectrum_from_args(args, g, settings)
+            table = spectrum.rest()
+        else:
+            spectrum, table = None, optics.grating_table(g, args.polarization, **settings)
     finally:
         if bar is not None:
             bar.close()
-    table.save(out)
-    summary = table.summary()
+    (spectrum or table).save(out)
+    summary = (spectrum or table).summary()
     if args.json:
         print(json.dumps(summary | {"out": str(out)}))
         return 0
+    if spectrum is not None:
+        lo, hi = spectrum.range
+        print(
+            f"{out}: a wavelength axis of {spectrum.wavelengths.size} wavelengths, {lo:.6g} … {hi:.6g} m, linear "
+            f"in λ between them; at rest (the laser's λ = {spectrum.wavelength:.6g} m):"
+        )
     print(
         f"{out}: {g.name or 'grating'} ({summary['polarization']}), {summary['nodes']} nodes on "
         f"±{args.theta_max:g}°, {args.harmonics} harmonics ({args.backend}), "
@@ -222,6 +240,43 @@ def run_grating(args) -> int:
     return 0
 
 
+def wavelength_grid(specs) -> list[float]:
+    """The wavelengths of --wavelengths: numbers (m), or one START:STOP:COUNT (COUNT ≥ 2, evenly spaced)."""
+    allowed = "wavelengths in m, increasing (λ1 λ2 …), or START:STOP:COUNT"
+    try:
+        if len(specs) == 1 and ":" in specs[0]:
+            start, stop, count = specs[0].split(":")
+            count = int(count)
+            check("--wavelengths", specs[0], count >= 2, "START:STOP:COUNT with COUNT ≥ 2")
+            values = [float(start) + (float(stop) - float(start)) * k / (count - 1) for k in range(count - 1)]
+            values.append(float(stop))
+        else:
+            values = [float(v) for v in specs]
+    except ValueError:
+        raise ParameterError(f"--wavelengths={' '.join(specs)!r} is invalid: allowed {allowed}") from None
+    ok = len(values) >= 2 and all(math.isfinite(v) and v > 0 for v in values)
+    check("--wavelengths", " ".join(specs), ok and all(b > a for a, b in zip(values, values[1:])), allowed)
+    return values
+
+
+def grating_spectrum_from_args(args, g, settings):
+    """The SpectralTable the options describe: the grating built at each of --wavelengths (material names
+    evaluated there), the laser's wavelength g.wavelength inside their range."""
+    import argparse
+
+    from lightsail_mbs.model.optics_spectrum import grating_spectrum
+
+    grid = wavelength_grid(args.wavelengths)
+    check(
+        "--wavelength",
+        g.wavelength,
+        grid[0] <= g.wavelength <= grid[-1],
+        f"the laser's wavelength inside the range of --wavelengths, {grid[0]:g} … {grid[-1]:g} m",
+    )
+    gratings = [grating_from_args(argparse.Namespace(**(vars(args) | {"wavelength": lam}))) for lam in grid]
+    return grating_spectrum(gratings, g.wavelength, polarization=args.polarization, **settings)
+
+
 def run_builtin(args) -> int:
     from lightsail_mbs.model import optics
 
@@ -238,9 +293,11 @@ def run_info(args) -> int:
     import numpy as np
 
     from lightsail_mbs.model import optics
+    from lightsail_mbs.model.optics_spectrum import read_spectrum
 
     try:
         table = optics.OpticalTable.load(args.table)
+        spectrum = read_spectrum(args.table, single=True)
     except optics.OpticsFileError as exc:
         raise ParameterError(f"table={args.table!r} is invalid: {exc}") from None
     try:
@@ -248,7 +305,7 @@ def run_info(args) -> int:
     except ValueError:
         raise ParameterError(f"--angles={args.angles!r} is invalid: allowed degrees, comma separated") from None
     cn, ct = table.coefficients(np.radians(angles))
-    summary = table.summary()
+    summary = (spectrum or table).summary()
     values = [{"theta_deg": a, "c_n": float(n), "c_t": float(t)} for a, n, t in zip(angles, cn, ct)]
     if args.json:
         print(json.dumps(summary | {"values": values}, default=str))
@@ -257,6 +314,12 @@ def run_info(args) -> int:
     where = f"θ ∈ [{lo:g}°, {hi:g}°] (NaN outside)" if table.bounded else "every angle (a closed form)"
     print(f"{args.table}: {summary['kind']} table, polarization {summary['polarization']}, {summary['nodes']} nodes")
     print(f"  defined on {where}; format version {summary['format_version']}")
+    if spectrum is not None:
+        lo, hi = spectrum.range
+        print(
+            f"  wavelength axis: {spectrum.wavelengths.size} wavelengths, {lo:.6g} … {hi:.6g} m (linear in λ between "
+            f"them); the values below at the laser's λ = {spectrum.wavelength:.6g} m"
+        )
     if summary["kind"] == "grating":
         grating = summary["grating"]
         print(

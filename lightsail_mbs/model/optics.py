@@ -53,7 +53,8 @@ by eye or another program), optional per-node ``extra_*`` arrays (the RCWA total
 ``metadata``: one JSON string with ``format`` = "lightsail-mbs optical table", ``format_version``,
 ``kind``, ``polarization``, the constants A_n, A_t, ``bounded`` and, for a grating, its geometry,
 cache keys, RCWA backend and version, harmonics, angle range, step, grading and refinement, Rayleigh
-anomalies and the CPU time of its RCWA.
+anomalies and the CPU time of its RCWA. A table with a wavelength axis is ``format_version`` 2
+(:mod:`~lightsail_mbs.model.optics_spectrum`); read as one table, it is its table at the laser's wavelength.
 
 **Cache.** RCWA samples are cached on disk (:func:`cache_directory`: ``$LIGHTSAIL_MBS_CACHE/optics``
 or ``~/.cache/lightsail-mbs/optics``): one file per grating geometry, polarisation, backend and its
@@ -64,7 +65,8 @@ nodes reuses the angles it shares.
 **Where it is written.** This module holds the built-in laws and what a solver reads for a case
 (:func:`slice_flags`, :func:`solver_block`); the table, its numpy evaluation and its files are
 :mod:`~lightsail_mbs.model.optics_table`, the compiled law :mod:`~lightsail_mbs.model.optics_kernels`,
-grating tables by RCWA :mod:`~lightsail_mbs.model.optics_grating`. Their names are importable from here.
+grating tables by RCWA :mod:`~lightsail_mbs.model.optics_grating`, tables with a wavelength axis
+:mod:`~lightsail_mbs.model.optics_spectrum` (file format version 2). Their names are importable from here.
 """
 
 from __future__ import annotations
@@ -99,6 +101,7 @@ from lightsail_mbs.model.optics_kernels import (
     packed_net_force,
     packed_tabulated,
 )
+from lightsail_mbs.model.optics_spectrum import SpectralTable, grating_spectrum, read_spectrum
 from lightsail_mbs.model.optics_table import (
     FORMAT,
     FORMAT_VERSION,
@@ -128,6 +131,7 @@ __all__ = [
     "PACKED_VERSION",
     "SAMPLE_FIELDS",
     "SPEED_OF_LIGHT",
+    "SpectralTable",
     "TABLE_POLARIZATIONS",
     "OpticalTable",
     "OpticsFileError",
@@ -135,6 +139,7 @@ __all__ = [
     "cache_directory",
     "facet",
     "for_case",
+    "grating_spectrum",
     "grating_table",
     "mirror",
     "node_grid",
@@ -144,6 +149,7 @@ __all__ = [
     "packed_tabulated",
     "rcwa_code_hash",
     "rcwa_samples",
+    "read_spectrum",
     "read_table",
     "slice_flags",
     "solver_block",

@@ -113,8 +113,22 @@ def rcwa_samples(
     return {"theta": theta, **dict(zip(SAMPLE_FIELDS, rows.T)), "computed": len(missing), "cache_key": key}
 
 
-def grating_table(
-    g: rcwa.Grating,
+def grating_table(g: rcwa.Grating, polarization: str = "TE", **settings) -> OpticalTable:
+    """The force table of a grating by RCWA.
+
+    Nodes: :func:`node_grid` (spacing ≤ step, breaks at the Rayleigh anomalies graded by `grade` levels).
+    Then up to `passes` refinements: RCWA at the midpoint of every interval wider than step/16 (in later
+    passes, of the new intervals), and each midpoint (with its mirror image, so the node set stays
+    symmetric) whose c_n or c_t differs from the spline by more than `tolerance` becomes a node
+    (tolerance 0: no refinement). polarization: "TE", "TM" or "mean" (unpolarised or circular: the mean
+    of the two efficiencies, hence of c_n and c_t, which are linear in them). RCWA samples are cached
+    (:func:`rcwa_samples`). settings: harmonics, theta_max (rad), step (rad), backend, cache_dir, progress,
+    tolerance, grade, passes, as :func:`grating_tables` takes them."""
+    return grating_tables([g], polarization, **settings)[0]
+
+
+def grating_tables(
+    gratings,
     polarization: str = "TE",
     harmonics: int = DEFAULT_HARMONICS,
     theta_max: float = DEFAULT_THETA_MAX,
@@ -125,16 +139,12 @@ def grating_table(
     tolerance: float = DEFAULT_TOLERANCE,
     grade: int = DEFAULT_GRADE,
     passes: int = DEFAULT_PASSES,
-) -> OpticalTable:
-    """The force table of a grating by RCWA.
-
-    Nodes: :func:`node_grid` (spacing ≤ step, breaks at the Rayleigh anomalies graded by `grade` levels).
-    Then up to `passes` refinements: RCWA at the midpoint of every interval wider than step/16 (in later
-    passes, of the new intervals), and each midpoint (with its mirror image, so the node set stays
-    symmetric) whose c_n or c_t differs from the spline by more than `tolerance` becomes a node
-    (tolerance 0: no refinement). polarization: "TE", "TM" or "mean" (unpolarised or circular: the mean
-    of the two efficiencies, hence of c_n and c_t, which are linear in them). RCWA samples are cached
-    (:func:`rcwa_samples`)."""
+) -> list[OpticalTable]:
+    """The force tables of several gratings (the same geometry at several wavelengths) on one set of nodes,
+    as :func:`grating_table` builds one: the breaks are the Rayleigh anomalies of every grating, and a
+    midpoint becomes a node where any grating's spline is off by more than `tolerance`. Every table has the
+    same nodes and breaks, so its spline coefficients are linear in its node values (one grating: exactly
+    :func:`grating_table`'s table)."""
     check("polarization", polarization, polarization in TABLE_POLARIZATIONS, ", ".join(TABLE_POLARIZATIONS))
     check("harmonics", harmonics, isinstance(harmonics, int) and 1 <= harmonics <= 2000, "an integer 1 … 2000")
     check("backend", backend, backend in rcwa.BACKENDS, " or ".join(rcwa.BACKENDS))
@@ -146,13 +156,18 @@ def grating_table(
     check("tolerance", v, v >= 0, "≥ 0 (0: no refinement)")
     check("grade", grade, isinstance(grade, int) and 0 <= grade <= 30, "an integer 0 … 30")
     check("passes", passes, isinstance(passes, int) and 0 <= passes <= 10, "an integer 0 … 10")
-    breaks = g.rayleigh_anomalies(theta_max)
+    gratings = list(gratings)
+    check("gratings", len(gratings), len(gratings) >= 1, "at least one grating")
+    if len(gratings) == 1:
+        breaks = gratings[0].rayleigh_anomalies(theta_max)
+    else:
+        breaks = np.unique(np.concatenate([g.rayleigh_anomalies(theta_max) for g in gratings]))
     pols = ("TE", "TM") if polarization == "mean" else (polarization,)
     done = [0]
 
     def sample(angles):
-        out = {p: rcwa_samples(g, angles, p, harmonics, backend, cache_dir, tick) for p in pols}
-        done[0] += len(angles)
+        out = [{p: rcwa_samples(g, angles, p, harmonics, backend, cache_dir, tick) for p in pols} for g in gratings]
+        done[0] += len(angles) * len(gratings)
         return out
 
     def tick(i, total):
@@ -161,12 +176,11 @@ def grating_table(
 
     theta = node_grid(theta_max, step, breaks, grade)
     nodes = sample(theta)
-    values = {p: {k: nodes[p][k] for k in SAMPLE_FIELDS} for p in pols}
+    values = [{p: {k: got[p][k] for k in SAMPLE_FIELDS} for p in pols} for got in nodes]
     candidates = theta
     added, estimate, used = 0, math.nan, 0
     for _ in range(passes if tolerance > 0 else 0):
         used += 1
-        table = _from_samples(theta, values, pols, breaks, polarization)
         lo, hi = candidates[:-1], candidates[1:]
         wide = (hi - lo) > step / 16
         mids = 0.5 * (lo + hi)[wide]
@@ -174,10 +188,13 @@ def grating_table(
         if mids.size == 0:
             break
         got = sample(mids)
-        c_n = np.mean([got[p]["c_n"] for p in pols], axis=0)
-        c_t = np.mean([got[p]["c_t"] for p in pols], axis=0)
-        cn_s, ct_s = table.coefficients(mids)
-        err = np.maximum(np.abs(c_n - cn_s), np.abs(c_t - ct_s))
+        err = np.zeros(mids.size)
+        for value, new_samples in zip(values, got):
+            table = _from_samples(theta, value, pols, breaks, polarization)
+            c_n = np.mean([new_samples[p]["c_n"] for p in pols], axis=0)
+            c_t = np.mean([new_samples[p]["c_t"] for p in pols], axis=0)
+            cn_s, ct_s = table.coefficients(mids)
+            err = np.maximum(err, np.maximum(np.abs(c_n - cn_s), np.abs(c_t - ct_s)))
         estimate = float(err.max())
         order = np.argsort(mids)
         flagged = err[order] > tolerance
@@ -188,34 +205,44 @@ def grating_table(
         added += new.size
         theta = np.concatenate([theta, new])
         keep = np.argsort(theta)
-        for p in pols:
-            values[p] = {k: np.concatenate([values[p][k], got[p][k][order][flagged]])[keep] for k in SAMPLE_FIELDS}
+        for value, new_samples in zip(values, got):
+            for p in pols:
+                value[p] = {
+                    k: np.concatenate([value[p][k], new_samples[p][k][order][flagged]])[keep] for k in SAMPLE_FIELDS
+                }
         theta = theta[keep]
         # next pass: the intervals on both sides of every new node
         near = np.unique(np.concatenate([np.searchsorted(theta, new) + d for d in (-1, 0, 1)]))
         candidates = theta[near[(near >= 0) & (near < theta.size)]]
-    cpu = float(sum(rcwa_samples(g, theta, p, harmonics, backend, cache_dir)["cpu"].sum() for p in pols))
-    meta = {
+    refinement = dict(refinement_passes=used, refinement_nodes=added, refinement_last_error=estimate)
+    settings = dict(harmonics=harmonics, theta_max=theta_max, step=step, grade=grade, tolerance=tolerance)
+    tables = []
+    for g, value, got in zip(gratings, values, nodes):
+        cpu = float(sum(rcwa_samples(g, theta, p, harmonics, backend, cache_dir)["cpu"].sum() for p in pols))
+        meta = _metadata(g, backend, settings, refinement, breaks, cpu, [got[p]["cache_key"] for p in pols])
+        tables.append(_from_samples(theta, value, pols, breaks, polarization, meta))
+    return tables
+
+
+def _metadata(g, backend, settings, refinement, breaks, cpu, cache_keys) -> dict:
+    return {
         "kind": "grating",
         "grating": g.to_dict(),
         "geometry_key": g.key(),
         "backend": backend,
         "backend_version": backend_version(backend),
-        "harmonics": harmonics,
-        "theta_max": theta_max,
-        "step": step,
-        "grade": grade,
-        "tolerance": tolerance,
-        "refinement_passes": used,
-        "refinement_nodes": added,
-        "refinement_last_error": estimate,
+        "harmonics": settings["harmonics"],
+        "theta_max": settings["theta_max"],
+        "step": settings["step"],
+        "grade": settings["grade"],
+        "tolerance": settings["tolerance"],
+        **refinement,
         "rayleigh_anomalies": breaks.tolist(),
         "rcwa_cpu_seconds": cpu,
         "rcwa_code": rcwa_code_hash(),
-        "cache_keys": [nodes[p]["cache_key"] for p in pols],
+        "cache_keys": cache_keys,
         "lossless": g.lossless,
     }
-    return _from_samples(theta, values, pols, breaks, polarization, meta)
 
 
 def _from_samples(theta, values, pols, breaks, polarization, meta=None) -> OpticalTable:

@@ -26,7 +26,11 @@ if TYPE_CHECKING:  # annotations only: the case (model/parameters.py) reads its 
 
 
 FORMAT = "lightsail-mbs optical table"
-FORMAT_VERSION = 1
+FORMAT_VERSION = 1  # one wavelength; version 2 (a wavelength axis) is model/optics_spectrum.py's
+SPECTRAL_VERSION = 2
+# readers of the other format versions, by version, each returning an OpticalTable: model/optics_spectrum.py
+# (imported with model/optics.py) adds version 2's, the table at the laser's wavelength
+VERSION_READERS: dict = {}
 TABLE_POLARIZATIONS = ("TE", "TM", "mean")
 
 
@@ -225,12 +229,16 @@ class OpticalTable:
 
     @classmethod
     def from_arrays(cls, arrays, source: str) -> OpticalTable:
-        """The table of arrays named as by :meth:`to_arrays` (a mapping, e.g. an open .npz); OpticsFileError
+        """The table of arrays named as by :meth:`to_arrays` (a mapping, e.g. an open .npz), or of a table
+        with a wavelength axis (format version 2) its table at the laser's wavelength; OpticsFileError
         names `source` and what is wrong."""
         try:
             meta = json.loads(str(arrays["metadata"]))
             if meta.get("format") != FORMAT:
                 raise OpticsFileError(f"{source}: not an optical table (format {meta.get('format')!r})")
+            reader = VERSION_READERS.get(meta.get("format_version"))
+            if reader is not None:
+                return reader(arrays, source)
             if meta.get("format_version") != FORMAT_VERSION:
                 raise OpticsFileError(
                     f"{source}: optical table format version {meta.get('format_version')!r}; this version reads "

@@ -32,7 +32,12 @@ from lightsail_mbs.model.records import LEGACY_NAMES, RUN_FIELDS, current_names,
 OPTICS_DEFAULTS = {"reflectivity": 1.0, "absorptivity": 0.0, "velocity_terms": False, "initial_beta": 0.0}
 OPTICS_REASONS = {
     "velocity_terms": "the velocity-dependent load is derived for the R/α facet law",
-    "initial_beta": "the table holds at the laser's wavelength only, which the Doppler shift would move",
+    "initial_beta": (
+        "a run holds its table at one wavelength, and the Doppler-shifted light is at another: for a grating at "
+        "the sail-frame wavelength along the acceleration, tabulate it with `lightsail-mbs optics grating "
+        "--wavelengths …` and run `lightsail-mbs journey --optics TABLE` (each snapshot at its λ'); for the "
+        "dimming inside a run, a reflectivity and absorptivity without optics, which hold at every wavelength"
+    ),
 }
 
 

@@ -157,3 +157,57 @@ def speed_from_u(u):
     """β = u/√(1 + u²) for u = γβ."""
     u = np.asarray(u, float)
     return u / np.sqrt(1.0 + u * u)
+
+
+class VaryingTrajectory:
+    """The flat craft of :class:`Trajectory` whose momentum coefficient changes along the way: c_n(0) of an
+    optical table with a wavelength axis, read at the sail-frame wavelength λ' = λ₀ √((1 + β)/(1 − β)).
+
+    With K(β) = m c²/(c_n(β) P) the equation of motion du/dt = (1 − β)/(K(β)(1 + β)) separates as for a
+    constant coefficient (module docstring), now with K under the integrals:
+
+        t(β) = ∫₀^β K(b) (1 + b)^(−1/2) (1 − b)^(−5/2) db,    τ(β) = ∫₀^β K(b) (1 − b)^(−2) db,
+        x(β) = c ∫₀^β b K(b) (1 + b)^(−1/2) (1 − b)^(−5/2) db,
+
+    by adaptive Gauss–Kronrod quadrature (scipy's quad, relative tolerance 1e-13) split at `kinks` (the speeds
+    where c_n(β) has a kink: a grid wavelength of a table linear in λ). coefficient: c_n as a function of β."""
+
+    def __init__(self, power: float, mass: float, coefficient, kinks=()):
+        for name, value in (("power", power), ("mass", mass)):
+            check(name, value, finite(name, value) > 0, "> 0")
+        self.power, self.mass, self.coefficient = float(power), float(mass), coefficient
+        self.kinks = sorted(float(k) for k in kinks)
+        check("coefficient", float(coefficient(0.0)), float(coefficient(0.0)) > 0, "c_n(0) > 0 at rest")
+
+    def constant(self, beta: float) -> float:
+        """K(β) = m c²/(c_n(β) P) (s)."""
+        return self.mass * SPEED_OF_LIGHT**2 / (float(self.coefficient(beta)) * self.power)
+
+    def _integral(self, beta, weight) -> float:
+        from scipy.integrate import quad  # here, as beta_at's brentq
+
+        b = float(_beta(beta))
+        points = [k for k in self.kinks if 0.0 < k < b]
+        pieces = zip([0.0, *points], [*points, b])
+        return float(
+            sum(
+                quad(lambda x: self.constant(x) * weight(x), lo, hi, epsabs=0.0, epsrel=1e-13, limit=200)[0]
+                for lo, hi in pieces
+            )
+        )
+
+    def time(self, beta) -> float:
+        """t(β) (s), lab time from rest."""
+        return self._integral(beta, lambda b: (1.0 + b) ** -0.5 * (1.0 - b) ** -2.5)
+
+    def proper_time(self, beta) -> float:
+        """τ(β) (s), the sail's own time from rest."""
+        return self._integral(beta, lambda b: (1.0 - b) ** -2)
+
+    def distance(self, beta) -> float:
+        """x(β) (m), lab frame."""
+        return SPEED_OF_LIGHT * self._integral(beta, lambda b: b * (1.0 + b) ** -0.5 * (1.0 - b) ** -2.5)
+
+    def proper_acceleration(self, beta) -> float:
+        """g₀(β) = c (1 − β)/(K(β)(1 + β)) (m/s²)."""
+        return SPEED_OF_LIGHT * float(intensity_factor(beta)) / self.constant(float(beta))

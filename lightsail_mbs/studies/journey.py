@@ -16,13 +16,19 @@ shape run of each snapshot: the case at that moment's intensity and tension, sol
 **The snapshots** are spaced so that g₀ and I' change by the fraction `step` between neighbours (equal steps in
 ln I'), T ∝ I'^(1/4) by about step/4 and λ' by step/2 (the default 5 %: at most 1.3 % in T).
 
+**A table with a wavelength axis** (:class:`lightsail_mbs.model.optics.SpectralTable`) is read at each
+snapshot's sail-frame wavelength λ' = λ₀ √((1 + β)/(1 − β)) (λ₀ the settings' laser wavelength): its c_n(0; λ')
+drives the trajectory (:class:`lightsail_mbs.model.relativity.VaryingTrajectory`, quadratures instead of the
+closed forms), its normal-incidence absorptance 1 − R − T heats the film (unless the settings give one or the
+table is lossless) and its table at λ' is the shape runs' force law (:meth:`Journey.optics_at`). The snapshots
+stay equal steps in ln I'; c_n(0) adds its own change to g₀'s between them, shown in the rows.
+
 **Not modelled here**: the temperature as part of a time-domain run (rest lengths following T inside the run),
-and a wavelength-dependent optical table (the absorptance and reflectivity are those at the laser's wavelength
-throughout). A run can follow the Doppler factor along the trajectory (case field initial_beta,
-model.terms.doppler; lightsail_mbs.paper.doppler runs a heated snapshot that way); the snapshots' shape runs
-keep the intensity of their moment. The first-order velocity-dependent terms of
-the load are a physics term (model.terms.velocity, case field velocity_terms) that the snapshots' shape runs
-do not switch on.
+and a wavelength table inside a run (a case with a table refuses initial_beta). A run can follow the Doppler
+factor along the trajectory (case field initial_beta, model.terms.doppler; lightsail_mbs.paper.doppler runs a
+heated snapshot that way); the snapshots' shape runs keep the intensity of their moment. The first-order
+velocity-dependent terms of the load are a physics term (model.terms.velocity, case field velocity_terms) that the
+snapshots' shape runs do not switch on.
 """
 
 from __future__ import annotations
@@ -140,6 +146,19 @@ def snapshot_speeds(target: float, step: float) -> np.ndarray:
     return betas
 
 
+def spectrum_of(p: SailParameters):
+    """The case's optical table with a wavelength axis (:class:`lightsail_mbs.model.optics.SpectralTable`), or
+    None (no table file, or a table at one wavelength)."""
+    if not p.optics_file:
+        return None
+    from lightsail_mbs.model import optics
+
+    try:
+        return optics.read_spectrum(p.optics, single=True)
+    except optics.OpticsFileError as exc:
+        raise ParameterError(f"optics={p.optics!r} is invalid: {exc}") from None
+
+
 class Journey:
     """The journey of a case under the settings: snapshots (:meth:`snapshot`), the rows of all of them
     (:meth:`run`), and the verdict (:meth:`verdict`)."""
@@ -154,18 +173,62 @@ class Journey:
         )
         self.case, self.settings, self.film = p, s, Film.of(p, s)
         self.mass = craft_mass(p, s.carried_mass)
-        self.trajectory = relativity.Trajectory(s.power, self.mass, p.normal_momentum)
+        self.spectrum = spectrum_of(p)
+        if self.spectrum is None:
+            self.trajectory = relativity.Trajectory(s.power, self.mass, p.normal_momentum)
+        else:
+            self.trajectory = self._spectral_trajectory()
         self.peak = lab_peak_intensity(p, s.power)
         self.edges = np.linspace(0.0, p.length, p.n + 1)
         centres = 0.5 * (self.edges[1:] + self.edges[:-1])
         profile = np.ones(p.n) if p.uniform_beam else thermal.gaussian_flux(centres, 1.0, p.beam_waist, p.beam_centre)
         self.profile = profile  # I(x)/I₀ along the slices (a sheet: through the beam's axis)
 
-    def temperatures(self, sail_peak: float) -> np.ndarray:
-        """The slices' steady temperatures (K) at the sail-frame peak intensity I'₀: radiative equilibrium
-        for a uniform beam, the conducting strip's field for a Gaussian one."""
+    def _spectral_trajectory(self) -> relativity.VaryingTrajectory:
+        """The trajectory with c_n(0) of the table at λ'(β), after checking that the table covers the
+        sail-frame wavelengths from rest to the target speed."""
+        spectrum, s = self.spectrum, self.settings
+        lo, hi = spectrum.range
+        top = s.wavelength * float(relativity.wavelength_factor(s.target_speed))
+        if not (lo * (1 - 1e-12) <= s.wavelength and top <= hi * (1 + 1e-12)):
+            raise ParameterError(
+                f"wavelength={s.wavelength:.6g} is invalid: allowed a laser wavelength whose sail-frame "
+                f"wavelengths up to β = {s.target_speed:g}, {s.wavelength:.6g} … {top:.6g} m, lie inside the "
+                f"wavelengths of the optical table {self.case.optics}, {lo:.6g} … {hi:.6g} m"
+            )
+        normal = np.array([t.normal_at_zero for t in spectrum.tables])  # c_n(0) is linear in λ between them
+
+        def coefficient(beta):
+            return float(
+                np.interp(s.wavelength * float(relativity.wavelength_factor(beta)), spectrum.wavelengths, normal)
+            )
+
+        ratio = (spectrum.wavelengths / s.wavelength) ** 2  # (1 + β)/(1 − β) at each grid wavelength
+        kinks = [(r - 1) / (r + 1) for r in ratio if r > 1 and (r - 1) / (r + 1) < s.target_speed]
+        return relativity.VaryingTrajectory(s.power, self.mass, coefficient, kinks)
+
+    def optics_at(self, beta: float) -> tuple[SailParameters, float, dict]:
+        """The case, the absorptance and the extra row entries at β: with a wavelength table, the case with its
+        table at λ'(β) (a file in the cache, :func:`lightsail_mbs.model.optics.stored_copy`), the table's
+        normal-incidence absorptance 1 − R − T there unless the settings give one or the table is lossless;
+        otherwise the case and the film's absorptance, no extra entries."""
+        if self.spectrum is None:
+            return self.case, self.film.absorptance, {}
+        from lightsail_mbs.model import optics
+
+        lam = self.settings.wavelength * float(relativity.wavelength_factor(beta))
+        table = self.spectrum.at(lam)
+        case = self.case.replace(optics=str(optics.stored_copy(table)))
+        own = self.settings.absorptance is None and not self.spectrum.lossless
+        absorptance = self.spectrum.normal_absorptance(lam) if own else self.film.absorptance
+        return case, absorptance, {"normal_momentum": table.normal_at_zero, "absorptance": absorptance}
+
+    def temperatures(self, sail_peak: float, absorptance: float | None = None) -> np.ndarray:
+        """The slices' steady temperatures (K) at the sail-frame peak intensity I'₀ (absorptance: the film's
+        unless given): radiative equilibrium for a uniform beam, the conducting strip's field for a Gaussian
+        one."""
         f, p = self.film, self.case
-        flux = f.absorptance * sail_peak * self.profile
+        flux = (f.absorptance if absorptance is None else absorptance) * sail_peak * self.profile
         if p.uniform_beam:
             return np.asarray(thermal.equilibrium_temperature(flux, f.emissivity, self.settings.environment))
         conductance = f.conductivity * p.thickness
@@ -173,10 +236,11 @@ class Journey:
 
     def snapshot(self, beta: float) -> dict:
         """Every number of the moment the sail reaches β (SI units; a row of journey.csv)."""
-        p, s, f, tr = self.case, self.settings, self.film, self.trajectory
+        s, f, tr = self.settings, self.film, self.trajectory
+        p, absorptance, extra = self.optics_at(beta)
         factor = float(relativity.intensity_factor(beta))
         sail_peak = self.peak * factor
-        T = self.temperatures(sail_peak)
+        T = self.temperatures(sail_peak, absorptance)
         mean = float(np.mean(T))
         rise = mean - s.reference_temperature
         tension = expansion.remaining_tension(p, f.expansion, f.poisson, rise)
@@ -202,6 +266,7 @@ class Journey:
             "thermal_time": thermal_time,
             "change_time": float(thermal.change_time_scale(g0)),
             "thermal_lag": thermal.lag(thermal_time, float(thermal.change_time_scale(g0)), T.max(), s.environment),
+            **extra,
         }
 
     def run(self, progress: bool = False) -> list[dict]:
@@ -213,7 +278,7 @@ class Journey:
         for beta in tqdm(betas, desc="journey", unit="snapshot", disable=not progress):
             row = self.snapshot(float(beta))
             if self.settings.shape_runs:
-                row.update(shape_run(self.case, row, self.settings.shape_time))
+                row.update(shape_run(self.optics_at(float(beta))[0], row, self.settings.shape_time))
             rows.append(row)
         worst = max(r["thermal_lag"] for r in rows)
         if worst > QUASI_STEADY_LIMIT:
@@ -303,4 +368,24 @@ def run_journey(p: SailParameters, s: JourneySettings, progress: bool = False) -
         "quasi_steady_ratio": max(r["thermal_time"] / r["change_time"] for r in rows),
         "thermal_lag": max(r["thermal_lag"] for r in rows),
         "notes": notes(p, journey.film),
+        "optics": optics_report(journey),
+    }
+
+
+def optics_report(journey: Journey) -> dict:
+    """How the journey read the case's optics: a table with a wavelength axis at each snapshot's sail-frame
+    wavelength (its range, where the absorptance came from), or the case's one law throughout."""
+    spectrum, s = journey.spectrum, journey.settings
+    if spectrum is None:
+        return {"wavelength_axis": False, "text": "the case's optics at every wavelength (no wavelength axis)"}
+    source = "the film's" if s.absorptance is not None or spectrum.lossless else "the table's 1 − R − T at θ = 0"
+    lo, hi = spectrum.range
+    return {
+        "wavelength_axis": True,
+        "table": journey.case.optics,
+        "wavelength_range": [lo, hi],
+        "absorptance": source,
+        "text": f"the optical table {journey.case.optics} read at each snapshot's sail-frame wavelength λ' "
+        f"(its range {lo:.6g} … {hi:.6g} m, linear in λ): the force law and c_n(0) in the trajectory; absorptance "
+        f"{source}",
     }

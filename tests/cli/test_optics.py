@@ -167,3 +167,25 @@ def test_payload_and_curved_rest_options_make_the_case():
         optics="mirror",
     )
     assert main(["simulate", "--payload-stem", "6", "--t-final", "0.01"]) == 2  # a stem without a payload
+
+
+def test_wavelengths_option_writes_one_table_with_the_axis(tmp_path, capsys):
+    """--wavelengths START:STOP:COUNT: one version 2 file; each wavelength's table is the one --wavelength
+    alone gives (Si evaluated there); info shows the axis; a laser outside the range and a decreasing list
+    are one-line errors."""
+    out, one = tmp_path / "spectrum.npz", tmp_path / "one.npz"
+    common = ["optics", "grating", "--period", "1.8e-6", "--bar-height", "0.4e-6", "--bar-index", "Si"]
+    common += ["--fill-factor", "0.4", "--harmonics", "4", "--theta-max", "10", "--step", "5", "--tolerance", "0"]
+    assert main([*common, "--wavelength", "1.25e-6", "--wavelengths", "1.2e-6:1.3e-6:3", "--out", str(out)]) == 0
+    assert "wavelength axis of 3 wavelengths" in capsys.readouterr().out
+    spectrum = optics.read_spectrum(out)
+    assert spectrum.wavelengths.tolist() == pytest.approx([1.2e-6, 1.25e-6, 1.3e-6], rel=1e-15)
+    assert main([*common, "--wavelength", "1.3e-6", "--out", str(one)]) == 0
+    assert spectrum.tables[2].digest == optics.OpticalTable.load(one).digest
+    assert optics.OpticalTable.load(out).digest == spectrum.tables[1].digest  # the laser's, 1.25 µm
+    assert main(["optics", "info", str(out)]) == 0
+    assert "wavelength axis: 3 wavelengths" in capsys.readouterr().out
+    assert main([*common, "--wavelength", "1.1e-6", "--wavelengths", "1.2e-6", "1.3e-6", "--out", str(out)]) == 2
+    assert "--wavelength=1.1e-06 is invalid" in capsys.readouterr().err
+    assert main([*common, "--wavelengths", "1.3e-6", "1.2e-6", "--out", str(out)]) == 2
+    assert "--wavelengths=" in capsys.readouterr().err

@@ -114,6 +114,8 @@ def test_initial_beta_is_checked():
         SailParameters(n=8, optics="mirror", reflectivity=0.9)
     with pytest.raises(ParameterError, match=r"velocity_terms=True is invalid: allowed off with an optical table"):
         SailParameters(n=8, optics="mirror", velocity_terms=True)
+    with pytest.raises(ParameterError, match="--wavelengths"):
+        SailParameters(n=8, optics="mirror", initial_beta=0.1)  # the message says what to do instead
     assert SailParameters().to_dict().get("initial_beta", 0.0) == 0.0
 
 
