@@ -218,6 +218,7 @@ def assess(solver, params: SailParameters, settings: RunSettings, options: dict,
             return result
     order = ["base", *(name for name, _ in sequence(result.info))]
     reported = runs[order[-1]]
+    reported.warnings += [w for w in result.warnings if w not in reported.warnings]  # the sampling's notes too
     quantity, failed, value = answer(reported)
     steps = [records[b]["value"] - records[a]["value"] for a, b in zip(order, order[1:])]
     same_verdict = all(records[name]["failed"] == failed for name in order)

@@ -111,10 +111,14 @@ def test_failure_before_the_first_default_sample_is_refined():
     assert "location only" in located.answer_text()
 
 
-def test_the_memory_cap_stops_a_refinement_and_says_so(monkeypatch):
+@pytest.mark.parametrize("uncertainty", [False, True])
+def test_the_memory_cap_stops_a_refinement_and_says_so(monkeypatch, uncertainty):
+    """With the uncertainty estimate too: the Result it reports is its tightest twin's, which carries the
+    sampling's warnings of the base run."""
     monkeypatch.setattr(events, "SAMPLE_MEMORY", 2e4)
-    r = solve(paper_case("torsion-soft", beam_waist=0.5), "reduced", RunSettings(t_final=0.01), uncertainty=False)
-    assert any("memory cap" in note for note in r.warnings)
+    p = paper_case("torsion-soft", beam_waist=0.5)
+    r = solve(p, "reduced", RunSettings(t_final=0.01), uncertainty=uncertainty)
+    assert sum("memory cap" in note for note in r.warnings) == 1
     assert r.info["sampling"]["location_error"] > events.LOCATE_RTOL * r.failure_time
 
 

@@ -145,6 +145,7 @@ class FakeSolver:
             info=info,
             wall_time=1.0,
             uncertainty=None,
+            warnings=[],
         )
 
 
