@@ -60,7 +60,12 @@ class Sampler:
     def _sample(self, final: bool = False) -> None:
         """Interpolate the output times passed by the kept steps (then forget all but the last step); at the
         end of the run (final), also the times within 1e-6 of a step past its last one (the grid's end, which
-        steps accumulated in floating point may fall short of)."""
+        steps accumulated in floating point may fall short of). A step whose record an interrupt (Ctrl-C)
+        cut between its appends is dropped first."""
+        kept_steps = (self.steps_t, self.steps_q, self.steps_v, self.steps_a)
+        whole = min(len(kept) for kept in kept_steps)
+        for kept in kept_steps:
+            del kept[whole:]
         t = np.asarray(self.steps_t)
         k0 = len(self.q)
         reach = t[-1] + 1e-6 * (t[-1] - t[-2]) if final and t.size > 1 else t[-1] * (1 + 1e-13) + 1e-300
@@ -75,7 +80,7 @@ class Sampler:
             )
             self.q.extend(q)
             self.v.extend(v)
-        for kept in (self.steps_t, self.steps_q, self.steps_v, self.steps_a):
+        for kept in kept_steps:
             del kept[:-1]
 
     def check(self, final: bool = False) -> bool:

@@ -298,8 +298,9 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     solver = exu.MainSolverImplicitSecondOrder()
     error = solve_steps(solver, mbs, s, bar, failure="Newton did not converge", stopped=lambda: recorder.failed)
     wall = _time.perf_counter() - start
-    state = system.state(np.array(recorder.rows_q), np.array(recorder.rows_v))
-    times = recorder.times
+    whole = min(len(recorder.rows_q), len(recorder.rows_v), len(recorder.times))  # an interrupt may cut a record
+    state = system.state(np.array(recorder.rows_q[:whole]), np.array(recorder.rows_v[:whole]))
+    times = recorder.times[:whole]
     stop = monitor.first_failure(failure.plane_amplitude(state[0]))
     if stop is not None:  # end at the first sample past failure
         state, times = tuple(a[: stop + 1] for a in state), times[: stop + 1]
