@@ -53,6 +53,7 @@ from lightsail_mbs.model.optics_table import (
     OpticalTable,
     OpticsFileError,
     atomic_savez,
+    read_once,
 )
 
 PER_NODE = ("s_n", "s_t", "coef_n", "coef_t")
@@ -225,26 +226,23 @@ _CACHE: dict = {}
 def read_spectrum(path, single: bool = False):
     """The SpectralTable of a version 2 file, read once per path, size and modification time; a version 1
     file: None with `single`, else an OpticsFileError saying it has no wavelength axis."""
-    path = Path(path)
+    table = read_once(_CACHE, path, _read_spectrum)
+    if table is None and not single:
+        raise OpticsFileError(f"{Path(path)}: an optical table at one wavelength (no wavelength axis)")
+    return table
+
+
+def _read_spectrum(path: Path):
+    """The SpectralTable of the file at `path`, or None for a valid table at one wavelength."""
     try:
-        st = path.stat()
-    except OSError as exc:
-        raise OpticsFileError(f"{path}: cannot be read ({exc.strerror or exc})") from None
-    key = (str(path.resolve()), st.st_size, st.st_mtime_ns)
-    if key not in _CACHE:
-        try:
-            with np.load(path, allow_pickle=False) as d:
-                arrays = {k: d[k] for k in d.files}
-        except (OSError, ValueError) as exc:
-            raise OpticsFileError(f"{path}: not a readable optical table ({exc})") from None
-        if "wavelengths" in arrays:
-            _CACHE[key] = SpectralTable.from_arrays(arrays, str(path))
-        else:
-            OpticalTable.from_arrays(arrays, str(path))  # a bad single table is refused here too
-            _CACHE[key] = None
-    if _CACHE[key] is None and not single:
-        raise OpticsFileError(f"{path}: an optical table at one wavelength (no wavelength axis)")
-    return _CACHE[key]
+        with np.load(path, allow_pickle=False) as d:
+            arrays = {k: d[k] for k in d.files}
+    except (OSError, ValueError) as exc:
+        raise OpticsFileError(f"{path}: not a readable optical table ({exc})") from None
+    if "wavelengths" in arrays:
+        return SpectralTable.from_arrays(arrays, str(path))
+    OpticalTable.from_arrays(arrays, str(path))  # a bad single table is refused here too
+    return None
 
 
 def grating_spectrum(gratings, wavelength: float, **settings) -> SpectralTable:

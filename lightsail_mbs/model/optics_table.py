@@ -305,20 +305,26 @@ class OpticalTable:
 _READ_CACHE: dict = {}
 
 
-def read_table(path) -> OpticalTable:
-    """OpticalTable.load(path), read once per resolved path, size and modification time (a case reads its
-    table at every validation)."""
+def read_once(cache: dict, path, read):
+    """read(path), kept in `cache` by the file's resolved path, size and modification time (at most 65
+    entries); a file that cannot be stat'ed is an OpticsFileError."""
     path = Path(path)
     try:
         st = path.stat()
     except OSError as exc:
         raise OpticsFileError(f"{path}: cannot be read ({exc.strerror or exc})") from None
     key = (str(path.resolve()), st.st_size, st.st_mtime_ns)
-    if key not in _READ_CACHE:
-        if len(_READ_CACHE) > 64:
-            _READ_CACHE.clear()
-        _READ_CACHE[key] = OpticalTable.load(path)
-    return _READ_CACHE[key]
+    if key not in cache:
+        if len(cache) > 64:
+            cache.clear()
+        cache[key] = read(path)
+    return cache[key]
+
+
+def read_table(path) -> OpticalTable:
+    """OpticalTable.load(path), read once per resolved path, size and modification time (a case reads its
+    table at every validation)."""
+    return read_once(_READ_CACHE, path, OpticalTable.load)
 
 
 def stored_copy(table: OpticalTable) -> Path:
