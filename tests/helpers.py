@@ -1,7 +1,10 @@
-"""Helpers shared by several test modules: synthetic Results with known shapes, CSV and image reading."""
+"""Helpers shared by several test modules: synthetic Results with known shapes, CSV and image reading, the
+validation scripts as modules."""
 
 import csv
+import importlib.util
 import math
+import pathlib
 
 import numpy as np
 
@@ -83,3 +86,12 @@ def table_file(path, scale: float = 1.9):
     c2 = np.cos(theta) ** 2
     table = optics.OpticalTable.from_samples(theta, scale * c2, 0.01 * c2 * np.sin(2 * theta), (), "TE")
     return table.save(path)
+
+
+def validation_script(name: str):
+    """validation/NAME.py loaded as a module (its functions and constants, without running its main)."""
+    path = pathlib.Path(__file__).parents[1] / "validation" / f"{name}.py"
+    spec = importlib.util.spec_from_file_location(f"validation_{name}", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module

@@ -38,13 +38,9 @@ def test_trajectory_prediction_within_five_percent(rms, seed, modulus):
 
 @pytest.mark.slow
 def test_validation_set_trajectory_beats_spectrum():
-    import importlib.util
-    import pathlib
+    from tests.helpers import validation_script
 
-    path = pathlib.Path(__file__).parents[2] / "validation" / "prediction.py"
-    spec = importlib.util.spec_from_file_location("validation_prediction", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+    module = validation_script("prediction")
     errors = []
     for p, _, measured, spectrum, along in module.rows():
         errors.append(abs(along.time - measured) / measured)

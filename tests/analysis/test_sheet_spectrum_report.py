@@ -2,23 +2,13 @@
 that modulus: every long run's rate must land in its row, although a run's E/E_cr,max is recomputed from its
 modulus and is not the tabulated float."""
 
-import importlib.util
-import pathlib
-
 from lightsail_mbs.analysis import sheet_spectrum as ss
 from lightsail_mbs.model import theory
-
-
-def validation_script():
-    path = pathlib.Path(__file__).parents[2] / "validation" / "sheet_spectrum.py"
-    spec = importlib.util.spec_from_file_location("validation_sheet_spectrum", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+from tests.helpers import validation_script
 
 
 def test_every_long_run_lands_in_its_row_of_table_a():
-    v = validation_script()
+    v = validation_script("sheet_spectrum")
     rows = [
         {"grid": 12, "ratio": ratio, "rate": 0.5, "family": "A1", **{f"rate_{f}": 0.5 for f in ss.FAMILIES}}
         for ratio in v.RATIOS

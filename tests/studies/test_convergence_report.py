@@ -1,19 +1,10 @@
 """validation/convergence_n.py's summary compares the paper's n with the study's limit, and with nothing when the
 study gives no limit (not converging, ill-posed or not): the finest answer of a non-monotone sequence is no limit."""
 
-import importlib.util
-import pathlib
 from types import SimpleNamespace
 
 from lightsail_mbs.studies.convergence import PowerLawFit
-
-
-def validation_script():
-    path = pathlib.Path(__file__).parents[2] / "validation" / "convergence_n.py"
-    spec = importlib.util.spec_from_file_location("validation_convergence_n", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+from tests.helpers import validation_script
 
 
 def study(fit, values=(1.004, 1.0, 1.001, 1.0009), ill_posed=False):
@@ -31,7 +22,7 @@ def paper_error(row: str) -> str:
 
 
 def test_the_paper_n_is_compared_with_the_limit_only():
-    summary_row = validation_script().summary_row
+    summary_row = validation_script("convergence_n").summary_row
     refused = PowerLawFit(None, None, None, "not converging (not monotone in n: 1, 1, 1.001, 1.001)")
     assert paper_error(summary_row("stable", study(refused), 30)) == "—"
     fitted = PowerLawFit(1.25, 1.0, 50.0, "power law")
