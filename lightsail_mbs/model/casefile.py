@@ -97,10 +97,10 @@ def read(path, fields: Mapping[str, tuple[str, str]]) -> tuple[dict, dict]:
             raise CaseFileError(
                 f"{path}: unknown key {RUN_TABLE}.{key}{hint}: allowed in [run] {', '.join(RUN_FIELDS)}"
             )
-        if isinstance(value, (dict, list)) or not isinstance(value, (bool, int, float)):
-            raise CaseFileError(
-                f"{path}: {RUN_TABLE}.{key} = {_shown(value)} is invalid: allowed a number or true/false"
-            )
+        boolean = key == "stop_at_failure"
+        if isinstance(value, bool) != boolean or not isinstance(value, (bool, int, float)):
+            allowed = "true or false" if boolean else "a number"
+            raise CaseFileError(f"{path}: {RUN_TABLE}.{key} = {_shown(value)} is invalid: allowed {allowed}")
     return case, run
 
 

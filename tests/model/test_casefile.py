@@ -116,6 +116,8 @@ def test_a_case_file_holds_what_describes_the_sail(tmp_path):
         ('[sail]\nmodel = "torsion"\n[sheet]\nny = 3', ["ny=3", "unless model='sheet'"]),
         ('[sail]\nmodel = "sheet"\n[payload]\npayload_mass = 1e-3', ["payload_mass", "unless model is one of"]),
         ("[run]\nt_fnal = 1.0", ["run.t_fnal", "t_final"]),
+        ("[run]\nstop_at_failure = 1", ["run.stop_at_failure = 1", "allowed true or false"]),
+        ("[run]\nt_final = true", ["run.t_final = true", "allowed a number"]),
         ("[beam]\nbeam_centre = 0.3\nbeam_center = 0.4", ["beam.beam_centre and beam.beam_center", "one of them"]),
         ("amplitude = 1e-5\ndefect_amplitude = 2e-5", ["amplitude and defect_amplitude", "same field"]),
         ("[beams]\nintensity = 1e8", ["[beams]", "did you mean beam?"]),
