@@ -310,4 +310,13 @@ FIELDS = {
         "(intensity: the lab frame's); 0: at rest, no Doppler term",
         "0 ≤ β₀ < 1; 0 with supports (boundary other than free) or an optical table",
     ),
+    "integrated_trajectory": FieldInfo(
+        BEAM,
+        "",
+        "the sail's motion along the beam as part of the run's state (its lab time, distance and 4-velocity, "
+        "integrated with the shape): the beam's loads follow the Doppler factor of that state; off: the closed "
+        "form of the constant-power trajectory (model/world_line.py); only with boundary free",
+        "",
+        models=CHAINS,
+    ),
 }

@@ -29,7 +29,13 @@ from lightsail_mbs.model.fields import BOUNDARIES, FIELDS, MIN_DEFECT_FRACTION, 
 from lightsail_mbs.model.records import LEGACY_NAMES, RUN_FIELDS, current_names, record  # noqa: F401
 
 # The fields an optical table replaces, at the values it requires, and why (model/optics.py).
-OPTICS_DEFAULTS = {"reflectivity": 1.0, "absorptivity": 0.0, "velocity_terms": False, "initial_beta": 0.0}
+OPTICS_DEFAULTS = {
+    "reflectivity": 1.0,
+    "absorptivity": 0.0,
+    "velocity_terms": False,
+    "initial_beta": 0.0,
+    "integrated_trajectory": False,
+}
 OPTICS_REASONS = {
     "velocity_terms": "the velocity-dependent load is derived for the R/α facet law",
     "initial_beta": (
@@ -39,6 +45,7 @@ OPTICS_REASONS = {
         "dimming inside a run, a reflectivity and absorptivity without optics, which hold at every wavelength"
     ),
 }
+OPTICS_REASONS["integrated_trajectory"] = OPTICS_REASONS["initial_beta"]
 
 
 @dataclass(frozen=True)
@@ -109,6 +116,7 @@ class SailParameters(DerivedQuantities):
     material: str | None = None  # the film's name in model.materials (its density and E fill the case: materials.fill)
     velocity_terms: bool = False  # the first-order Doppler and aberration of each body's velocity (terms/velocity.py)
     initial_beta: float = 0.0  # β₀: the sail's speed along the beam at t = 0, a fraction of c (terms/doppler.py)
+    integrated_trajectory: bool = False  # the world line integrated in the run's state (model/world_line.py)
 
     def __post_init__(self):
         sections.check_sections(self)
@@ -151,6 +159,12 @@ class SailParameters(DerivedQuantities):
             self.initial_beta,
             self.initial_beta == 0 or self.boundary == "free",
             "0 unless boundary='free' (the trajectory is a free sail's)",
+        )
+        check(
+            "integrated_trajectory",
+            self.integrated_trajectory,
+            not self.integrated_trajectory or self.boundary == "free",
+            "off unless boundary='free' (the trajectory is a free sail's)",
         )
         if self.optics is not None:
             for name, default in OPTICS_DEFAULTS.items():

@@ -130,7 +130,7 @@ def _beam(s) -> None:
         2 * s.reflectivity + s.absorptivity > 0,
         "> 0 or absorptivity > 0 (a transparent sail feels no load)",
     )
-    _flags(s, ("velocity_terms",))
+    _flags(s, ("velocity_terms", "integrated_trajectory"))
     v = finite("initial_beta", s.initial_beta)
     check("initial_beta", v, 0 <= v < 1, "0 ≤ β₀ < 1 (the sail's speed along the beam, a fraction of c)")
 

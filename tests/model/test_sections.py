@@ -106,6 +106,7 @@ UNUSED = {
     "planform": "disc",
     "spin_rate": 1.0,
     "spin_tilt": 0.1,
+    "integrated_trajectory": True,
 }
 REFUSED_BY_THEIR_SECTION = {"optics_layout", "payload_inertia", "payload_stem", "spin_tilt"}
 COMPANIONS = {

@@ -24,6 +24,10 @@ D₀ = D(β₀):
 and the frame's proper acceleration is g₀(τ) = g₀ D(τ) = g₀ D₀/(1 + r τ): it falls on the proper-time scale
 1/r = c/(2 g₀ D₀).
 
+**Or from the run's state.** With the case field ``integrated_trajectory`` the solvers integrate the sail's world
+line with its shape (:mod:`lightsail_mbs.model.world_line`) and the factor is D of that state, written into this
+term's block before each sum; the closed form above is then what the tests hold the state to.
+
 **What the run uses.** On the flat sail the radiation load (∝ the local intensity I(x) D) and the frame
 force −m g₀(τ) ŷ (∝ Ī D) scale by the same factor, so their analytically netted sum, the radiation term,
 scales by D(τ) too; so do the payload's share of the frame force (the frame term, c_n(0) Ī l W/c − m g₀,
@@ -53,7 +57,7 @@ TIMED = True  # its forms take the run's time τ (s) after the forces
 
 
 def active(p) -> bool:
-    return p.initial_beta != 0
+    return p.initial_beta != 0 or p.integrated_trajectory
 
 
 def reads(p) -> int:
@@ -61,9 +65,12 @@ def reads(p) -> int:
 
 
 def constants(p, family: str) -> np.ndarray:
-    """D₀ = (1 − β₀)/(1 + β₀) and r = 2 D₀ g₀/c (1/s): D(τ) = D₀/(1 + r τ)."""
+    """D₀ = (1 − β₀)/(1 + β₀) and r = 2 D₀ g₀/c (1/s): D(τ) = D₀/(1 + r τ). With the trajectory in the run's
+    state (integrated_trajectory) r = 0: the solver writes D of its state into the first entry before each sum
+    (registry.set_beam_factor), and the factor is that value exactly."""
     start = float(relativity.intensity_factor(p.initial_beta))
-    return np.array([start, 2.0 * start * p.nominal_acceleration / SPEED_OF_LIGHT])
+    rate = 0.0 if p.integrated_trajectory else 2.0 * start * p.nominal_acceleration / SPEED_OF_LIGHT
+    return np.array([start, rate])
 
 
 @njit(cache=True)

@@ -130,3 +130,15 @@ def beam_factor(packed, time):
             return doppler.factor(packed[at + ENTRY : at + ENTRY + size], time)
         at += ENTRY + size
     return 1.0
+
+
+@njit(cache=True)
+def set_beam_factor(packed, value):
+    """Writes the beam's factor D into the packed Doppler term (a run whose state holds the sail's world line,
+    model/world_line.py: the term's rate is 0 there, so its factor is then `value` exactly); nothing without it."""
+    at = HEADER
+    for _ in range(int(packed[COUNT])):
+        size = int(packed[at + 1])
+        if packed[at] == doppler.ID:
+            packed[at + ENTRY] = value
+        at += ENTRY + size

@@ -139,7 +139,7 @@ def _exclusive_cumsum(a: np.ndarray) -> np.ndarray:
     return out
 
 
-def generalized_force(p: SailParameters, layout: ChainLayout):
+def generalized_force(p: SailParameters, layout: ChainLayout, beam_factor_of=None):
     """The force user function (q, q̇, t) ↦ Q: the physics terms' forces on the slice centres (model/terms: the
     radiation with the frame force netted analytically, a payload's share of the frame force) and the
     follower tension, as generalized forces by virtual work (module docstring); q̇ (default 0) is read
@@ -149,7 +149,9 @@ def generalized_force(p: SailParameters, layout: ChainLayout):
     c_n(0) Ī l W/c − m g₀ on every slice (the net form's frame force minus the craft's), and the payload
     carries its frame force −m_p g₀ ŷ at its position on the composite link. One compiled pass over the
     slices (about 5 µs a call at n = 30): it runs at every Newton iterate or explicit stage. Returns the
-    same array, overwritten, at every call.
+    same array, overwritten, at every call. beam_factor_of: a function () ↦ D of the run's state (the sail's
+    world line, solvers.exudyn.world_line), written into the packed Doppler term before each sum; None: the
+    term's closed form.
     """
     attached = payload.attachment(p)
     angle_index = np.ascontiguousarray(layout.angle_index, dtype=np.int64)
@@ -172,6 +174,8 @@ def generalized_force(p: SailParameters, layout: ChainLayout):
     def force(q, q_t=None, t=0.0) -> np.ndarray:
         q_t = np.asarray(q_t, dtype=np.float64) if rates and q_t is not None else rest
         q = np.asarray(q, dtype=np.float64)
+        if beam_factor_of is not None:
+            terms.set_beam_factor(packed, beam_factor_of())
         _generalized_force_into(q, q_t, float(t), angle_index, stretch_index, constants, packed, Q)
         return Q
 

@@ -54,7 +54,8 @@ import math
 import numpy as np
 
 from lightsail_mbs.base.kernels import njit
-from lightsail_mbs.model.terms import beam_factor, chain_forces_into
+from lightsail_mbs.model import world_line
+from lightsail_mbs.model.terms import beam_factor, chain_forces_into, set_beam_factor
 from lightsail_mbs.model.terms.bodies import CHAIN_ROWS, POSITIONS, READS, VELOCITIES
 from lightsail_mbs.solvers.reduced.chain_constants import (
     ABSCISSA,
@@ -91,6 +92,8 @@ from lightsail_mbs.solvers.reduced.chain_constants import (
     VX,
     VY,
     WORK_ROWS,
+    WORLD,
+    WORLD_RATE,
     N,
     constants,
 )
@@ -204,12 +207,20 @@ def _payload_free_acceleration(k, c, s, fx, fy, tau, ax, ay, al, j, t):
 @njit(cache=True)
 def rhs_into(t, y, k, work, ydot):
     """ẏ = (q̇, q̈) of y = (q, q̇) at the time t (Eq. 40 with M moved to the right) into ydot, with the
-    workspace work."""
+    workspace work. With the sail's world line in the state (k[WORLD]), q and q̇ end with its coordinates
+    (t, x/c) and 4-velocity (γ, γβ) (model/world_line.py): their accelerations, and the beam's factor D of
+    that 4-velocity written into the packed Doppler term before the loads are summed."""
     dof = y.size // 2
     q = y[:dof]
     qd = y[dof:]
     for i in range(dof):
         ydot[i] = qd[i]
+    if k[WORLD] != 0.0:
+        at = dof - world_line.COORDINATES
+        a_time, a_distance, factor = world_line.accelerations(k[WORLD_RATE], qd[at], qd[at + 1])
+        set_beam_factor(k[N_CONSTANTS:], factor)
+        ydot[dof + at] = a_time
+        ydot[dof + at + 1] = a_distance
     extensible = k[EXTENSIBLE] != 0.0
     _free_accelerations(t, q, qd, k, work, extensible)
     if extensible:
@@ -282,9 +293,9 @@ def jacobian_into(t, y, k, scales, jac):
 class ChainDynamics:
     """q̈(q, q̇) for one chain model; states are (dof,) vectors or columns of (dof, k) arrays."""
 
-    def __init__(self, model: ChainModel):
+    def __init__(self, model: ChainModel, world: bool = False):
         self.model = model
-        self.constants = constants(model)
+        self.constants = constants(model, world)
         self._work = np.empty((WORK_ROWS, model.n))  # workspace(n), without loading a kernel
 
     def accelerations(self, q: np.ndarray, qd: np.ndarray, t: float = 0.0) -> np.ndarray:
