@@ -116,6 +116,9 @@ class SailParameters(DerivedQuantities):
     material: str | None = None  # the film's name in model.materials (its density and E fill the case: materials.fill)
     velocity_terms: bool = False  # the first-order Doppler and aberration of each body's velocity (terms/velocity.py)
     initial_beta: float = 0.0  # β₀: the sail's speed along the beam at t = 0, a fraction of c (terms/doppler.py)
+    heated: bool = False  # the film's quasi-steady temperature and the tension it leaves, inside the run (heating.py)
+    heat_absorptance: float | None = None  # A at the laser's wavelength (None: the material's)
+    carried_mass: float = 0.0  # kg the craft carries that is no body: it slows only the trajectory (terms/doppler.py)
     integrated_trajectory: bool = False  # the world line integrated in the run's state (model/world_line.py)
 
     def __post_init__(self):
@@ -159,6 +162,14 @@ class SailParameters(DerivedQuantities):
             self.initial_beta,
             self.initial_beta == 0 or self.boundary == "free",
             "0 unless boundary='free' (the trajectory is a free sail's)",
+        )
+        check("heated", self.heated, not self.heated or self.material is not None, "off without a material")
+        check("heated", self.heated, not self.heated or self.extensible, "off unless the TnT chain has axial springs")
+        check(
+            "heat_absorptance",
+            self.heat_absorptance,
+            self.heat_absorptance is None or self.heated,
+            "None unless heated",
         )
         check(
             "integrated_trajectory",
@@ -327,6 +338,15 @@ class SailParameters(DerivedQuantities):
                 * (sail / (sail + self.payload_mass))
             )
         return momentum * self.mean_intensity / (SPEED_OF_LIGHT * self.density * self.thickness)
+
+    @property
+    def trajectory_acceleration(self) -> float:
+        """The craft's proper acceleration at rest along its trajectory (the Doppler factor's, terms/doppler.py):
+        g₀, times (M_sail + m_p)/(M_sail + m_p + m_carried) with a carried mass the model has no body for."""
+        if self.carried_mass == 0:
+            return self.nominal_acceleration
+        bodies = self.density * self.thickness * self.length * self.width + self.payload_mass
+        return self.nominal_acceleration * bodies / (bodies + self.carried_mass)
 
     def replace(self, **changes) -> SailParameters:
         """A copy with some fields changed (validated again)."""

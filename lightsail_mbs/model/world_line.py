@@ -37,8 +37,9 @@ COORDINATES = 2  # (t, x/c): appended after the shape's coordinates, their rates
 
 
 def rate_constant(p) -> float:
-    """g₀/c (1/s): the craft's proper acceleration at rest over c."""
-    return p.nominal_acceleration / SPEED_OF_LIGHT
+    """g₀/c (1/s): the craft's proper acceleration at rest over c (with a carried mass, the craft's:
+    SailParameters.trajectory_acceleration)."""
+    return p.trajectory_acceleration / SPEED_OF_LIGHT
 
 
 def start(beta: float) -> tuple[np.ndarray, np.ndarray]:

@@ -7,10 +7,13 @@ beam's in the laser's (lab) frame. A sail receding at βc sees it dimmed to I₀
 energy, one for their rate). With ``initial_beta`` β₀ > 0 the run starts at the speed β₀ and β grows along
 the constant-power trajectory of the flat craft (:class:`lightsail_mbs.model.relativity.Trajectory`).
 
-**D along the proper time.** The craft of rest mass M (sail and payload) intercepting the lab power
-P = Ī L W (Ī the beam's mean over the flat sail) has the proper acceleration c d(γβ)/dt =
-c_n(0) P D/(M c) = g₀ D, with g₀ = c_n(0) Ī L W/(c M) the case's frame acceleration at rest
-(SailParameters.nominal_acceleration, c_n(0) = 2R + α or the table's). The proper time to reach β from
+**D along the proper time.** The craft of rest mass M (sail and payload, and a carried mass that is no body of
+the model, case field carried_mass) intercepting the lab power P = Ī L W (Ī the beam's mean over the flat sail)
+has the proper acceleration c d(γβ)/dt = c_n(0) P D/(M c) = g₀ D, with g₀ = c_n(0) Ī L W/(c M)
+(SailParameters.trajectory_acceleration: the case's frame acceleration at rest, nominal_acceleration, without a
+carried mass; c_n(0) = 2R + α or the table's). A carried mass slows the trajectory and with it D; the sail's own
+frame, in which the loads are netted, stays its own (the frame that holds the carried mass takes the rest).
+The proper time to reach β from
 rest is τ(β) = K β/(1 − β), K = c/g₀ (relativity.Trajectory.proper_time: dτ = K dβ/(1 − β)²), so
 β(τ) = τ/(K + τ) and
 
@@ -69,7 +72,7 @@ def constants(p, family: str) -> np.ndarray:
     state (integrated_trajectory) r = 0: the solver writes D of its state into the first entry before each sum
     (registry.set_beam_factor), and the factor is that value exactly."""
     start = float(relativity.intensity_factor(p.initial_beta))
-    rate = 0.0 if p.integrated_trajectory else 2.0 * start * p.nominal_acceleration / SPEED_OF_LIGHT
+    rate = 0.0 if p.integrated_trajectory else 2.0 * start * p.trajectory_acceleration / SPEED_OF_LIGHT
     return np.array([start, rate])
 
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from lightsail_mbs.model import payload, terms, world_line
+from lightsail_mbs.model import heating, payload, terms, world_line
 from lightsail_mbs.model.terms import bodies
 from lightsail_mbs.model.terms.bodies import CHAIN_ROWS, X, Y
 from lightsail_mbs.solvers.reduced.kinematics import ChainModel
@@ -38,8 +38,9 @@ from lightsail_mbs.solvers.reduced.kinematics import ChainModel
     FRAME,
     WORLD,
     WORLD_RATE,
-) = range(21)
-N_CONSTANTS = 21  # the packed terms (model/terms: terms.pack(p, "chain")) start here
+    HEAT,
+) = range(22)
+N_CONSTANTS = 22  # the packed terms (model/terms: terms.pack(p, "chain")) start here
 
 # rows of the workspace of one right-hand-side evaluation: first the slices as the terms read them
 # (model/terms/bodies.py), then the sweeps' own rows
@@ -59,7 +60,8 @@ WORK_ROWS = CHAIN_ROWS + 12
 
 def constants(model: ChainModel, world: bool = False) -> np.ndarray:
     """The chain's constants as the float vector the compiled kernels read (indices above), then its packed
-    physics terms (the load law: radiation through beam and optics, frame force). world: the state ends with the
+    physics terms (the load law: radiation through beam and optics, frame force), then a heated film's table
+    (k[HEAT] its start, 0: none). world: the state ends with the
     sail's world line (a run of a case with integrated_trajectory; the analyses' states are the chain's alone)."""
     p = model.params
     k = np.zeros(N_CONSTANTS)
@@ -77,4 +79,8 @@ def constants(model: ChainModel, world: bool = False) -> np.ndarray:
         k[PAY_SLICE], k[PAY_MASS], k[PAY_INERTIA] = attached.slice_index, attached.mass, attached.inertia
         k[PAY_CE], k[PAY_CP] = attached.centre_along, attached.centre_across
         k[PAY_RE], k[PAY_RP] = attached.along, attached.across
-    return np.concatenate([k, terms.pack(p, "chain")])
+    packed = terms.pack(p, "chain")
+    if not p.heated:
+        return np.concatenate([k, packed])
+    k[HEAT] = N_CONSTANTS + packed.size  # the heated film's table (model/heating.py) after the packed terms
+    return np.concatenate([k, packed, heating.table(p)])
