@@ -11,6 +11,7 @@ times at the target, the verdict, and the temperature, tension and margin at the
 
 import argparse
 import os
+import time
 from pathlib import Path
 
 from lightsail_mbs.paper.journey import PARKIN_PAYLOAD, parkin_power, starshot_case
@@ -23,19 +24,26 @@ HEADER = """# The Starshot-class journey in the time domain
 Made by `nice -n 10 python validation/journey_benchmark.py{arguments}` on {cores} cores
 (lightsail_mbs.studies.journey_run; the case is docs/journey.md's Starshot-class chain). Each row is one run from
 rest to β = 0.2 with the sail's world line, the Doppler dimming and the heated film's tension inside the run.
-Wall: the run's own wall time, on a machine shared with other jobs. T, N, margin: at the start and at the target.
+Wall: the run's own wall time, on a machine shared with other jobs; CPU: the process's CPU time for the whole
+journey (the table of the heated film included), which the other jobs' load does not inflate. T, N, margin: at the
+start and at the target.
 
 """
 
 
 def row(n: int, solver: str) -> dict:
     p = starshot_case(n)
+    start = time.process_time()
     report = run_time_domain(p, JourneySettings(power=parkin_power(p), carried_mass=PARKIN_PAYLOAD), solver)
+    cpu = time.process_time() - start
     first, last = report["snapshots"][0], report["snapshots"][-1]
     return {
         "n": n,
         "solver": solver,
         "wall (s)": f"{report['wall_time']:.0f}",
+        "CPU (s)": f"{cpu:.0f}",
+        "method": report["method"],
+        "steps": report["steps"],
         "τ at end (s)": f"{last['tau']:.1f}",
         "t at end (s)": f"{last['t']:.1f}",
         "β at end": f"{last['beta']:.4f}",

@@ -178,6 +178,8 @@ def run_time_domain(
         "verdict": verdict(run, rows, film, s.target_speed),
         "run": {k: v for k, v in run.summary().items() if k not in ("parameters", "provenance", "info")},
         "wall_time": run.wall_time,
+        "method": run.info.get("method"),
+        "steps": run.info.get("steps"),
         "thermal_lag": lag,
         "notes": notes(p, film),
     }
