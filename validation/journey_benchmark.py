@@ -1,5 +1,5 @@
 """The Starshot-class chain's whole journey to 0.2c as one time-domain run:
-`nice -n 10 python validation/journey_benchmark.py [--n 10 20] [--solver reduced]`.
+`nice -n 5 python validation/journey_benchmark.py [--n 10 20] [--solver reduced]`.
 
 Writes validation/journey_benchmark.md: for each slice count n, the case of docs/journey.md (lightsail_mbs.paper.
 journey.starshot_case: SiN, 3.63 m square, 1 g, framed at 100 N, a 1 mm defect; Parkin's power and 1 g payload,
@@ -21,7 +21,7 @@ from lightsail_mbs.studies.tables import markdown_table
 
 HEADER = """# The Starshot-class journey in the time domain
 
-Made by `nice -n 10 python validation/journey_benchmark.py{arguments}` on {cores} cores
+Made by `nice -n 5 python validation/journey_benchmark.py{arguments}` on {cores} cores
 (lightsail_mbs.studies.journey_run; the case is docs/journey.md's Starshot-class chain). Each row is one run from
 rest to β = 0.2 with the sail's world line, the Doppler dimming and the heated film's tension inside the run.
 Wall: the run's own wall time, on a machine shared with other jobs; CPU: the process's CPU time for the whole

@@ -41,11 +41,14 @@ OPTICS_REASONS = {
     "initial_beta": (
         "a run holds its table at one wavelength, and the Doppler-shifted light is at another: for a grating at "
         "the sail-frame wavelength along the acceleration, tabulate it with `lightsail-mbs optics grating "
-        "--wavelengths …` and run `lightsail-mbs journey --optics TABLE` (each snapshot at its λ'); for the "
-        "dimming inside a run, a reflectivity and absorptivity without optics, which hold at every wavelength"
+        "--wavelengths …` and run with it and integrated_trajectory (the run reads it at λ' of its state), or "
+        "`lightsail-mbs journey --optics TABLE` (each snapshot at its λ'); for the dimming inside a run, a "
+        "reflectivity and absorptivity without optics, which hold at every wavelength"
     ),
 }
 OPTICS_REASONS["integrated_trajectory"] = OPTICS_REASONS["initial_beta"]
+# allowed with a table that has a wavelength axis when the run integrates the world line (terms/radiation.py)
+IN_RUN_WITH_SPECTRUM = ("initial_beta", "integrated_trajectory")
 
 
 @dataclass(frozen=True)
@@ -179,6 +182,8 @@ class SailParameters(DerivedQuantities):
         )
         if self.optics is not None:
             for name, default in OPTICS_DEFAULTS.items():
+                if name in IN_RUN_WITH_SPECTRUM and self._spectrum_in_run():
+                    continue
                 check(
                     name,
                     getattr(self, name),
@@ -338,6 +343,15 @@ class SailParameters(DerivedQuantities):
                 * (sail / (sail + self.payload_mass))
             )
         return momentum * self.mean_intensity / (SPEED_OF_LIGHT * self.density * self.thickness)
+
+    def _spectrum_in_run(self) -> bool:
+        """Whether the run reads its optical table at the sail-frame wavelength of its state: a table file with a
+        wavelength axis and integrated_trajectory (model/terms/radiation.py)."""
+        if not (self.integrated_trajectory and self.optics_file):
+            return False
+        from lightsail_mbs.model.optics_spectrum import read_spectrum
+
+        return read_spectrum(self.optics, single=True) is not None
 
     @property
     def trajectory_acceleration(self) -> float:

@@ -19,9 +19,14 @@ shape's amplitude (``amplitude``, m, and ``amplitude_ratio`` to the start). The 
 temperature exceeded at the first sample above it, a shape failure at the run's failure time (the failure rule of
 model/failure.py), or the target reached intact.
 
+**An optical table with a wavelength axis** is read inside the run at the sail-frame wavelength of its state
+(model/terms/radiation.py): its force law and c_n(0), which drives the world line; the run lasts the proper time of
+the snapshots' quadrature trajectory. The heat keeps the film's absorptance (or the settings'), not the table's.
+
 **What it refuses.** The run's heat uses the material's emissivities, deep space around it and 293.15 K as the
 tensioning temperature (model/heating.py): settings that change them are refused, as is a film whose
-temperature would lag its steady field by more than QUASI_STEADY_LIMIT.
+temperature would lag its steady field by more than QUASI_STEADY_LIMIT, a table at one wavelength, and a laser
+wavelength other than the table's.
 """
 
 from __future__ import annotations
@@ -31,7 +36,6 @@ from dataclasses import asdict
 
 import numpy as np
 
-from lightsail_mbs.base.constants import SPEED_OF_LIGHT
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError, check
 from lightsail_mbs.model import expansion, heating, relativity, thermal
@@ -39,10 +43,12 @@ from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.studies.journey import (
     QUASI_STEADY_LIMIT,
     Film,
+    Journey,
     JourneySettings,
     craft_mass,
     lab_peak_intensity,
     notes,
+    spectrum_of,
 )
 
 SAMPLES = 500  # output samples over the run
@@ -65,12 +71,20 @@ def run_case(p: SailParameters, s: JourneySettings) -> SailParameters:
 def _check(p: SailParameters, s: JourneySettings) -> None:
     """One line for what the run cannot take (module docstring)."""
     check("model", p.model, p.model != "sheet", "a chain model for a time-domain journey (the sheet: snapshots)")
-    check(
-        "optics",
-        p.optics,
-        p.optics is None,
-        "None for a time-domain journey (an R/α facet: the snapshots read a table)",
-    )
+    if p.optics is not None:
+        spectrum = spectrum_of(p)
+        check(
+            "optics",
+            p.optics,
+            spectrum is not None,
+            "R and α, or a table with a wavelength axis, for a time-domain journey (the run reads it at λ')",
+        )
+        check(
+            "wavelength",
+            s.wavelength,
+            abs(s.wavelength - spectrum.wavelength) <= 1e-12 * spectrum.wavelength,
+            f"the optical table's laser wavelength {spectrum.wavelength:.6g} m in a time-domain journey",
+        )
     check("initial_beta", p.initial_beta, p.initial_beta == 0, "0 (the journey starts from rest)")
     for name, default in (("emissivity_front", None), ("emissivity_back", None)):
         check(name, getattr(s, name), getattr(s, name) == default, "the material's in a time-domain journey")
@@ -83,9 +97,10 @@ def _check(p: SailParameters, s: JourneySettings) -> None:
     )
 
 
-def duration(case: SailParameters, target: float) -> float:
-    """The proper time (s) the craft takes from rest to β = target: K β/(1 − β), K = c/g₀."""
-    return SPEED_OF_LIGHT / case.trajectory_acceleration * target / (1.0 - target)
+def duration(p: SailParameters, s: JourneySettings) -> float:
+    """The proper time (s) the craft takes from rest to the target speed: K β/(1 − β), K = c/g₀, or with a table
+    that has a wavelength axis its quadrature (the snapshots' trajectory, which checks the table's range)."""
+    return float(Journey(p, s).trajectory.proper_time(s.target_speed))
 
 
 def rows_of(case: SailParameters, run, film: Film, laser: float) -> list[dict]:
@@ -163,7 +178,7 @@ def run_time_domain(
             f"thickness={p.thickness!r} is invalid: allowed a film whose temperature stays within "
             f"{QUASI_STEADY_LIMIT:g} of its steady field (it would lag by {lag:.3g}): the run's heat is quasi-steady"
         )
-    tau = duration(case, s.target_speed)
+    tau = duration(p, s)
     settings = RunSettings(t_final=tau, output_interval=tau / samples)
     run = solve(case, solver, settings, uncertainty=False, progress=progress, **options)
     rows = rows_of(case, run, film, s.wavelength)

@@ -73,3 +73,25 @@ def test_journey_time_domain_writes_the_files_and_refuses_in_one_line(tmp_path, 
         run_time_domain(p, settings(p, emissivity_front=0.5))
     with pytest.raises(ParameterError, match="model='sheet' is invalid"):
         run_time_domain(p.replace(model="sheet", n=4, ny=4, tension=0.0), settings(p))
+
+
+def test_a_table_with_a_wavelength_axis_is_read_inside_the_run(tmp_path, monkeypatch):
+    """The framed strip of tests/studies/test_journey_spectrum.py with its table whose c_n(0) falls with λ, run to
+    β = 0.05 (λ' from 1.064 to 1.12 µm): the run's lab time and proper time at each sample's β are the snapshots'
+    quadrature trajectory's, to 1e-8."""
+    from lightsail_mbs.model.optics import SpectralTable
+    from tests.studies.test_journey_spectrum import GRID, LASER, case, table
+
+    monkeypatch.setenv("LIGHTSAIL_MBS_CACHE", str(tmp_path / "cache"))
+    tables = tuple(table(c, 0.0, lossless=True) for c in (1.9, 1.5))
+    path = SpectralTable(np.array(GRID), tables, LASER).save(tmp_path / "falling.npz")
+    p = case(str(path)).replace(n=10)
+    s = JourneySettings(power=4e10, carried_mass=1e-3, target_speed=0.05)
+    report = run_time_domain(p, s, samples=10)
+    journey = Journey(p, s)
+    for row in report["snapshots"][1:]:
+        assert row["tau"] == pytest.approx(journey.trajectory.proper_time(row["beta"]), rel=1e-8)
+        assert row["t"] == pytest.approx(journey.trajectory.time(row["beta"]), rel=1e-8)
+    assert report["snapshots"][-1]["beta"] == pytest.approx(0.05, rel=1e-8)
+    with pytest.raises(ParameterError, match="wavelength=1.03e-06 is invalid: allowed the optical table's laser"):
+        run_time_domain(p, JourneySettings(power=4e10, wavelength=1.03e-6))

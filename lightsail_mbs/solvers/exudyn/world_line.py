@@ -3,7 +3,8 @@
 A case with ``integrated_trajectory`` carries the sail's lab time and distance over c, s = (t, x/c), with their
 rates along the proper time, the 4-velocity u = (γ, γβ) (:mod:`lightsail_mbs.model.world_line`). Here they are
 one ``NodeGenericODE2`` of two coordinates and an ``ObjectGenericODE2`` of unit mass whose force user function
-is the boost du/dτ = (g₀/c) D (γβ, γ), D = (γ − γβ)/(γ + γβ): the same integrator steps them with the tree.
+is the boost du/dτ = (g₀/c) D (γβ, γ), D = (γ − γβ)/(γ + γβ) (times c_n(0; λ')/c_n(0; λ₀) for an optical table
+with a wavelength axis): the same integrator steps them with the tree.
 The tree's force user function reads the node's current 4-velocity (the stage or Newton iterate being
 evaluated) and writes its D into the packed Doppler term before it sums the loads (:func:`beam_factor_reader`).
 The node's coordinates come after the tree's in the system's ODE2 vector, so the sampler's q, q̇ carry them.
@@ -13,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from lightsail_mbs.model import world_line
+from lightsail_mbs.model import terms, world_line
 from lightsail_mbs.model.parameters import SailParameters
 
 
@@ -32,9 +33,11 @@ def add_world_line(p: SailParameters, mbs) -> int:
         )
     )
     force = np.zeros(world_line.COORDINATES)
+    packed = terms.pack(p, "chain")  # its own copy: with a wavelength axis, c_n(0) at λ' scales the acceleration
 
     def boost(mbs, t, item, q, q_t):
-        force[0], force[1], _ = world_line.accelerations(rate, q_t[0], q_t[1])
+        ratio = terms.set_beam_factor(packed, world_line.doppler(q_t[0], q_t[1]))
+        force[0], force[1], _ = world_line.accelerations(rate * ratio, q_t[0], q_t[1])
         return force
 
     mbs.AddObject(

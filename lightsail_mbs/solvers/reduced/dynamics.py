@@ -226,8 +226,8 @@ def rhs_into(t, y, k, work, ydot):
         ydot[i] = qd[i]
     if k[WORLD] != 0.0:
         at = dof - world_line.COORDINATES
-        a_time, a_distance, factor = world_line.accelerations(k[WORLD_RATE], qd[at], qd[at + 1])
-        set_beam_factor(k[N_CONSTANTS:], factor)
+        ratio = set_beam_factor(k[N_CONSTANTS:], world_line.doppler(qd[at], qd[at + 1]))  # and c_n(0) at λ'
+        a_time, a_distance, _ = world_line.accelerations(k[WORLD_RATE] * ratio, qd[at], qd[at + 1])
         ydot[dof + at] = a_time
         ydot[dof + at + 1] = a_distance
     extensible = k[EXTENSIBLE] != 0.0
