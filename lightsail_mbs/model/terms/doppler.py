@@ -41,9 +41,11 @@ therefore adds (D(τ) − 1) times the sum of the terms before it in the summati
 (radiation, frame, velocity), which come first (registry.TERMS); the dead pressure and the in-plane body
 force, which are not beam loads, come after it. Nothing else of the case changes along the run: the
 stiffnesses, the end tensions and the defect are the sail's own. The wavelength's shift
-(λ' = λ/√D) changes nothing for the R/α facet, whose R and α hold at every wavelength; an optical table holds one
-wavelength in a run, so the case refuses the term with a table (its message points to the journey, which
-reads a table with a wavelength axis at each snapshot's λ': lightsail_mbs.studies.journey).
+(λ' = λ/√D) changes nothing for the R/α facet, whose R and α hold at every wavelength. An optical table with a
+wavelength axis is read at λ' inside a run whose state holds the world line (model/terms/radiation.py:
+set_wavelength); the closed form assumes a constant c_n(0), so the case refuses it with any table, and a table at
+one wavelength with the world line too (the journey reads a table at each snapshot's λ': lightsail_mbs.studies.
+journey).
 """
 
 from __future__ import annotations

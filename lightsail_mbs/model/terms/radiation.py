@@ -7,6 +7,13 @@ would seed short waves: loads' docstring). Chain: per slice at abscissa x and an
 loads.net_slice_force (the R/α facet) or optics.packed_net_force (a table, with the slices' turned-over
 flags). Sheet: per tile at (x, y) with unit normal (n₁, n₂, n_b), loads.net_facet_force in the round beam.
 Reads the positions only for a Gaussian beam.
+
+**A table with a wavelength axis inside a run** (a chain whose state holds its world line, integrated_trajectory;
+model/world_line.py): the block also carries the packed tables of the grid's wavelengths (:func:`spectral_section`),
+and before each sum the solver writes the table at the sail-frame wavelength λ' = λ₀/√D into the block's table and
+its c_n(0) into the head (:func:`set_wavelength`, through registry.set_beam_factor), as
+optics_spectrum.SpectralTable.at makes it: linear in λ between the grid wavelengths. c_n(0; λ') nets the frame force
+of the moment, and its ratio to c_n(0; λ₀) scales the craft's proper acceleration in the world line.
 """
 
 from __future__ import annotations
