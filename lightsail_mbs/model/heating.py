@@ -34,8 +34,10 @@ import math
 import numpy as np
 
 from lightsail_mbs.base.kernels import njit
-from lightsail_mbs.model import materials, relativity, thermal
+from lightsail_mbs.model import materials
 
+# thermal and relativity are imported where they are used: the kernels' module (the chain solvers import it)
+# loads neither scipy.optimize nor scipy.linalg
 GRID = 2049  # points of the table in ln D
 FASTEST = 0.999  # β of the table's lowest D
 REFERENCE_TEMPERATURE = 293.15  # K: the film is tensioned at room temperature (the journey's default)
@@ -50,6 +52,8 @@ def absorptance(p) -> float:
 
 def profile(p) -> np.ndarray:
     """I(x)/I₀ at the slices' centres (1 for a uniform beam)."""
+    from lightsail_mbs.model import thermal
+
     if p.uniform_beam:
         return np.ones(p.n)
     centres = (np.arange(p.n) + 0.5) * p.length / p.n
@@ -58,6 +62,8 @@ def profile(p) -> np.ndarray:
 
 def temperatures(p, factor: float) -> np.ndarray:
     """The slices' steady temperatures (K) under the lab intensity I₀ dimmed by D = factor."""
+    from lightsail_mbs.model import thermal
+
     film = materials.get(p.material)
     flux = absorptance(p) * p.intensity * factor * profile(p)
     if p.uniform_beam:
@@ -69,6 +75,8 @@ def temperatures(p, factor: float) -> np.ndarray:
 
 def lag(p, factor: float) -> float:
     """The fraction by which T would trail its steady field at D = factor (thermal.lag at the hottest slice)."""
+    from lightsail_mbs.model import thermal
+
     film = materials.get(p.material)
     hottest = float(temperatures(p, factor).max())
     capacity = p.density * film.heat_capacity.value * p.thickness
@@ -78,6 +86,8 @@ def lag(p, factor: float) -> float:
 
 def table(p) -> np.ndarray:
     """The table the kernels read (module docstring) for case p."""
+    from lightsail_mbs.model import relativity
+
     film = materials.get(p.material)
     expansion = film.thermal_expansion.value
     top = math.log(float(relativity.intensity_factor(p.initial_beta)))
