@@ -33,11 +33,6 @@ JOURNEY_OPTIONS = {
         "temperature at which the film was tensioned (K): the thermal strain is counted from it [default: 293.15]",
     ),
     "--step": ("step", float, "the fractional change of g₀ between snapshots [default: 0.05]"),
-    "--carried-mass": (
-        "carried_mass",
-        float,
-        "mass carried beyond the case's sail and payload (kg) [default: 0]",
-    ),
     "--shape-time": (
         "shape_time",
         float,
@@ -61,6 +56,21 @@ def register(sub) -> None:
         action="store_true",
         help="solve each snapshot's case for its shape (reduced solver, the intensity and tension of the moment)",
     )
+    g.add_argument(
+        "--time-domain",
+        action="store_true",
+        help="a chain's whole journey as one run: its world line, the Doppler dimming and (TnT with axial springs) "
+        "the heated film's tension inside the run, to the target speed or to failure; rows from the run's record",
+    )
+    g.add_argument(
+        "--solver",
+        choices=("reduced", "exudyn"),
+        default="reduced",
+        help="with --time-domain: the solver of the run [default: reduced]",
+    )
+    g.add_argument(
+        "--samples", type=int, default=500, help="with --time-domain: the run's output samples [default: 500]"
+    )
     p.add_argument("--out", required=True, help="output folder: journey.csv, journey.json, journey.png")
     p.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
     p.set_defaults(func=run)
@@ -73,9 +83,17 @@ def run(args) -> int:
 
     params = params_from_args(args)
     given = {name: getattr(args, f"journey_{name}") for name, _, _ in JOURNEY_OPTIONS.values()}
+    given["carried_mass"] = params.carried_mass  # the case's (--carried-mass): the craft's mass beyond its bodies
     settings = JourneySettings(**{k: v for k, v in given.items() if v is not None}, shape_runs=args.shape_runs)
     out = writable_folder(args.out, "--out")
-    report = run_journey(params, settings, progress=not args.quiet)
+    if args.time_domain:
+        from lightsail_mbs.base.validation import check
+        from lightsail_mbs.studies.journey_run import run_time_domain
+
+        check("--shape-runs", args.shape_runs, not args.shape_runs, "off with --time-domain (the run is the shape's)")
+        report = run_time_domain(params, settings, args.solver, args.samples, progress=not args.quiet)
+    else:
+        report = run_journey(params, settings, progress=not args.quiet)
     write_csv(out / "journey.csv", report["snapshots"])
     (out / "journey.json").write_text(json.dumps(_plain(report), indent=1), encoding="utf-8")
     journey_figure(report, out / "journey.png")
@@ -86,7 +104,9 @@ def run(args) -> int:
         f"(limit {report['film']['limit_temperature']:.4g} K), margin {first['margin']:.4g}; "
         f"T lags its steady field by ≤ {report['thermal_lag']:.2g} of T; wrote {out}/journey.{{csv,json,png}}"
     )
-    if report["optics"]["wavelength_axis"]:
+    if args.time_domain:
+        print(f"time domain: {args.solver} solver, {report['wall_time']:.3g} s of wall time")
+    elif report["optics"]["wavelength_axis"]:
         print(f"optics: {report['optics']['text']}")
     for note in report["notes"]:
         print(f"note: {note}", file=sys.stderr)

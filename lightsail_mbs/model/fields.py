@@ -310,4 +310,38 @@ FIELDS = {
         "(intensity: the lab frame's); 0: at rest, no Doppler term",
         "0 ≤ β₀ < 1; 0 with supports (boundary other than free) or an optical table",
     ),
+    "heated": FieldInfo(
+        MATERIAL,
+        "",
+        "the film heated by the beam inside the run: its quasi-steady temperature at the sail-frame intensity of "
+        "each moment, and the tension a rigid frame leaves it, N₀ − E h W α_T ⟨ΔT⟩, with the springs' rest lengths "
+        "following T (model/heating.py); needs material",
+        "",
+        models=TNT,
+    ),
+    "heat_absorptance": FieldInfo(
+        MATERIAL,
+        "",
+        "with heated: the film's absorptance at the laser's wavelength",
+        "0 ≤ A ≤ 1",
+        follows="the material's",
+        models=TNT,
+    ),
+    "carried_mass": FieldInfo(
+        PAYLOAD,
+        "kg",
+        "mass the craft carries that is no body of the model (held by the frame): it slows the trajectory the "
+        "Doppler factor follows, not the sail's own frame",
+        "≥ 0",
+        models=CHAINS,
+    ),
+    "integrated_trajectory": FieldInfo(
+        BEAM,
+        "",
+        "the sail's motion along the beam as part of the run's state (its lab time, distance and 4-velocity, "
+        "integrated with the shape): the beam's loads follow the Doppler factor of that state; off: the closed "
+        "form of the constant-power trajectory (model/world_line.py); only with boundary free",
+        "",
+        models=CHAINS,
+    ),
 }

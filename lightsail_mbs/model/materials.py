@@ -69,6 +69,11 @@ REFERENCES = {
     "sheldahl": "Sheldahl, The Red Book (thermal control films): 25 µm Kapton ε ≈ 0.5–0.6",
     "starshot_forum": "Breakthrough Initiatives, Starshot challenges, 'Lightsail | Integrity under thrust' "
     "(breakthroughinitiatives.org): absorption below 1e-9 for optimised dielectrics",
+    "mos2_tec2019": "Thermal expansion coefficient of monolayer molybdenum disulfide using micro-Raman spectroscopy, "
+    "Nano Lett. 19 (2019), doi:10.1021/acs.nanolett.9b01829: in-plane α_T = (7.6 ± 0.9) and (7.4 ± 0.5) × 1e-6 /K",
+    "vasilyeva2015": "I. G. Vasilyeva, I. P. Asanov & L. M. Kulikov, Experiments and consideration about surface "
+    "nonstoichiometry of few-layer MoS₂ prepared by chemical vapor deposition, J. Phys. Chem. C (2015): incongruent "
+    "evaporation (sulfur loss) in vacuum above 1000 K",
     "estimate": "an order-of-magnitude value for the film described, stated as an assumption (see the note)",
 }
 

@@ -29,16 +29,26 @@ from lightsail_mbs.model.fields import BOUNDARIES, FIELDS, MIN_DEFECT_FRACTION, 
 from lightsail_mbs.model.records import LEGACY_NAMES, RUN_FIELDS, current_names, record  # noqa: F401
 
 # The fields an optical table replaces, at the values it requires, and why (model/optics.py).
-OPTICS_DEFAULTS = {"reflectivity": 1.0, "absorptivity": 0.0, "velocity_terms": False, "initial_beta": 0.0}
+OPTICS_DEFAULTS = {
+    "reflectivity": 1.0,
+    "absorptivity": 0.0,
+    "velocity_terms": False,
+    "initial_beta": 0.0,
+    "integrated_trajectory": False,
+}
 OPTICS_REASONS = {
     "velocity_terms": "the velocity-dependent load is derived for the R/α facet law",
     "initial_beta": (
         "a run holds its table at one wavelength, and the Doppler-shifted light is at another: for a grating at "
         "the sail-frame wavelength along the acceleration, tabulate it with `lightsail-mbs optics grating "
-        "--wavelengths …` and run `lightsail-mbs journey --optics TABLE` (each snapshot at its λ'); for the "
-        "dimming inside a run, a reflectivity and absorptivity without optics, which hold at every wavelength"
+        "--wavelengths …` and run with it and integrated_trajectory (the run reads it at λ' of its state), or "
+        "`lightsail-mbs journey --optics TABLE` (each snapshot at its λ'); for the dimming inside a run, a "
+        "reflectivity and absorptivity without optics, which hold at every wavelength"
     ),
 }
+OPTICS_REASONS["integrated_trajectory"] = OPTICS_REASONS["initial_beta"]
+# allowed with a table that has a wavelength axis when the run integrates the world line (terms/radiation.py)
+IN_RUN_WITH_SPECTRUM = ("initial_beta", "integrated_trajectory")
 
 
 @dataclass(frozen=True)
@@ -109,6 +119,10 @@ class SailParameters(DerivedQuantities):
     material: str | None = None  # the film's name in model.materials (its density and E fill the case: materials.fill)
     velocity_terms: bool = False  # the first-order Doppler and aberration of each body's velocity (terms/velocity.py)
     initial_beta: float = 0.0  # β₀: the sail's speed along the beam at t = 0, a fraction of c (terms/doppler.py)
+    heated: bool = False  # the film's quasi-steady temperature and the tension it leaves, inside the run (heating.py)
+    heat_absorptance: float | None = None  # A at the laser's wavelength (None: the material's)
+    carried_mass: float = 0.0  # kg the craft carries that is no body: it slows only the trajectory (terms/doppler.py)
+    integrated_trajectory: bool = False  # the world line integrated in the run's state (model/world_line.py)
 
     def __post_init__(self):
         sections.check_sections(self)
@@ -152,8 +166,24 @@ class SailParameters(DerivedQuantities):
             self.initial_beta == 0 or self.boundary == "free",
             "0 unless boundary='free' (the trajectory is a free sail's)",
         )
+        check("heated", self.heated, not self.heated or self.material is not None, "off without a material")
+        check("heated", self.heated, not self.heated or self.extensible, "off unless the TnT chain has axial springs")
+        check(
+            "heat_absorptance",
+            self.heat_absorptance,
+            self.heat_absorptance is None or self.heated,
+            "None unless heated",
+        )
+        check(
+            "integrated_trajectory",
+            self.integrated_trajectory,
+            not self.integrated_trajectory or self.boundary == "free",
+            "off unless boundary='free' (the trajectory is a free sail's)",
+        )
         if self.optics is not None:
             for name, default in OPTICS_DEFAULTS.items():
+                if name in IN_RUN_WITH_SPECTRUM and self._spectrum_in_run():
+                    continue
                 check(
                     name,
                     getattr(self, name),
@@ -313,6 +343,24 @@ class SailParameters(DerivedQuantities):
                 * (sail / (sail + self.payload_mass))
             )
         return momentum * self.mean_intensity / (SPEED_OF_LIGHT * self.density * self.thickness)
+
+    def _spectrum_in_run(self) -> bool:
+        """Whether the run reads its optical table at the sail-frame wavelength of its state: a table file with a
+        wavelength axis and integrated_trajectory (model/terms/radiation.py)."""
+        if not (self.integrated_trajectory and self.optics_file):
+            return False
+        from lightsail_mbs.model.optics_spectrum import read_spectrum
+
+        return read_spectrum(self.optics, single=True) is not None
+
+    @property
+    def trajectory_acceleration(self) -> float:
+        """The craft's proper acceleration at rest along its trajectory (the Doppler factor's, terms/doppler.py):
+        g₀, times (M_sail + m_p)/(M_sail + m_p + m_carried) with a carried mass the model has no body for."""
+        if self.carried_mass == 0:
+            return self.nominal_acceleration
+        bodies = self.density * self.thickness * self.length * self.width + self.payload_mass
+        return self.nominal_acceleration * bodies / (bodies + self.carried_mass)
 
     def replace(self, **changes) -> SailParameters:
         """A copy with some fields changed (validated again)."""

@@ -53,6 +53,10 @@ LATER_DEFAULTS = {
     "material": None,
     "velocity_terms": False,
     "initial_beta": 0.0,
+    "heated": False,
+    "heat_absorptance": None,
+    "carried_mass": 0.0,
+    "integrated_trajectory": False,
 }
 # Names under which saved runs and store records written before the current field names hold them.
 LEGACY_NAMES = {

@@ -88,6 +88,10 @@ def _material(s) -> None:
     _at_least(s, ("youngs_modulus",))
     if s.material is not None:
         materials.get(s.material)  # one line naming the allowed materials
+    _flags(s, ("heated",))
+    if s.heat_absorptance is not None:
+        v = finite("heat_absorptance", s.heat_absorptance)
+        check("heat_absorptance", v, 0 <= v <= 1, "0 ≤ A ≤ 1")
 
 
 @_section("defect")
@@ -130,7 +134,7 @@ def _beam(s) -> None:
         2 * s.reflectivity + s.absorptivity > 0,
         "> 0 or absorptivity > 0 (a transparent sail feels no load)",
     )
-    _flags(s, ("velocity_terms",))
+    _flags(s, ("velocity_terms", "integrated_trajectory"))
     v = finite("initial_beta", s.initial_beta)
     check("initial_beta", v, 0 <= v < 1, "0 ≤ β₀ < 1 (the sail's speed along the beam, a fraction of c)")
 
@@ -166,7 +170,7 @@ def _supports(s) -> None:
 
 @_section("payload")
 def _payload(s) -> None:
-    _at_least(s, ("payload_mass", "payload_inertia", "payload_stem"))
+    _at_least(s, ("payload_mass", "payload_inertia", "payload_stem", "carried_mass"))
     if s.payload_mass == 0:
         for name in ("payload_inertia", "payload_stem"):
             check(name, getattr(s, name), getattr(s, name) == 0, "0 without a payload (payload_mass = 0)")

@@ -116,8 +116,13 @@ PERTURBATION_SEED = 271828  # the seed of the conditioning probe's roughness (th
 
 
 def initial_spring_extension(p: SailParameters) -> np.ndarray:
-    """z_k = T / k_s for the extensible TnT chain (pre-tension), else zeros (length n − 1)."""
+    """z_k = T / k_s for the extensible TnT chain (pre-tension), else zeros (length n − 1); for a heated film the
+    equilibrium of its heated state at the start (model/heating.py: initial_extension)."""
     z = np.zeros(p.n - 1)
+    if p.heated:
+        from lightsail_mbs.model import heating
+
+        return heating.initial_extension(p)
     if p.extensible:
         z[:] = p.tension / p.axial_stiffness
     return z

@@ -23,10 +23,9 @@ closed forms), its normal-incidence absorptance 1 − R − T heats the film (un
 table is lossless) and its table at λ' is the shape runs' force law (:meth:`Journey.optics_at`). The snapshots
 stay equal steps in ln I'; c_n(0) adds its own change to g₀'s between them, shown in the rows.
 
-**Not modelled here**: the temperature as part of a time-domain run (rest lengths following T inside the run),
-and a wavelength table inside a run (a case with a table refuses initial_beta). A run can follow the Doppler
-factor along the trajectory (case field initial_beta, model.terms.doppler; lightsail_mbs.paper.doppler runs a
-heated snapshot that way); the snapshots' shape runs keep the intensity of their moment. The first-order
+**The time domain** is :mod:`lightsail_mbs.studies.journey_run`: the whole journey of a chain as one run, with the
+world line (model/world_line.py), the Doppler dimming, the heated film's tension (model/heating.py) and a wavelength
+table's force law at λ' inside it. Here the snapshots' shape runs keep the intensity of their moment. The first-order
 velocity-dependent terms of the load are a physics term (model.terms.velocity, case field velocity_terms) that the
 snapshots' shape runs do not switch on.
 """

@@ -106,12 +106,18 @@ UNUSED = {
     "planform": "disc",
     "spin_rate": 1.0,
     "spin_tilt": 0.1,
+    "integrated_trajectory": True,
+    "heated": True,
+    "heat_absorptance": 1e-5,
+    "carried_mass": 1e-3,
 }
 REFUSED_BY_THEIR_SECTION = {"optics_layout", "payload_inertia", "payload_stem", "spin_tilt"}
 COMPANIONS = {
     "optics_layout": {"optics": "mirror"},
     "spin_tilt": {"spin_rate": 1.0},
     "planform": {"ny": 8},
+    "heated": {"material": "silicon-nitride"},
+    "heat_absorptance": {"material": "silicon-nitride", "heated": True},
 } | dict.fromkeys(("payload_inertia", "payload_stem"), {"payload_mass": 1e-3})
 
 

@@ -55,6 +55,7 @@ from lightsail_mbs.model.terms.registry import (
     chain_forces_into,
     pack,
     reads,
+    set_beam_factor,
     tile_forces,
     tile_forces_into,
 )
@@ -67,6 +68,7 @@ __all__ = [
     "chain_forces_into",
     "pack",
     "reads",
+    "set_beam_factor",
     "tile_forces",
     "tile_forces_into",
 ]

@@ -130,3 +130,22 @@ def beam_factor(packed, time):
             return doppler.factor(packed[at + ENTRY : at + ENTRY + size], time)
         at += ENTRY + size
     return 1.0
+
+
+@njit(cache=True)
+def set_beam_factor(packed, value):
+    """Writes the beam's factor D into the packed Doppler term (a run whose state holds the sail's world line,
+    model/world_line.py: the term's rate is 0 there, so its factor is then `value` exactly), and for an optical
+    table with a wavelength axis its table at the sail-frame wavelength λ₀/√D into the radiation term
+    (radiation.set_wavelength). Returns c_n(0; λ')/c_n(0; λ₀), the factor on the craft's proper acceleration
+    beyond D (1 without a wavelength axis)."""
+    ratio = 1.0
+    at = HEADER
+    for _ in range(int(packed[COUNT])):
+        size = int(packed[at + 1])
+        if packed[at] == doppler.ID:
+            packed[at + ENTRY] = value
+        elif packed[at] == radiation.ID:
+            ratio = radiation.set_wavelength(packed[at + ENTRY : at + ENTRY + size], value)
+        at += ENTRY + size
+    return ratio

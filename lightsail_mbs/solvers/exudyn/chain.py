@@ -72,13 +72,14 @@ import numpy as np
 
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import failure, shapes, theory
+from lightsail_mbs.model import failure, shapes, theory, world_line
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.exudyn.console import solve_steps
 from lightsail_mbs.solvers.exudyn.sampler import Sampler
 from lightsail_mbs.solvers.exudyn.supports import add_supports
 from lightsail_mbs.solvers.exudyn.tree import ChainLayout, generalized_force, tree_arguments
+from lightsail_mbs.solvers.exudyn.world_line import add_world_line, beam_factor_reader
 from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.solvers.skeleton import FailureMonitor
 
@@ -179,7 +180,6 @@ def build(p: SailParameters, initial: shapes.ChainState | None = None):
 
     layout = ChainLayout.of(p)
     q0 = layout.coordinates(initial or shapes.initial_state(p))
-    load = generalized_force(p, layout)
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     node = mbs.AddNode(
@@ -190,6 +190,10 @@ def build(p: SailParameters, initial: shapes.ChainState | None = None):
             numberOfODE2Coordinates=layout.size,
         )
     )
+    factor = None  # the sail's world line after the tree's coordinates (integrated_trajectory)
+    if p.integrated_trajectory:
+        factor = beam_factor_reader(mbs, add_world_line(p, mbs))
+    load = generalized_force(p, layout, factor)
     tree = mbs.AddObject(
         ObjectKinematicTree(
             nodeNumber=node,
@@ -309,6 +313,8 @@ def run(
     solver, sampler, error = _solve(mbs, s, method, sample, bar)
     wall = _time.perf_counter() - start
     time, q, q_t = _samples(sampler, error, layout.coordinates(initial))
+    if q.shape[1] > layout.size:  # the sail's world line (model/world_line.py) after the tree's coordinates
+        info["world_line"] = world_line.record(q[:, layout.size :], q_t[:, layout.size :])
     x, y, theta, z = layout.positions(q)
     vx, vy, omega, z_rate = layout.velocities(q, q_t)
     info.update(

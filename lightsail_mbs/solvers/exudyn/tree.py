@@ -45,7 +45,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from lightsail_mbs.base.kernels import njit
-from lightsail_mbs.model import payload, shapes, terms
+from lightsail_mbs.model import heating, payload, shapes, terms
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.model.terms import beam_factor, chain_forces_into
 from lightsail_mbs.model.terms.bodies import (
@@ -139,7 +139,7 @@ def _exclusive_cumsum(a: np.ndarray) -> np.ndarray:
     return out
 
 
-def generalized_force(p: SailParameters, layout: ChainLayout):
+def generalized_force(p: SailParameters, layout: ChainLayout, beam_factor_of=None):
     """The force user function (q, q̇, t) ↦ Q: the physics terms' forces on the slice centres (model/terms: the
     radiation with the frame force netted analytically, a payload's share of the frame force) and the
     follower tension, as generalized forces by virtual work (module docstring); q̇ (default 0) is read
@@ -149,7 +149,9 @@ def generalized_force(p: SailParameters, layout: ChainLayout):
     c_n(0) Ī l W/c − m g₀ on every slice (the net form's frame force minus the craft's), and the payload
     carries its frame force −m_p g₀ ŷ at its position on the composite link. One compiled pass over the
     slices (about 5 µs a call at n = 30): it runs at every Newton iterate or explicit stage. Returns the
-    same array, overwritten, at every call.
+    same array, overwritten, at every call. beam_factor_of: a function () ↦ D of the run's state (the sail's
+    world line, solvers.exudyn.world_line), written into the packed Doppler term before each sum; None: the
+    term's closed form.
     """
     attached = payload.attachment(p)
     angle_index = np.ascontiguousarray(layout.angle_index, dtype=np.int64)
@@ -162,8 +164,13 @@ def generalized_force(p: SailParameters, layout: ChainLayout):
             0.0 if attached is None else attached.along,
             0.0 if attached is None else attached.across,
             -p.payload_mass * p.nominal_acceleration,
+            0.0,  # the start of a heated film's table (model/heating.py) in these constants; 0: none
+            p.axial_stiffness if p.extensible else 0.0,
         ]
     )
+    if p.heated:
+        constants[6] = constants.size
+        constants = np.concatenate([constants, heating.table(p)])
     packed = terms.pack(p, "chain")
     rates = terms.reads(packed) & VELOCITIES
     Q = np.zeros(layout.size)
@@ -172,6 +179,8 @@ def generalized_force(p: SailParameters, layout: ChainLayout):
     def force(q, q_t=None, t=0.0) -> np.ndarray:
         q_t = np.asarray(q_t, dtype=np.float64) if rates and q_t is not None else rest
         q = np.asarray(q, dtype=np.float64)
+        if beam_factor_of is not None:
+            terms.set_beam_factor(packed, beam_factor_of())
         _generalized_force_into(q, q_t, float(t), angle_index, stretch_index, constants, packed, Q)
         return Q
 
@@ -225,7 +234,8 @@ def _slices_into(q, q_t, angle_index, stretch_index, l, reads, bodies):
 def _generalized_force_into(q, q_t, t, angle_index, stretch_index, k, packed, Q):
     """Q of the physics terms' slice forces, the end tensions and a payload's frame force at coordinates q
     (velocities q̇) and the time t, written into Q. Constants k: l, T, the payload's slice j (−1: none), its
-    offsets along e_j and p_j from the slice centre, and −m_p g₀ (times the beam's factor at t, terms.beam_factor);
+    offsets along e_j and p_j from the slice centre, −m_p g₀ (times the beam's factor at t, terms.beam_factor), the
+    start of a heated film's table in k (0: none; model/heating.py) and k_s;
     packed: the chain's physics terms (terms.pack).
 
         P_j = Σ_{k>j} f_k + T eₙ,  G_j = e_j^⊥ · [(l + z_j) P_j + (l/2) f_j],
@@ -234,6 +244,10 @@ def _generalized_force_into(q, q_t, t, angle_index, stretch_index, k, packed, Q)
     l, tension, payload_slice, along, across = k[0], k[1], int(k[2]), k[3], k[4]
     payload_fy = k[5] * beam_factor(packed, t) if payload_slice >= 0 else k[5]
     n = angle_index.size
+    heat = k[int(k[6]) :]  # a heated film: the end tension N(D) and the springs' thermal rest extensions
+    j_heat, f_heat = heating.weights(heat, beam_factor(packed, t)) if k[6] != 0.0 else (0, 0.0)
+    if k[6] != 0.0:
+        tension = heating.tension(heat, j_heat, f_heat)
     extensible = stretch_index.size > 0
     half = 0.5 * l
     bodies = np.zeros((CHAIN_ROWS, n))
@@ -252,6 +266,8 @@ def _generalized_force_into(q, q_t, t, angle_index, stretch_index, k, packed, Q)
         Q[angle_index[j]] = torque
         if extensible and j < n - 1:
             Q[stretch_index[j]] = c[j] * px + s[j] * py
+            if k[6] != 0.0:  # the joint's P control pulls with −k_s z; the heated rest length adds k_s l α_T ΔT_j
+                Q[stretch_index[j]] += k[7] * heating.rest_extension(heat, n, j_heat, f_heat, j)
         px += fx[j]
         py += fy[j]
         if j == payload_slice:

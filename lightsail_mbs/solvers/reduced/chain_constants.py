@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from lightsail_mbs.model import payload, terms
+from lightsail_mbs.model import heating, payload, terms, world_line
 from lightsail_mbs.model.terms import bodies
 from lightsail_mbs.model.terms.bodies import CHAIN_ROWS, X, Y
 from lightsail_mbs.solvers.reduced.kinematics import ChainModel
@@ -36,8 +36,11 @@ from lightsail_mbs.solvers.reduced.kinematics import ChainModel
     PAY_RP,
     REST_TURN,
     FRAME,
-) = range(19)
-N_CONSTANTS = 19  # the packed terms (model/terms: terms.pack(p, "chain")) start here
+    WORLD,
+    WORLD_RATE,
+    HEAT,
+) = range(22)
+N_CONSTANTS = 22  # the packed terms (model/terms: terms.pack(p, "chain")) start here
 
 # rows of the workspace of one right-hand-side evaluation: first the slices as the terms read them
 # (model/terms/bodies.py), then the sweeps' own rows
@@ -55,9 +58,11 @@ ABSCISSA, HEIGHT, THETA, COS, SIN, VX, VY, OMEGA = (
 WORK_ROWS = CHAIN_ROWS + 12
 
 
-def constants(model: ChainModel) -> np.ndarray:
+def constants(model: ChainModel, world: bool = False) -> np.ndarray:
     """The chain's constants as the float vector the compiled kernels read (indices above), then its packed
-    physics terms (the load law: radiation through beam and optics, frame force)."""
+    physics terms (the load law: radiation through beam and optics, frame force), then a heated film's table
+    (k[HEAT] its start, 0: none). world: the state ends with the
+    sail's world line (a run of a case with integrated_trajectory; the analyses' states are the chain's alone)."""
     p = model.params
     k = np.zeros(N_CONSTANTS)
     k[N], k[MASS], k[INERTIA], k[HALF] = model.n, model.mass, model.inertia, model.half_length
@@ -66,10 +71,16 @@ def constants(model: ChainModel) -> np.ndarray:
     k[EXTENSIBLE] = float(model.extensible)
     k[REST_TURN] = p.rest_turn  # the springs' rest angle between neighbours (a sail made curved)
     k[FRAME] = -p.slice_mass * p.nominal_acceleration  # −m g₀ on each slice (the payload's is scaled from it)
+    # the sail's world line in the state (model/world_line.py): two more coordinates after the chain's, and g₀/c
+    k[WORLD], k[WORLD_RATE] = float(world), world_line.rate_constant(p)
     k[PAY_SLICE] = -1.0  # a payload (model/payload.py): its composite slice j, M, J_c, ρ_c, ρ in slice j's axes
     attached = payload.attachment(p)
     if attached is not None:
         k[PAY_SLICE], k[PAY_MASS], k[PAY_INERTIA] = attached.slice_index, attached.mass, attached.inertia
         k[PAY_CE], k[PAY_CP] = attached.centre_along, attached.centre_across
         k[PAY_RE], k[PAY_RP] = attached.along, attached.across
-    return np.concatenate([k, terms.pack(p, "chain")])
+    packed = terms.pack(p, "chain")
+    if not p.heated:
+        return np.concatenate([k, packed])
+    k[HEAT] = N_CONSTANTS + packed.size  # the heated film's table (model/heating.py) after the packed terms
+    return np.concatenate([k, packed, heating.table(p)])

@@ -54,7 +54,8 @@ import math
 import numpy as np
 
 from lightsail_mbs.base.kernels import njit
-from lightsail_mbs.model.terms import beam_factor, chain_forces_into
+from lightsail_mbs.model import heating, world_line
+from lightsail_mbs.model.terms import beam_factor, chain_forces_into, set_beam_factor
 from lightsail_mbs.model.terms.bodies import CHAIN_ROWS, POSITIONS, READS, VELOCITIES
 from lightsail_mbs.solvers.reduced.chain_constants import (
     ABSCISSA,
@@ -68,6 +69,7 @@ from lightsail_mbs.solvers.reduced.chain_constants import (
     EXTENSIBLE,
     FRAME,
     HALF,
+    HEAT,
     HEIGHT,
     INERTIA,
     K_S,
@@ -91,6 +93,8 @@ from lightsail_mbs.solvers.reduced.chain_constants import (
     VX,
     VY,
     WORK_ROWS,
+    WORLD,
+    WORLD_RATE,
     N,
     constants,
 )
@@ -151,6 +155,10 @@ def _free_accelerations(t, q, qd, k, work, extensible):
     slice_states_into(q, qd, k, work, extensible)
     chain_forces_into(k[N_CONSTANTS:], work[:CHAIN_ROWS], work[AX : AY + 1], t)  # the physics terms (model/terms)
     tension = k[TENSION]
+    heat = k[int(k[HEAT]) :]  # a heated film's table (model/heating.py), read at the beam's factor D
+    j_heat, f_heat = heating.weights(heat, beam_factor(k[N_CONSTANTS:], t)) if k[HEAT] != 0.0 else (0, 0.0)
+    if k[HEAT] != 0.0:
+        tension = heating.tension(heat, j_heat, f_heat)
     if tension != 0.0:
         ax[0] -= tension * cth[0]
         ay[0] -= tension * sth[0]
@@ -170,11 +178,15 @@ def _free_accelerations(t, q, qd, k, work, extensible):
         if extensible:  # axial spring forces s_j e_j: +s on slice j+1, −s on slice j
             if i > 0:
                 sp = -k_s * q[n + 1 + i] - c_s * qd[n + 1 + i]
+                if k[HEAT] != 0.0:
+                    sp += k_s * heating.rest_extension(heat, n, j_heat, f_heat, i - 1)
                 fx += sp * cth[i - 1]
                 fy += sp * sth[i - 1]
                 tau -= b * (-s * sp * cth[i - 1] + c * sp * sth[i - 1])
             if i < n - 1:  # its moment arm a_i e_i is parallel to the force: no torque
                 sp = -k_s * q[n + 2 + i] - c_s * qd[n + 2 + i]
+                if k[HEAT] != 0.0:
+                    sp += k_s * heating.rest_extension(heat, n, j_heat, f_heat, i)
                 fx -= sp * c
                 fy -= sp * s
         ax[i] = fx * inv_m
@@ -204,12 +216,20 @@ def _payload_free_acceleration(k, c, s, fx, fy, tau, ax, ay, al, j, t):
 @njit(cache=True)
 def rhs_into(t, y, k, work, ydot):
     """ẏ = (q̇, q̈) of y = (q, q̇) at the time t (Eq. 40 with M moved to the right) into ydot, with the
-    workspace work."""
+    workspace work. With the sail's world line in the state (k[WORLD]), q and q̇ end with its coordinates
+    (t, x/c) and 4-velocity (γ, γβ) (model/world_line.py): their accelerations, and the beam's factor D of
+    that 4-velocity written into the packed Doppler term before the loads are summed."""
     dof = y.size // 2
     q = y[:dof]
     qd = y[dof:]
     for i in range(dof):
         ydot[i] = qd[i]
+    if k[WORLD] != 0.0:
+        at = dof - world_line.COORDINATES
+        ratio = set_beam_factor(k[N_CONSTANTS:], world_line.doppler(qd[at], qd[at + 1]))  # and c_n(0) at λ'
+        a_time, a_distance, _ = world_line.accelerations(k[WORLD_RATE] * ratio, qd[at], qd[at + 1])
+        ydot[dof + at] = a_time
+        ydot[dof + at + 1] = a_distance
     extensible = k[EXTENSIBLE] != 0.0
     _free_accelerations(t, q, qd, k, work, extensible)
     if extensible:
@@ -229,8 +249,12 @@ def joint_forces(t, y, k, work, lam_x, lam_y):
     ydot = np.empty_like(y)
     rhs_into(t, y, k, work, ydot)
     if k[EXTENSIBLE] != 0.0:
+        heat = k[int(k[HEAT]) :]
+        j_heat, f_heat = heating.weights(heat, beam_factor(k[N_CONSTANTS:], t)) if k[HEAT] != 0.0 else (0, 0.0)
         for i in range(n - 1):
             s = -k[K_S] * y[n + 2 + i] - k[C_S] * y[dof + n + 2 + i]
+            if k[HEAT] != 0.0:
+                s += k[K_S] * heating.rest_extension(heat, n, j_heat, f_heat, i)
             mu = work[R_X, i]
             lam_x[i] = s * work[COS, i] - mu * work[SIN, i]
             lam_y[i] = s * work[SIN, i] + mu * work[COS, i]
@@ -282,9 +306,9 @@ def jacobian_into(t, y, k, scales, jac):
 class ChainDynamics:
     """q̈(q, q̇) for one chain model; states are (dof,) vectors or columns of (dof, k) arrays."""
 
-    def __init__(self, model: ChainModel):
+    def __init__(self, model: ChainModel, world: bool = False):
         self.model = model
-        self.constants = constants(model)
+        self.constants = constants(model, world)
         self._work = np.empty((WORK_ROWS, model.n))  # workspace(n), without loading a kernel
 
     def accelerations(self, q: np.ndarray, qd: np.ndarray, t: float = 0.0) -> np.ndarray:

@@ -102,7 +102,7 @@ import math
 import numpy as np
 
 from lightsail_mbs.base.kernels import njit
-from lightsail_mbs.solvers.reduced.chain_constants import C_S, C_T, EXTENSIBLE, HALF, INERTIA, K_S, K_T, MASS, N
+from lightsail_mbs.solvers.reduced.chain_constants import C_S, C_T, EXTENSIBLE, HALF, INERTIA, K_S, K_T, MASS, WORLD, N
 from lightsail_mbs.solvers.reduced.dynamics import joint_forces
 
 
@@ -329,6 +329,9 @@ def newton_solve(
     for i in range(dof):
         cr[i] += kr[i] / s2  # g
     solve_mass_compliance(cr, k, cth, sth, arm, inv_inertia, inv_ks, has_moment, pivots_inv, lower, couplings, lam, y)
+    if k[WORLD] != 0.0:  # the world line's coordinates (model/world_line.py): J̃ = 0 there, Δv = r₂/σ
+        for i in range(dof - 2, dof):
+            y[i] = 0.0
     for i in range(dof):
         dv = r2[i] / sigma - y[i]
         r[dof + i] = dv

@@ -19,6 +19,7 @@ import numpy as np
 
 from lightsail_mbs.base.kernels import njit
 from lightsail_mbs.base.settings import RunSettings
+from lightsail_mbs.model import world_line
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.solvers.reduced.dop853 import FINISHED as DONE
@@ -60,6 +61,13 @@ def state_scales(model: ChainModel, waves: float) -> np.ndarray:
         rate = max(rate, math.sqrt(model.axial_stiffness / model.mass))
     scales = np.array(scales)
     return np.concatenate([scales, scales * rate])
+
+
+def world_scales(scales: np.ndarray) -> np.ndarray:
+    """The state scales with the sail's world line appended (model/world_line.py): 1 s for its coordinates
+    (t, x/c), 1 for its 4-velocity (γ, γβ)."""
+    dof, w = scales.size // 2, world_line.COORDINATES
+    return np.concatenate([scales[:dof], np.ones(w), scales[dof:], np.ones(w)])
 
 
 def compiled_advance(method: str, integrator):
@@ -109,17 +117,24 @@ class Trajectory:
     inextensible; amplitude: (capacity,); count: the samples filled so far.
     """
 
-    def __init__(self, model: ChainModel, capacity: int):
+    def __init__(self, model: ChainModel, capacity: int, world: bool = False):
         self.model = model
         n, nz = model.n, (model.n - 1 if model.extensible else 0)
         self.x, self.y, self.theta, self.vx, self.vy, self.omega = (np.empty((capacity, n)) for _ in range(6))
         self.z, self.z_rate = np.empty((capacity, nz)), np.empty((capacity, nz))
         self.amplitude = np.empty(capacity)
+        # the sail's world line (model/world_line.py): its coordinates and 4-velocity after the chain's in y
+        self.world = np.empty((capacity, 2 * world_line.COORDINATES)) if world else None
         self.count = 0
 
     def fill(self, rows: np.ndarray) -> np.ndarray:
         """Append the states y = (q, q̇) in the rows of rows; returns their amplitudes."""
         first, m = self.count, self.model
+        if self.world is not None:
+            dof, w = rows.shape[1] // 2, world_line.COORDINATES
+            self.world[first : first + rows.shape[0]] = np.concatenate(
+                [rows[:, dof - w : dof], rows[:, 2 * dof - w :]], 1
+            )
         _fill(
             np.ascontiguousarray(rows),
             first,
@@ -216,7 +231,7 @@ def sampled_run(
     computed as every later one (a sail flat to round-off is flat for both)."""
     start = clock.perf_counter()
     times = settings.sample_times()
-    trajectory = Trajectory(model, times.size)
+    trajectory = Trajectory(model, times.size, world=y0.size > 2 * model.dof)
     monitor = FailureMonitor(float(trajectory.fill(y0[None, :])[0]), settings)
 
     def amplitude_of(batch):
@@ -237,6 +252,9 @@ def trajectory_result(
     """The Result of a run's Trajectory (samples on settings.sample_times())."""
     arrays = trajectory.arrays()
     amplitude = arrays.pop("amplitude")
+    if trajectory.world is not None:
+        w, world = world_line.COORDINATES, trajectory.world[: trajectory.count]
+        info = {**info, "world_line": world_line.record(world[:, :w], world[:, w:])}
     z, z_rate = arrays.pop("z"), arrays.pop("z_rate")
     return Result.from_trajectory(
         model.params,

@@ -49,7 +49,7 @@ import numpy as np
 
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import shapes
+from lightsail_mbs.model import shapes, world_line
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.reduced.dop853 import Dop853
@@ -63,6 +63,7 @@ from lightsail_mbs.solvers.reduced.sampling import (
     state_scales,
     stepper_advance,
     trajectory_result,
+    world_scales,
 )
 from lightsail_mbs.solvers.reduced.warmup import compile_notice
 
@@ -162,9 +163,11 @@ def run(
     if not 0 < rtol < 1:
         raise ParameterError(f"rtol={rtol!r} is invalid: allowed 0 < rtol < 1")
     model = ChainModel.from_params(params)
-    dynamics = ChainDynamics(model)
+    world = params.integrated_trajectory
+    dynamics = ChainDynamics(model, world)
     if atol is None:
-        atol = rtol * state_scales(model, params.defect_mode)
+        scales = state_scales(model, params.defect_mode)
+        atol = rtol * (world_scales(scales) if world else scales)
 
     perturbation = float(options.pop("perturbation", 0.0))
     if not (perturbation >= 0 and np.isfinite(perturbation)):
@@ -172,6 +175,9 @@ def run(
     start = shapes.initial_state(params, perturbation=perturbation)
     q0 = model.pack(start.x[0], start.y[0], start.theta, start.z)
     y0 = np.concatenate([q0, np.zeros_like(q0)])
+    if world:  # the sail's world line after the chain's coordinates and rates (model/world_line.py)
+        s0, u0 = world_line.start(params.initial_beta)
+        y0 = np.concatenate([q0, s0, np.zeros_like(q0), u0])
     with compile_notice(method):  # one line on stderr if numba has to compile the kernels
         integrator, advance, chunk = _integrator(method, dynamics, y0, settings, rtol, atol, options)
         trajectory, error, wall = sampled_run(model, y0, settings, advance, chunk, progress)
