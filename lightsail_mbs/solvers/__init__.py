@@ -65,10 +65,10 @@ def solve(
     progress : bool
         Show a progress bar on stderr.
     uncertainty : bool
-        Estimate the answer's uncertainty and conditioning from twin runs (tolerances tightened; start
-        perturbed at round-off level), stored in ``Result.uncertainty``; the Result returned is then the
-        tightest run's (:mod:`lightsail_mbs.solvers.uncertainty`). Costs about 2–7 more runs. Sweeps
-        turn it off.
+        Estimate the answer's uncertainty and conditioning from twin runs (tolerances loosened; start
+        perturbed at round-off level; a film), stored in ``Result.uncertainty``; the Result returned is the
+        base run (a tightened twin where the loose twin finds the base run inaccurate:
+        :mod:`lightsail_mbs.solvers.uncertainty`). Costs about 1.5–3 base runs more. Sweeps turn it off.
     **options
         The solver's own numerical options (its schema in :mod:`lightsail_mbs.solvers.registry`); an
         unknown option or a value outside its range raises ParameterError before anything is solved.
