@@ -26,16 +26,18 @@ the base run is found inaccurate (item 1), and its error bar comes from twins th
    (tolerances / TIGHTEN, DOP853 / WIDE_TIGHTEN, generalized-α the step / 2) and is the run reported, with
    E_int = |q_base − q_loose| + |q_tight − q_base|. The probe, film and n-twins stay at the loose options.
 
-2. **Probe twin** — the loose twin started from the shape plus a seeded roughness of PROBE_LEVEL · a₀ at
+2. **Probe twin** — the base run started from the shape plus a seeded roughness of PROBE_LEVEL · a₀ at
    every wavelength the chain carries (shapes.roughness_profile with seed shapes.PERTURBATION_SEED, the
    same for every solver): a perturbation at the level of the solvers' own round-off (a few 1e-16 of
-   coordinates of order L) and a million times below any real film's roughness. Its effect, against the
-   loose twin of the same numerics,
+   coordinates of order L) and a million times below any real film's roughness. Its effect
 
-       S = |q_probe − q_loose|
+       S = |q_probe − q_base|
 
    is a property of the question, not of the solver: where the chain's unstable short waves grow
-   from perturbations this small, the answer is set by whatever perturbation a run starts from.
+   from perturbations this small, the answer is set by whatever perturbation a run starts from. It runs
+   at the base run's options, not the loose twin's: how fast the grid-scale waves grow depends on the
+   step that resolves them (the paper's soft extensible TnT sail, ill-posed in n, on Exudyn's
+   generalized-α: S = 1.7e-4 s at the step h, 1.2e-2 s at 2h, whatever the Newton tolerances).
 
 3. **Sampling** — where the failure falls between the base run's output samples, E_s = E_loc of
    :mod:`lightsail_mbs.solvers.events` (which has already refined the sampling until E_loc ≤ 1e-6 t_f where
@@ -63,13 +65,13 @@ DOP853; generalized-α: two, the step / 2 and / 4 with tolerances / HALF_TIGHTEN
 probe and film twins at the base run's options, E_int = Σ |q_(k+1) − q_k| over the sequence base, (h/2,)
 tight, and the tightest run reported.
 
-Cost (validation/uncertainty_cost.md, CPU time of each run): the loose, probe and film twins are about
-0.4–0.7 of a base run each (their fixed per-run cost, output sampling and set-up, does not shrink with
-the step count), the n-twins at the loose options 0.1–0.3: the whole estimate 2.5–3.5× a base run, against
-4–9× with the tightened sequence this rule replaces (its quarter-step generalized-α twin alone 3.5–4.8 base
-runs). Measured (validation/accuracy.md, 96 seeded random cases of every model): the coverage and agreement
-figures that report states. The estimate is on for single runs (``solve(..., uncertainty=True)``, the
-default, and ``lightsail-mbs simulate``); sweeps run the base run alone and say so in their outputs.
+Cost (validation/uncertainty_cost.md, CPU time of each run): the loose and film twins are about 0.4–0.7 of a
+base run each (not less: output sampling and set-up do not shrink with the step count), the probe twin one
+base run, the n-twins at the loose options 0.1–0.5 together: the whole default run 2.5–4 base runs, against
+3.3–9 with the tightened sequence this rule replaces (whose quarter-step generalized-α twin alone cost 3.5–4
+base runs). Measured (validation/accuracy.md, 96 seeded random cases of every model): the coverage and
+agreement figures that report states. The estimate is on for single runs (``solve(..., uncertainty=True)``,
+the default, and ``lightsail-mbs simulate``); sweeps run the base run alone and say so in their outputs.
 ``Result.uncertainty`` records each run (options, answer, wall and CPU time); the Result's ``wall_time`` is
 the sum of every run's.
 """
@@ -99,7 +101,7 @@ RULE = (
     f"reported: the base run (the run at tolerances/F, F = {TIGHTEN:g}, DOP853 {WIDE_TIGHTEN:g}, generalized-α the "
     f"step / 2, when |q − q_loose| > {ACCURACY:g}·|q|); U = {SAFETY:g}·(E_int + S) + E_s; E_int = Σ|q_(k+1) − q_k| "
     f"over the runs from q_loose, at tolerances × {LOOSEN:g} (generalized-α: the step × 2); "
-    f"S = |q_loose(start + seeded roughness {PROBE_LEVEL:g} a₀) − q_loose|; "
+    f"S = |q(start + seeded roughness {PROBE_LEVEL:g} a₀) − q_base|; "
     f"E_s: where q falls between output samples; well-conditioned when S ≤ {CONDITION_TOL:g}·|q|"
 )
 FALLBACK_RULE = (
@@ -234,8 +236,8 @@ def why_not(solver, params: SailParameters, result) -> str | None:
 def twin_runs(solver, params, settings, options, result, roles, progress) -> tuple[dict, dict, list[str]]:
     """(runs, records, order): the base run's twins (module docstring) by name, and the runs of the integration
     sequence from the loosest to the reported one — ["loose", "base"], or the fallback's ["base", (half,) tight]
-    when the loose twin ends with a solver error or did not run looser (`looser`). The probe and film twins run
-    at the options of order[0]."""
+    when the loose twin ends with a solver error or did not run looser (`looser`). The probe twin runs at the
+    base run's options, the film twin at those of order[0]."""
     runs, records = (
         {"base": result},
         {"base": record_of(result, options, result.info.get("sampling", {}).get("cpu_time"))},
@@ -258,7 +260,7 @@ def twin_runs(solver, params, settings, options, result, roles, progress) -> tup
         run(name, params, tightened(options, result.info, factor, roles))
         order.append(name)
     for name in roles["perturbation"][:1]:
-        run("probe", params, {**reference, name: PROBE_LEVEL * params.displacement_scale})
+        run("probe", params, {**options, name: PROBE_LEVEL * params.displacement_scale})
     film_case, _ = film_twin(params)
     if film_case is not None:
         run("film", film_case, reference)
@@ -294,8 +296,8 @@ def assess(solver, params: SailParameters, settings: RunSettings, options: dict,
     steps = [records[b]["value"] - records[a]["value"] for a, b in zip(order, order[1:])]
     same_verdict = all(records[name]["failed"] == failed for name in order)
     integration = sum(abs(d) for d in steps) if same_verdict else math.inf
-    probe, reference = records["probe"], records[order[0]]
-    sensitivity = abs(probe["value"] - reference["value"]) if probe["failed"] == reference["failed"] else math.inf
+    probe, base = records["probe"], records["base"]
+    sensitivity = abs(probe["value"] - base["value"]) if probe["failed"] == base["failed"] else math.inf
     location = sampling_error(reported, settings, failed)
     uncertainty = SAFETY * (integration + sensitivity) + location
     well = sensitivity <= CONDITION_TOL * abs(value)
