@@ -20,6 +20,7 @@ folder here and its registration.
 
 from __future__ import annotations
 
+import time
 from typing import TYPE_CHECKING
 
 from lightsail_mbs.base.settings import RunSettings
@@ -80,10 +81,12 @@ def solve(
         raise ParameterError(f"settings={settings!r} is invalid: allowed a RunSettings")
     engine.check_options(options)
     with interrupts_propagate():
+        start = time.process_time()
         result, sampled = events.located_run(engine, params, settings, options, progress=progress)
         if uncertainty:
             from lightsail_mbs.solvers import uncertainty as estimate
 
-            result = estimate.assess(engine, params, sampled, options, result, progress=progress)
+            base_cpu = time.process_time() - start  # the base run's, its reruns that locate a failure included
+            result = estimate.assess(engine, params, sampled, options, result, progress=progress, base_cpu=base_cpu)
     result.settings = settings  # the run control asked for; info["sampling"] says how it was sampled
     return result

@@ -41,7 +41,6 @@ but no finer than the memory cap allows over t_final (the refinement then locate
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 
@@ -188,11 +187,9 @@ def located_run(module, params, settings: RunSettings, options: dict, progress: 
     """(Result, the settings it was made with): module.run on the case's default sampling
     (default_sampling), repeated at finer output intervals until its failure time is located
     (refined_settings). info["sampling"] records the interval and end of the run, the reruns and their wall
-    time (also added to the Result's wall_time), the location error, the notes (a note that limits the
-    location is also a warning) and the CPU time of the whole (s, the process's, reruns included). A rerun
-    that does not fail where its coarser run did (its step or round-off decides the failure) is not
-    reported: the coarser run is kept, with a warning (unconfirmed_note)."""
-    start = time.process_time()
+    time (also added to the Result's wall_time), the location error and the notes; a note that limits the
+    location is also a warning. A rerun that does not fail where its coarser run did (its step or round-off
+    decides the failure) is not reported: the coarser run is kept, with a warning (unconfirmed_note)."""
     settings, note = default_sampling(params, settings)
     result = module.run(params, settings, progress=progress, **options)
     notes = [note] if note else []
@@ -221,6 +218,5 @@ def located_run(module, params, settings: RunSettings, options: dict, progress: 
         "location_error": location_error(result.time, result.amplitude, settings.failure_ratio),
         "notes": notes,
         "refinement_wall_time": earlier_wall,
-        "cpu_time": time.process_time() - start,
     }
     return result, settings

@@ -240,15 +240,12 @@ def why_not(solver, params: SailParameters, result) -> str | None:
     return None
 
 
-def twin_runs(solver, params, settings, options, result, roles, progress) -> tuple[dict, dict, list[str]]:
+def twin_runs(solver, params, settings, options, result, roles, progress, base_cpu) -> tuple[dict, dict, list[str]]:
     """(runs, records, order): the base run's twins (module docstring) by name, and the runs of the integration
     sequence from the loosest to the reported one — ["loose", "base"], or the fallback's ["base", (half,) tight]
     when the loose twin ends with a solver error or did not run looser (`looser`). The probe twin runs at the
     base run's options, the film twin at those of order[0]."""
-    runs, records = (
-        {"base": result},
-        {"base": record_of(result, options, result.info.get("sampling", {}).get("cpu_time"))},
-    )
+    runs, records = {"base": result}, {"base": record_of(result, options, base_cpu)}
 
     def run(name, case, twin_options):
         start = time.process_time()
@@ -274,19 +271,27 @@ def twin_runs(solver, params, settings, options, result, roles, progress) -> tup
     return runs, records, order
 
 
-def assess(solver, params: SailParameters, settings: RunSettings, options: dict, result, progress: bool = False):
+def assess(
+    solver,
+    params: SailParameters,
+    settings: RunSettings,
+    options: dict,
+    result,
+    progress: bool = False,
+    base_cpu: float | None = None,
+):
     """The Result to report for `result` (a run of `solver`, a registered contract.Solver or any object with
     its ``run``, with `options`), with its uncertainty record (Result.uncertainty): runs the twins (module
     docstring; the options they change found by their roles, solvers.contract rule 8) and returns the
     reported run (the base run, or the fallback's tightest), or `result` itself when no estimate can be made.
-    `progress`: a bar for every twin too."""
+    `progress`: a bar for every twin too; `base_cpu`: the base run's CPU time (s), for the record."""
     reason = why_not(solver, params, result)
     if reason is not None:
         result.uncertainty = not_estimated(reason)
         return result
     quantity, failed, value = answer(result)
     roles = solver.roles() if hasattr(solver, "roles") else contract.registered_roles()
-    runs, records, order = twin_runs(solver, params, settings, options, result, roles, progress)
+    runs, records, order = twin_runs(solver, params, settings, options, result, roles, progress, base_cpu)
     total_wall = sum(record["wall_time"] for record in records.values())
     for name, record in records.items():
         if record["error"] is not None and name not in ("film", "loose"):  # the film twin's error is its own record's
