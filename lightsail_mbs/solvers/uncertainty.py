@@ -71,11 +71,12 @@ tight, and the tightest run reported.
 
 Cost (validation/uncertainty_cost.md, CPU time of each run): the loose and film twins are about 0.4–0.7 of a
 base run each (not less: output sampling and set-up do not shrink with the step count), the probe twin one
-base run, the n-twins at the loose options 0.1–0.5 together: the whole default run 2.5–4 base runs, against
-3.3–9 with the tightened sequence this rule replaces (whose quarter-step generalized-α twin alone cost 3.5–4
-base runs). Measured (validation/accuracy.md, 96 seeded random cases of every model): the coverage and
-agreement figures that report states. The estimate is on for single runs (``solve(..., uncertainty=True)``,
-the default, and ``lightsail-mbs simulate``); sweeps run the base run alone and say so in their outputs.
+base run, the n-twins at the loose options 0.1–0.5 together: the whole default run 2.2–4.8 base runs
+(Exudyn; the reduced solver 2.7–4.5, its runs' fixed cost larger against its steps), against 3.3–9 with the
+tightened sequence this rule replaces (whose quarter-step generalized-α twin alone cost 3.5–4 base runs).
+Measured (validation/accuracy.md, 96 seeded random cases of every model): the coverage and agreement figures
+that report states. The estimate is on for single runs (``solve(..., uncertainty=True)``, the default, and
+``lightsail-mbs simulate``); sweeps run the base run alone and say so in their outputs.
 ``Result.uncertainty`` records each run (options, answer, wall and CPU time); the Result's ``wall_time`` is
 the sum of every run's.
 """
