@@ -390,8 +390,9 @@ def markdown(all_rows: list[dict], wall: float, holdout: list[dict] = ()) -> str
     )
     lines += [
         "",
-        "CPU times include the twin runs of each solver's uncertainty estimate (3–4 base runs for the adaptive "
-        "methods, 8 for generalized-α) and, where the case is well posed in n, the twins at n/2 and n/4 "
+        "CPU times include the twin runs of each solver's uncertainty estimate (the loose, probe and film twins, "
+        "and a tightened twin where the base run is found inaccurate: validation/uncertainty_cost.md) and, where "
+        "the case is well posed in n, the twins at n/2 and n/4 "
         f"({twin_cost(all_rows)}).",
         *(
             [
