@@ -3,9 +3,12 @@
     python validation/benchmark.py                      # all solvers, all cases, 3 repeats
     python validation/benchmark.py --solvers exudyn --repeats 5 --markdown bench.md
     python validation/benchmark.py --convergence        # Exudyn step/tolerance study (soft cases)
+    python validation/benchmark.py --no-default         # the base runs alone
 
-Timings on a shared machine are noisy: the minimum over repeats is reported, with the process CPU time
-next to the wall time.
+Each row is the base run (``solve(..., uncertainty=False)``: what sweeps run) and, beside it, the default
+run (``solve(...)``: the base run with its uncertainty estimate, the answer with its ±) and the ratio of
+the two. Timings on a shared machine are noisy: the minimum over repeats is reported, the process CPU time
+(time.process_time, what the run costs whatever else runs beside it) next to the wall time.
 """
 
 from __future__ import annotations
@@ -16,6 +19,7 @@ import time
 from pathlib import Path
 
 from lightsail_mbs import paper_case, paper_settings, solve
+from lightsail_mbs.result import with_uncertainty
 from lightsail_mbs.solvers import SOLVERS
 
 # label -> paper case name
@@ -28,7 +32,7 @@ CASES = {
 }
 
 
-def measure(name: str, solver: str, repeats: int) -> dict:
+def measure(name: str, solver: str, repeats: int, default: bool = True) -> dict:
     params, settings = paper_case(name), paper_settings(name)
     best, cpu = None, float("inf")
     for _ in range(repeats):
@@ -41,7 +45,7 @@ def measure(name: str, solver: str, repeats: int) -> dict:
     wall, result = best
     steps = result.info.get("steps", result.info.get("n_steps", "—"))
     ft = result.failure_time
-    return {
+    row = {
         "wall": wall,
         "cpu": cpu,
         "steps": steps,
@@ -49,18 +53,40 @@ def measure(name: str, solver: str, repeats: int) -> dict:
         "t_end": float(result.time[-1]),
         "error": result.error,
     }
+    return {**row, **measure_default(params, solver, settings, repeats)} if default else row
 
 
-def benchmark(solvers, cases, repeats) -> list[dict]:
+def measure_default(params, solver: str, settings, repeats: int) -> dict:
+    """The default run of a row (the base run with its uncertainty estimate): wall and CPU time (minimum of
+    repeats) and its answer with the ±."""
+    wall, cpu, result = float("inf"), float("inf"), None
+    for _ in range(repeats):
+        start, start_cpu = time.perf_counter(), time.process_time()
+        result = solve(params, solver, settings)
+        cpu = min(cpu, time.process_time() - start_cpu)
+        wall = min(wall, time.perf_counter() - start)
+    u = result.uncertainty or {}
+    what = "t_f" if u.get("quantity") == "failure_time" else "max ratio"
+    answer = f"{what} {with_uncertainty(u['value'], u['uncertainty'])}" if u.get("estimated") else "not estimated"
+    return {"default_wall": wall, "default_cpu": cpu, "default_answer": answer}
+
+
+def benchmark(solvers, cases, repeats, default: bool = True) -> list[dict]:
     rows = []
     for solver in solvers:
         for case in cases:
-            row = {"case": case, "solver": solver, **measure(CASES[case], solver, repeats)}
+            row = {"case": case, "solver": solver, **measure(CASES[case], solver, repeats, default)}
             rows.append(row)
             print(
                 f"{case:34s} {solver:8s} wall {row['wall']:7.3f} s  cpu {row['cpu']:7.3f} s  "
                 f"steps {row['steps']!s:>7}  failure {row['failure']}"
-                + (f"  ERROR {row['error']}" if row["error"] else ""),
+                + (f"  ERROR {row['error']}" if row["error"] else "")
+                + (
+                    f"  default cpu {row['default_cpu']:.3f} s ({row['default_cpu'] / row['cpu']:.2f}×) "
+                    f"{row['default_answer']}"
+                    if default
+                    else ""
+                ),
                 flush=True,
             )
     return rows
@@ -106,13 +132,22 @@ def convergence(cases=("torsion-soft", "tnt-soft", "rigid"), factors=(1.0, 0.5, 
 
 
 def markdown(rows) -> str:
-    lines = [
-        "| case | solver | wall time (s, min) | CPU time (s, min) | steps | failure time |",
-        "|---|---|---:|---:|---:|---:|",
-    ]
+    default = "default_cpu" in rows[0] if rows else False
+    head = "| case | solver | wall time (s, min) | CPU time (s, min) | steps | failure time |"
+    rule = "|---|---|---:|---:|---:|---:|"
+    if default:
+        head += " default run: answer | default wall (s, min) | default CPU (s, min) | CPU default / base |"
+        rule += "---|---:|---:|---:|"
+    lines = [head, rule]
     for r in rows:
         fail = r["failure"] + (f" (error: {r['error']})" if r["error"] else "")
-        lines.append(f"| {r['case']} | {r['solver']} | {r['wall']:.3f} | {r['cpu']:.3f} | {r['steps']} | {fail} |")
+        line = f"| {r['case']} | {r['solver']} | {r['wall']:.3f} | {r['cpu']:.3f} | {r['steps']} | {fail} |"
+        if default:
+            line += (
+                f" {r['default_answer']} | {r['default_wall']:.3f} | {r['default_cpu']:.3f} | "
+                f"{r['default_cpu'] / r['cpu']:.2f} |"
+            )
+        lines.append(line)
     return "\n".join(lines) + "\n"
 
 
@@ -131,6 +166,7 @@ def main(argv=None) -> int:
     ap.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES), metavar="CASE")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--markdown", type=Path, help="also write the table(s) as Markdown to this file")
+    ap.add_argument("--no-default", action="store_true", help="time the base runs alone (no default-run columns)")
     ap.add_argument(
         "--convergence",
         action="store_true",
@@ -142,11 +178,16 @@ def main(argv=None) -> int:
     if args.convergence:
         text = convergence_markdown(convergence())
     else:
-        text = markdown(benchmark(args.solvers, args.cases, args.repeats))
+        text = markdown(benchmark(args.solvers, args.cases, args.repeats, default=not args.no_default))
     print()
     print(text)
     if args.markdown:
-        args.markdown.write_text(text)
+        command = "python validation/benchmark.py " + " ".join(argv if argv is not None else sys.argv[1:])
+        args.markdown.write_text(
+            f"Generated by `{command.strip()}` on a shared 2-core machine: the minimum of {args.repeats} repeats; the "
+            "ratio is of CPU times (time.process_time of the run), which other processes' load moves less than "
+            "wall times.\n\n" + text
+        )
     return 0
 
 

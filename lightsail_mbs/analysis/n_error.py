@@ -69,6 +69,7 @@ at least in proportion to n), on top of the 3–8 runs of the uncertainty estima
 from __future__ import annotations
 
 import math
+import time
 
 import numpy as np
 
@@ -161,8 +162,9 @@ def why_not(params, result) -> str | None:
 def fold(params, solver: str, settings, options: dict, result, progress: bool = False) -> None:
     """Estimate the n-error of `result` (a run of `solver` with `options`, its uncertainty estimated and its
     resolvedness verdict recorded) from its twins at n/2 and n/4, record it in ``result.uncertainty["n_error"]``
-    and add it to ``result.uncertainty["uncertainty"]`` (module docstring). Does nothing for a run without an
-    estimate."""
+    and add it to ``result.uncertainty["uncertainty"]`` (module docstring). The twins run at the options of the
+    run the estimate names as its reference (``result.uncertainty["reference"]``: the loose twin, or the base
+    run), and their answers are compared with that run's. Does nothing for a run without an estimate."""
     record = result.uncertainty
     if not record or not record.get("estimated"):
         return
@@ -170,10 +172,12 @@ def fold(params, solver: str, settings, options: dict, result, progress: bool = 
     if reason is not None:
         record["n_error"] = {"estimated": False, "reason": reason}
         return
-    base = record["base"]
-    twins, histories, wall = {}, {}, 0.0
+    reference = record[record.get("reference", "base")]
+    twins, histories, wall, start = {}, {}, 0.0, time.process_time()
     for size in twin_sizes(params):
-        twin = solvers.solve(params.replace(n=size), solver, settings, progress=progress, uncertainty=False, **options)
+        twin = solvers.solve(
+            params.replace(n=size), solver, settings, progress=progress, uncertainty=False, **reference["options"]
+        )
         wall += twin.wall_time
         if twin.error is not None:
             record["n_error"] = {"estimated": False, "reason": f"the twin at n = {size} ended with {twin.error}"}
@@ -185,14 +189,14 @@ def fold(params, solver: str, settings, options: dict, result, progress: bool = 
     sizes = sorted(twins, reverse=True)
     (half, half_failed), quarter = twins[sizes[0]], twins.get(sizes[-1]) if len(sizes) > 1 else None
     rise = None
-    if half_failed != base["failed"]:
+    if half_failed != reference["failed"]:
         error = math.inf
     else:
-        usable = quarter is not None and quarter[1] == base["failed"]
-        error = estimate(base["value"], half, quarter[0] if usable else None, ratio=not base["failed"])
+        usable = quarter is not None and quarter[1] == reference["failed"]
+        error = estimate(reference["value"], half, quarter[0] if usable else None, ratio=not reference["failed"])
         if not usable:
-            error = max(error, spectral_floor(result.info["resolvedness"], base["value"], base["failed"]))
-        if not base["failed"]:
+            error = max(error, spectral_floor(result.info["resolvedness"], reference["value"], reference["failed"]))
+        if not reference["failed"]:
             rise = recurrence_rise(result.time, result.amplitude, *histories[sizes[0]])
             error = max(error, rise)
     record["n_error"] = {
@@ -203,6 +207,7 @@ def fold(params, solver: str, settings, options: dict, result, progress: bool = 
         "recurrence_rise": rise,
         "twins": {str(size): {"value": value, "failed": failed} for size, (value, failed) in twins.items()},
         "wall_time": wall,
+        "cpu_time": time.process_time() - start,
     }
     record["uncertainty_numerics"] = record["uncertainty"]
     record["uncertainty"] = record["uncertainty"] + error

@@ -20,6 +20,7 @@ folder here and its registration.
 
 from __future__ import annotations
 
+import time
 from typing import TYPE_CHECKING
 
 from lightsail_mbs.base.settings import RunSettings
@@ -65,10 +66,10 @@ def solve(
     progress : bool
         Show a progress bar on stderr.
     uncertainty : bool
-        Estimate the answer's uncertainty and conditioning from twin runs (tolerances tightened; start
-        perturbed at round-off level), stored in ``Result.uncertainty``; the Result returned is then the
-        tightest run's (:mod:`lightsail_mbs.solvers.uncertainty`). Costs about 2–7 more runs. Sweeps
-        turn it off.
+        Estimate the answer's uncertainty and conditioning from twin runs (tolerances loosened; start
+        perturbed at round-off level; a film), stored in ``Result.uncertainty``; the Result returned is the
+        base run (a tightened twin where the loose twin finds the base run inaccurate:
+        :mod:`lightsail_mbs.solvers.uncertainty`). Costs about 1.5–3 base runs more. Sweeps turn it off.
     **options
         The solver's own numerical options (its schema in :mod:`lightsail_mbs.solvers.registry`); an
         unknown option or a value outside its range raises ParameterError before anything is solved.
@@ -80,10 +81,12 @@ def solve(
         raise ParameterError(f"settings={settings!r} is invalid: allowed a RunSettings")
     engine.check_options(options)
     with interrupts_propagate():
+        start = time.process_time()
         result, sampled = events.located_run(engine, params, settings, options, progress=progress)
         if uncertainty:
             from lightsail_mbs.solvers import uncertainty as estimate
 
-            result = estimate.assess(engine, params, sampled, options, result, progress=progress)
+            base_cpu = time.process_time() - start  # the base run's, its reruns that locate a failure included
+            result = estimate.assess(engine, params, sampled, options, result, progress=progress, base_cpu=base_cpu)
     result.settings = settings  # the run control asked for; info["sampling"] says how it was sampled
     return result

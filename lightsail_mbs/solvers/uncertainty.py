@@ -1,29 +1,34 @@
 """How sure a run is of its answer: an error bar and a conditioning verdict from twin runs.
 
 The answer q of a run is its failure time t_f when the sail fails within the run, else its largest
-amplitude ratio max a(t)/a(0). With the estimate on, a run is a short sequence of runs of the same
-solver, and the one reported is the most accurate of them:
+amplitude ratio max a(t)/a(0). With the estimate on, the **reported run is the base run itself** (the
+solver's default or given tolerances: the answer a sweep, which runs the base run alone, gets too) unless
+the base run is found inaccurate (item 1), and its error bar comes from twins that cost less than it:
 
-1. **A tolerance sequence.** The base run (the solver's default or given tolerances) is repeated with
-   every tolerance divided by a factor F (rtol, and atol or the Newton tolerances if given; a fixed
-   step divided by √F, the methods with a fixed step being second order):
+1. **A loose twin.** The base run repeated with every tolerance multiplied by a factor F (rtol, and atol or
+   the Newton tolerances if given; a fixed step multiplied by √F, the methods with a fixed step being second
+   order): F = LOOSEN for the adaptive methods (about 0.5–0.7 of a base run's steps), F = DOP853_LOOSEN for
+   the reduced solver's DOP853, which crosses a run in 20–50 steps at its default rtol where its error is
+   not proportional to rtol (against rtol 1e-11, the change at rtol × 10 was 3.4–6.5× the base run's error
+   on the paper's soft, stable and rigid sails and a Doppler-shifted soft sail, at rtol × 2 0.6–0.8×, too
+   little to bound it, and at rtol × 3 1.1–1.7× on the soft, rigid and Doppler-shifted ones), F =
+   STEP_LOOSEN for generalized-α (the step × 2: half the steps; Exudyn's chain loosens its Newton tolerances
+   as rtol², by 16, so that the modified Newton's error, which can set an extensible chain's, is loosened
+   too). Its integration error bound is the change between the two, no order assumed:
 
-   - the adaptive methods: one twin, F = TIGHTEN; F = WIDE_TIGHTEN for the reduced solver's DOP853,
-     which crosses a whole run in 20–50 steps at its default rtol, where its error is not yet
-     proportional to rtol (a seeded case: the failure time moves by 1.0e-4, 3.5e-4 and 2.0e-4 s per
-     decade from rtol 1e-8 to 1e-11);
-   - generalized-α (a fixed step h): two twins, at h/2 (F = HALF_TIGHTEN) and h/4
-     (F = STEP_TIGHTEN). At its default step its error is not in its h² regime: the answers of a
-     seeded torsion case at h, h/2, h/4 and h/8 are 1.8158656, 1.8158639, 1.8158687 and 1.8158751 s
-     against 1.8158771 s (validation/accuracy.md), not monotone, so no order can be assumed.
+       E_int = |q_base − q_loose|.
 
-   The **reported run is the tightest one** (the last of the sequence), and its integration error is
-   bounded by the spread of the sequence, no order of convergence assumed:
+   If the error grows at least as fast as linearly with the tolerances, |q_base − q_loose| ≥ (F − 1) ·
+   |q_base − q_∞| ≥ the base run's error; generalized-α at its default step is not in its h² regime (a
+   seeded torsion case at h, h/2, h/4, h/8: 1.8158656, 1.8158639, 1.8158687, 1.8158751 s against 1.8158771 s),
+   which U's SAFETY and the measured coverage (validation/accuracy.md) answer for.
 
-       E_int = Σ |q_(k+1) − q_k|   over the sequence base, (h/2,) tight.
-
-   If the error falls by at least half per tightening, the tight run's error is at most the last
-   difference, which E_int contains; in the asymptotic regime E_int overstates it by about F.
+   **Tightened where the base run is not accurate.** When the loose twin's answer is more than ACCURACY · |q|
+   from the base run's (or of the other verdict), the base run may be further off than the two solvers are
+   held to agree (validation/accuracy.md: a seeded rigid chain of 77 slices, ill-posed in n, whose reduced
+   DOP853 base run lies 2.5e-3 from its tightened answer): the first twin of the tightened sequence runs too
+   (tolerances / TIGHTEN, DOP853 / WIDE_TIGHTEN, generalized-α the step / 2) and is the run reported, with
+   E_int = |q_base − q_loose| + |q_tight − q_base|. The probe, film and n-twins stay at the loose options.
 
 2. **Probe twin** — the base run started from the shape plus a seeded roughness of PROBE_LEVEL · a₀ at
    every wavelength the chain carries (shapes.roughness_profile with seed shapes.PERTURBATION_SEED, the
@@ -33,60 +38,84 @@ solver, and the one reported is the most accurate of them:
        S = |q_probe − q_base|
 
    is a property of the question, not of the solver: where the chain's unstable short waves grow
-   from perturbations this small, the answer is set by whatever perturbation a run starts from.
+   from perturbations this small, the answer is set by whatever perturbation a run starts from. It runs
+   at the base run's options, not the loose twin's: how fast the grid-scale waves grow depends on the
+   step that resolves them (the paper's soft extensible TnT sail, ill-posed in n, on Exudyn's
+   generalized-α: S = 1.7e-4 s at the step h, 1.2e-2 s at 2h, whatever the Newton tolerances).
 
-3. **Sampling** — where the failure falls between the reported run's output samples, E_s = E_loc of
+3. **Sampling** — where the failure falls between the base run's output samples, E_s = E_loc of
    :mod:`lightsail_mbs.solvers.events` (which has already refined the sampling until E_loc ≤ 1e-6 t_f where
    it could), or for a sail that did not fail, how far its largest amplitude may lie above the largest
    sample (the parabola through the peak sample and its neighbours).
 
-4. **Film twin** — the base run started from the case's shape plus a physical film
+4. **Film twin** — the loose twin started from the case's shape plus a physical film
    (:mod:`lightsail_mbs.model.film`): the reference film (1 nm RMS, ξ = 0.1 m, H = 0.5) for a case without
    one, or the case's own film at the next seed. It is not part of U: the ideal-defect answer and its U
    stand for a film smoother than any real one, and this twin says whether a real film changes them — the
-   run is *defect-dominated* when the film moves q by at most FILM_TOL · |q|, else *roughness-dominated*,
-   with the RMS below which the ideal answer would hold estimated as linear in the film's RMS.
+   run is *defect-dominated* when the film moves q (against the loose twin) by at most FILM_TOL · |q|, else
+   *roughness-dominated*, with the RMS below which the ideal answer would hold estimated as linear in the
+   film's RMS.
 
 The uncertainty of the reported q is U = SAFETY · (E_int + S) + E_s, and the run is **well-conditioned**
 when S ≤ CONDITION_TOL · |q|. When a twin's verdict differs (one fails within the run, the other not), U is
-infinite and the run ill-conditioned: the sail is at its stability boundary for that run length.
+infinite and the run ill-conditioned: the sail is at its stability boundary for that run length. The
+n-error of :mod:`lightsail_mbs.analysis.n_error` runs its twins at the loose twin's options too
+(``Result.uncertainty["reference"]`` names the run they are compared with).
 
-Measured (validation/accuracy.md, 96 seeded random cases of every model; the rule settled on the first
-64, the last 32 run once after): the two solvers' answers differ by less than their combined U in all 96
-cases, and by ≤ 1e-3 relative (at most 9.6e-5) on all 89 well-conditioned ones. For the tight twin to be
-much more accurate than the base run, every error source must shrink: Exudyn's chain tightens its Newton
-tolerances as rtol² (its step as √rtol), since on extensible chains the modified Newton's residual, not
-the step, can set the error (solvers.exudyn.chain).
+**Fallback: the tolerance sequence.** When the loose twin ends with a solver error (a step too large for
+Newton) or could not run looser (Exudyn's sheet caps its step at the output interval), the estimate is the
+tighter sequence instead: twins at the tolerances / F (F = TIGHTEN; WIDE_TIGHTEN for the reduced solver's
+DOP853; generalized-α: two, the step / 2 and / 4 with tolerances / HALF_TIGHTEN and / STEP_TIGHTEN), the
+probe and film twins at the base run's options, E_int = Σ |q_(k+1) − q_k| over the sequence base, (h/2,)
+tight, and the tightest run reported.
 
-The estimate costs the twin runs: 3–4 base runs for the adaptive methods (the tight one 1.5–3× a base
-run), 8 for generalized-α (2 + 4 + 1 more). It is on for single runs (``solve(..., uncertainty=True)``,
-the default, and ``lightsail-mbs simulate``); sweeps run the base run alone and say so in their outputs.
-The reported Result is the tight run's (its trajectories, answer and info), its ``wall_time`` the sum of
-every run's, and ``Result.uncertainty`` records each run (options, answer, wall time).
+Cost (validation/uncertainty_cost.md, CPU time of each run): the loose and film twins are about 0.4–0.7 of a
+base run each (not less: output sampling and set-up do not shrink with the step count), the probe twin one
+base run, the n-twins at the loose options 0.1–0.5 together: the whole default run 2.2–4.8 base runs
+(Exudyn; the reduced solver 2.7–4.5, its runs' fixed cost larger against its steps), against 3.3–9 with the
+tightened sequence this rule replaces (whose quarter-step generalized-α twin alone cost 3.5–4 base runs).
+Measured (validation/accuracy.md, 96 seeded random cases of every model): the coverage and agreement figures
+that report states. The estimate is on for single runs (``solve(..., uncertainty=True)``, the default, and
+``lightsail-mbs simulate``); sweeps run the base run alone and say so in their outputs.
+``Result.uncertainty`` records each run (options, answer, wall and CPU time); the Result's ``wall_time`` is
+the sum of every run's.
 """
 
 from __future__ import annotations
 
 import math
+import time
 
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.model import film
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.solvers import contract, events
 
-TIGHTEN = 10.0  # the tight twin's tolerances are the base run's / TIGHTEN (adaptive methods)
-WIDE_TIGHTEN = 100.0  # the reduced solver's DOP853: rtol / 100
-HALF_TIGHTEN = 4.0  # generalized-α (a fixed step): the middle twin, tolerances / 4, the step / 2
-STEP_TIGHTEN = 16.0  # generalized-α: the tight twin, tolerances / 16, the step / 4
+LOOSEN = 10.0  # the loose twin's tolerances are the base run's × LOOSEN (adaptive methods)
+DOP853_LOOSEN = 3.0  # the reduced solver's DOP853: rtol × 3
+STEP_LOOSEN = 4.0  # generalized-α: rtol × 4, the step × 2
+TIGHTEN = 10.0  # the fallback's tight twin: the base run's tolerances / TIGHTEN (adaptive methods)
+WIDE_TIGHTEN = 100.0  # the fallback, the reduced solver's DOP853: rtol / 100
+HALF_TIGHTEN = 4.0  # the fallback, generalized-α (a fixed step): the middle twin, tolerances / 4, the step / 2
+STEP_TIGHTEN = 16.0  # the fallback, generalized-α: the tight twin, tolerances / 16, the step / 4
 PROBE_LEVEL = 1e-12  # the probe twin's roughness amplitude, in units of the defect amplitude a₀
 SAFETY = 2.0  # U = SAFETY · (E_int + S)
 CONDITION_TOL = 1e-4  # well-conditioned: S ≤ CONDITION_TOL · |q|
 FILM_TOL = 1e-3  # defect-dominated: the film twin moves q by ≤ FILM_TOL · |q|
+ACCURACY = 1e-3  # the base run is reported when the loose twin's answer is within ACCURACY · |q| of it
 RULE = (
-    f"reported: the run at tolerances/F; U = {SAFETY:g}·(E_int + S) + E_s; E_int = Σ|q_(k+1) − q_k| over the runs at "
-    f"tolerances/1, /F: F = {TIGHTEN:g} (DOP853: {WIDE_TIGHTEN:g}; generalized-α: the step /1, /2, /4); "
-    f"S = |q(start + seeded roughness {PROBE_LEVEL:g} a₀) − q|; E_s: where q falls between output samples; "
-    f"well-conditioned when S ≤ {CONDITION_TOL:g}·|q|"
+    f"reported: the base run (the run at tolerances/F, F = {TIGHTEN:g}, DOP853 {WIDE_TIGHTEN:g}, generalized-α the "
+    f"step / 2, when |q − q_loose| > {ACCURACY:g}·|q|); U = {SAFETY:g}·(E_int + S) + E_s; E_int = Σ|q_(k+1) − q_k| "
+    f"over the runs from q_loose, at tolerances × {LOOSEN:g} (DOP853: × {DOP853_LOOSEN:g}; generalized-α: the "
+    f"step × 2); "
+    f"S = |q(start + seeded roughness {PROBE_LEVEL:g} a₀) − q_base|; "
+    f"E_s: where q falls between output samples; well-conditioned when S ≤ {CONDITION_TOL:g}·|q|"
+)
+FALLBACK_RULE = (
+    f"reported: the run at tolerances/F (the loose twin failed); U = {SAFETY:g}·(E_int + S) + E_s; E_int = "
+    f"Σ|q_(k+1) − q_k| over the runs at tolerances/1, /F: F = {TIGHTEN:g} (DOP853: {WIDE_TIGHTEN:g}; generalized-α: "
+    f"the step /1, /2, /4); S = |q(start + seeded roughness {PROBE_LEVEL:g} a₀) − q|; E_s: where q falls between "
+    f"output samples; well-conditioned when S ≤ {CONDITION_TOL:g}·|q|"
 )
 
 
@@ -114,6 +143,31 @@ def sequence(info: dict) -> list[tuple[str, float]]:
     if is_fixed_step(info):
         return [("half", HALF_TIGHTEN), ("tight", STEP_TIGHTEN)]
     return [("tight", tightening(info))]
+
+
+def accurate(loose: dict, base: dict) -> bool:
+    """Whether the loose twin's answer lies within ACCURACY · |q| of the base run's (same verdict): the base run is
+    then reported; otherwise the first twin of the tightened sequence is run and reported (module docstring)."""
+    return loose["failed"] == base["failed"] and abs(loose["value"] - base["value"]) <= ACCURACY * abs(base["value"])
+
+
+def loosening(info: dict) -> float:
+    """F of the loose twin (module docstring): STEP_LOOSEN for generalized-α, DOP853_LOOSEN for DOP853, else
+    LOOSEN."""
+    return STEP_LOOSEN if is_fixed_step(info) else DOP853_LOOSEN if info.get("method") == "DOP853" else LOOSEN
+
+
+def looser(twin_info: dict, info: dict) -> bool:
+    """Whether a twin ran at a larger fixed step (generalized-α) or rtol (the adaptive methods) than the base
+    run (`info`): a solver may cap its step (Exudyn's sheet: at the output interval), and a loose twin at the
+    base run's step is the base run again, whose difference from it says nothing."""
+    name = "step_size" if is_fixed_step(info) and info.get("step_size") else "rtol"
+    return info.get(name) is not None and float(twin_info.get(name) or 0.0) > float(info[name]) * (1 + 1e-12)
+
+
+def loosened(options: dict, info: dict, roles: dict | None = None) -> dict:
+    """The loose twin's options: tightened(...) by 1/loosening(info), every tolerance × F, a fixed step × √F."""
+    return tightened(options, info, 1.0 / loosening(info), roles)
 
 
 def tightened(options: dict, info: dict, factor: float | None = None, roles: dict | None = None) -> dict:
@@ -165,50 +219,83 @@ def not_estimated(reason: str) -> dict:
     return {"estimated": False, "well_conditioned": None, "uncertainty": None, "explanation": reason, "rule": RULE}
 
 
-def record_of(run, options: dict) -> dict:
-    """What the uncertainty record keeps of one run: its options, wall time, error and answer."""
-    record = {"options": options, "wall_time": run.wall_time, "error": run.error}
+def record_of(run, options: dict, cpu_time: float | None = None) -> dict:
+    """What the uncertainty record keeps of one run: its options, wall and CPU time, error and answer."""
+    record = {"options": options, "wall_time": run.wall_time, "cpu_time": cpu_time, "error": run.error}
     if run.error is None:
         _, failed, value = answer(run)
         record.update(failed=failed, value=value)
     return record
 
 
-def assess(solver, params: SailParameters, settings: RunSettings, options: dict, result, progress: bool = False):
+def why_not(solver, params: SailParameters, result) -> str | None:
+    """Why no estimate can be made for `result`, or None."""
+    if result.error is not None:
+        return f"not estimated: the run ended with a solver error ({result.error})"
+    if params.boundary != "free" or params.tip_load:
+        return "not estimated: supports and tip loads are validations, not sails"
+    if not result.amplitude[0] > 0:
+        return "not estimated: the sail starts flat (no amplitude ratio to measure)"
+    if hasattr(solver, "roles") and not solver.roles()["perturbation"]:
+        return "not estimated: the solver has no perturbation option for the probe twin (contract rule 8)"
+    return None
+
+
+def twin_runs(solver, params, settings, options, result, roles, progress, base_cpu) -> tuple[dict, dict, list[str]]:
+    """(runs, records, order): the base run's twins (module docstring) by name, and the runs of the integration
+    sequence from the loosest to the reported one — ["loose", "base"], or the fallback's ["base", (half,) tight]
+    when the loose twin ends with a solver error or did not run looser (`looser`). The probe twin runs at the
+    base run's options, the film twin at those of order[0]."""
+    runs, records = {"base": result}, {"base": record_of(result, options, base_cpu)}
+
+    def run(name, case, twin_options):
+        start = time.process_time()
+        runs[name] = solver.run(case, settings, progress=progress, **twin_options)
+        records[name] = record_of(runs[name], twin_options, time.process_time() - start)
+
+    run("loose", params, loosened(options, result.info, roles))
+    order, reference = ["loose", "base"], records["loose"]["options"]
+    if runs["loose"].error is not None or not looser(runs["loose"].info, result.info):
+        order, reference = ["base"], options
+        for name, factor in sequence(result.info):
+            run(name, params, tightened(options, result.info, factor, roles))
+            order.append(name)
+    elif not accurate(records["loose"], records["base"]):
+        name, factor = sequence(result.info)[0]
+        run(name, params, tightened(options, result.info, factor, roles))
+        order.append(name)
+    for name in roles["perturbation"][:1]:
+        run("probe", params, {**options, name: PROBE_LEVEL * params.displacement_scale})
+    film_case, _ = film_twin(params)
+    if film_case is not None:
+        run("film", film_case, reference)
+    return runs, records, order
+
+
+def assess(
+    solver,
+    params: SailParameters,
+    settings: RunSettings,
+    options: dict,
+    result,
+    progress: bool = False,
+    base_cpu: float | None = None,
+):
     """The Result to report for `result` (a run of `solver`, a registered contract.Solver or any object with
     its ``run``, with `options`), with its uncertainty record (Result.uncertainty): runs the twins (module
     docstring; the options they change found by their roles, solvers.contract rule 8) and returns the
-    tightest run, or `result` itself when no estimate can be made. `progress`: a bar for every twin too."""
-    reason = None
-    if result.error is not None:
-        reason = f"not estimated: the run ended with a solver error ({result.error})"
-    elif params.boundary != "free" or params.tip_load:
-        reason = "not estimated: supports and tip loads are validations, not sails"
-    elif not result.amplitude[0] > 0:
-        reason = "not estimated: the sail starts flat (no amplitude ratio to measure)"
-    elif hasattr(solver, "roles") and not solver.roles()["perturbation"]:
-        reason = "not estimated: the solver has no perturbation option for the probe twin (contract rule 8)"
+    reported run (the base run, or the fallback's tightest), or `result` itself when no estimate can be made.
+    `progress`: a bar for every twin too; `base_cpu`: the base run's CPU time (s), for the record."""
+    reason = why_not(solver, params, result)
     if reason is not None:
         result.uncertainty = not_estimated(reason)
         return result
     quantity, failed, value = answer(result)
-    records = {"base": record_of(result, options)}
-    runs = {"base": result}
     roles = solver.roles() if hasattr(solver, "roles") else contract.registered_roles()
-    twins = [(name, tightened(options, result.info, factor, roles)) for name, factor in sequence(result.info)]
-    held = sorted({name for _, twin in twins for name in held_at_floor(twin, result.info, roles)})
-    for name in roles["perturbation"][:1]:
-        twins.append(("probe", {**options, name: PROBE_LEVEL * params.displacement_scale}))
-    for name, twin_options in twins:
-        runs[name] = solver.run(params, settings, progress=progress, **twin_options)
-        records[name] = record_of(runs[name], twin_options)
-    film_case, film_text = film_twin(params)
-    if film_case is not None:
-        runs["film"] = solver.run(film_case, settings, progress=progress, **options)
-        records["film"] = record_of(runs["film"], options)
+    runs, records, order = twin_runs(solver, params, settings, options, result, roles, progress, base_cpu)
     total_wall = sum(record["wall_time"] for record in records.values())
     for name, record in records.items():
-        if record["error"] is not None and name != "film":  # the film twin's error is its own record's
+        if record["error"] is not None and name not in ("film", "loose"):  # the film twin's error is its own record's
             result.uncertainty = {
                 **not_estimated(f"not estimated: the {name} twin ended with a solver error ({record['error']})"),
                 "quantity": quantity,
@@ -216,7 +303,6 @@ def assess(solver, params: SailParameters, settings: RunSettings, options: dict,
                 **records,
             }
             return result
-    order = ["base", *(name for name, _ in sequence(result.info))]
     reported = runs[order[-1]]
     reported.warnings += [w for w in result.warnings if w not in reported.warnings]  # the sampling's notes too
     quantity, failed, value = answer(reported)
@@ -230,6 +316,7 @@ def assess(solver, params: SailParameters, settings: RunSettings, options: dict,
     well = sensitivity <= CONDITION_TOL * abs(value)
     if "sampling" in result.info:
         reported.info["sampling"] = {**result.info["sampling"], "location_error": location if failed else None}
+    held = sorted({name for name in order[1:] for name in held_at_floor(records[name]["options"], result.info, roles)})
     reported.uncertainty = {
         "estimated": True,
         "quantity": quantity,
@@ -244,14 +331,16 @@ def assess(solver, params: SailParameters, settings: RunSettings, options: dict,
             for part in (
                 explain(params, quantity, value, integration, sensitivity, well, failed),
                 sampling_note(location, SAFETY * (integration + sensitivity), failed),
-                floor_note(held, result.info),
+                floor_note(held, result.info) if order[0] == "base" else "",
             )
             if part
         ),
-        "rule": RULE,
-        "film_sensitivity": film_sensitivity(records, film_text, quantity, value),
-        "held_at_floor": held,
+        "rule": RULE if order[0] == "loose" else FALLBACK_RULE,
+        "film_sensitivity": film_sensitivity(records, film_twin(params)[1], quantity, order[0]),
+        "held_at_floor": held if order[0] == "base" else [],
         "reported": order[-1],
+        "reference": order[0],
+        "cpu_time": sum(record["cpu_time"] or 0.0 for record in records.values()),
         **records,
     }
     reported.wall_time = total_wall
@@ -268,17 +357,18 @@ def film_twin(params: SailParameters) -> tuple[SailParameters | None, str]:
     return params.replace(film_seed=params.film_seed + 1), f"the same film at seed {params.film_seed + 1}"
 
 
-def film_sensitivity(records: dict, text: str, quantity: str, value: float) -> dict:
-    """What the film twin says (module docstring, item 4): its answer, the shift from the base run's, and the
+def film_sensitivity(records: dict, text: str, quantity: str, reference: str = "base") -> dict:
+    """What the film twin says (module docstring, item 4): its answer (at the options of `reference`), the shift
+    from the answer of `reference` (the run of the same options: "loose", or "base" in the fallback), and the
     verdict "defect-dominated" (shift ≤ FILM_TOL · |q|) or "roughness-dominated", with, for a case without a
     film, the RMS below which the ideal-defect answer holds, estimated as linear in the film's RMS."""
     if "film" not in records:
         return {"assessed": False, "film": text}
-    twin, base = records["film"], records["base"]
+    twin, base = records["film"], records[reference]
     if twin["error"] is not None:
         return {"assessed": False, "film": text, "error": twin["error"]}
     shift = abs(twin["value"] - base["value"]) if twin["failed"] == base["failed"] else math.inf
-    relative = shift / abs(value) if value else math.inf
+    relative = shift / abs(base["value"]) if base["value"] else math.inf
     verdict = "defect-dominated" if relative <= FILM_TOL else "roughness-dominated"
     holds_below = None
     if verdict == "roughness-dominated" and text.startswith("the reference film") and math.isfinite(relative):

@@ -113,8 +113,8 @@ def test_failure_before_the_first_default_sample_is_refined():
 
 @pytest.mark.parametrize("uncertainty", [False, True])
 def test_the_memory_cap_stops_a_refinement_and_says_so(monkeypatch, uncertainty):
-    """With the uncertainty estimate too: the Result it reports is its tightest twin's, which carries the
-    sampling's warnings of the base run."""
+    """With the uncertainty estimate too: the Result it reports (the base run, or the fallback's tightest twin)
+    carries the sampling's warnings of the base run, once."""
     monkeypatch.setattr(events, "SAMPLE_MEMORY", 2e4)
     p = paper_case("torsion-soft", beam_waist=0.5)
     r = solve(p, "reduced", RunSettings(t_final=0.01), uncertainty=uncertainty)

@@ -22,7 +22,7 @@ def test_any_accepted_case_runs_briefly_to_finite_output_or_a_recorded_error(sol
     def runs(data):
         p = data.draw(accepted_cases(), label="case")
         settings = data.draw(short_run(p), label="settings")
-        # the base run: the uncertainty twins are this solver at tighter settings (tests/solvers/test_uncertainty.py)
+        # the base run: the uncertainty twins are this solver at other settings (tests/solvers/test_uncertainty.py)
         result = solve(p, solver, settings, uncertainty=False)
         assert isinstance(result, Result) and result.settings == settings and result.params == p
         steps = result.time.shape[0]
