@@ -335,10 +335,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     wall = _time.perf_counter() - start
     solver.lus.clear()  # the cached factors (GBs at 100 × 100 tiles) are not needed past the last step
     samples = len(states)
-    rows = np.array(states)
-    del states  # the list's row arrays: freed before unpack allocates the tile arrays (GBs at 100 × 100 tiles)
-    centres, angles, velocities, omega = model.unpack(rows)
-    del rows
+    centres, angles, velocities, omega = _unpacked(model, states)
     info = {
         "formulation": "tiles in maximal coordinates (quaternions), Radau IIA with a velocity-reduced sparse solve",
         "rtol": rtol,
@@ -368,6 +365,14 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         info=info,
         settings=settings,
     )
+
+
+def _unpacked(model: SheetModel, states: list):
+    """model.unpack of the sample rows, the list emptied once they are stacked: its rows are freed before
+    unpack allocates the tile arrays (GBs each at 100 × 100 tiles)."""
+    rows = np.array(states)
+    states.clear()
+    return model.unpack(rows)
 
 
 def _rotate_quaternions(y: np.ndarray, dtheta: np.ndarray) -> None:
