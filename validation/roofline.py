@@ -1,7 +1,7 @@
 """Roofline of the benchmark rows: the work each run needs against what one core of this machine can do.
 
     python validation/roofline.py --markdown validation/roofline.md   # chain rows, sheets of 10 and 20 a side
-    python validation/roofline.py --grids 10 20 40 --repeats 3
+    python validation/roofline.py --grids 10 20 40 --repeats 5 --sheet-repeats 2
 
 The machine: its peak arithmetic rate, a 1024 × 1024 DGEMM on one thread (numpy's BLAS), and its memory
 bandwidth, a 2 × 64 MB → 64 MB vector add (`numpy.add`, 24 bytes a double), the best of five each. Every
@@ -242,7 +242,7 @@ def row(label, solver, cpu, info, flops, data, roof) -> dict:
     return dict(label=label, solver=solver, cpu=cpu, steps=steps, flops=flops, data=data, limit=limit, bound=bound)
 
 
-def markdown(rows: list[dict], roof: dict, command: str) -> str:
+def markdown(rows: list[dict], roof: dict, command: str, repeats: tuple[int, int]) -> str:
     lines = [
         "# Roofline: each benchmark row against what the machine can do",
         "",
@@ -251,7 +251,8 @@ def markdown(rows: list[dict], roof: dict, command: str) -> str:
         f"{roof['flops'] / 1e9:.1f} GFlop/s (1024² DGEMM, one thread), memory bandwidth "
         f"{roof['bandwidth'] / 1e9:.1f} GB/s (64 MB vector add), last-level cache {roof['cache'] / 2**20:.0f} MB; "
         f"load average {os.getloadavg()[0]:.1f} on "
-        f"{os.cpu_count()} cores at the end. CPU: time.process_time of the base run, the least of the repeats. "
+        f"{os.cpu_count()} cores at the end. CPU: time.process_time of the base run, the least of {repeats[0]} "
+        f"timed runs (chains) or {repeats[1]} (sheets) after an untimed one. "
         "The limit is the larger of flops/peak and bytes/bandwidth for the work the run does; 'from the limit' "
         "is CPU over it.",
         "",
@@ -270,16 +271,17 @@ def markdown(rows: list[dict], roof: dict, command: str) -> str:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--grids", nargs="*", type=int, default=[10, 20], help="sheet rows: tiles a side")
-    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--repeats", type=int, default=3, help="timed runs per chain row")
+    parser.add_argument("--sheet-repeats", type=int, default=1, help="timed runs per sheet row")
     parser.add_argument("--markdown", type=Path, help="write the table to this file (validation/roofline.md)")
     args = parser.parse_args(argv)
-    if args.repeats < 1:
-        parser.error("--repeats must be ≥ 1")
+    if args.repeats < 1 or args.sheet_repeats < 1:
+        parser.error("--repeats and --sheet-repeats must be ≥ 1")
     roof = machine()
     print(f"peak {roof['flops'] / 1e9:.1f} GFlop/s, bandwidth {roof['bandwidth'] / 1e9:.1f} GB/s", flush=True)
-    rows = chain_rows(roof, args.repeats) + sheet_rows(args.grids, roof, args.repeats)
+    rows = chain_rows(roof, args.repeats) + sheet_rows(args.grids, roof, args.sheet_repeats)
     command = "python validation/roofline.py" + "".join(f" {a}" for a in (argv or sys.argv[1:]))
-    text = markdown(rows, roof, command)
+    text = markdown(rows, roof, command, (args.repeats, args.sheet_repeats))
     print(text)
     if args.markdown:
         args.markdown.write_text(text)
