@@ -333,7 +333,9 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     finally:
         bar.close()
     wall = _time.perf_counter() - start
-    centres, angles, velocities, omega = model.unpack(np.array(states))
+    solver.lus.clear()  # the cached factors (GBs at 100 × 100 tiles) are not needed past the last step
+    samples = len(states)
+    centres, angles, velocities, omega = _unpacked(model, states)
     info = {
         "formulation": "tiles in maximal coordinates (quaternions), Radau IIA with a velocity-reduced sparse solve",
         "rtol": rtol,
@@ -353,7 +355,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     return Result.from_tiles(
         params,
         "reduced",
-        times[: len(states)],
+        times[:samples],
         centres,
         angles,
         velocities,
@@ -363,6 +365,14 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         info=info,
         settings=settings,
     )
+
+
+def _unpacked(model: SheetModel, states: list):
+    """model.unpack of the sample rows, the list emptied once they are stacked: its rows are freed before
+    unpack allocates the tile arrays (GBs each at 100 × 100 tiles)."""
+    rows = np.array(states)
+    states.clear()
+    return model.unpack(rows)
 
 
 def _rotate_quaternions(y: np.ndarray, dtheta: np.ndarray) -> None:

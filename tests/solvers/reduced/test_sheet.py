@@ -171,3 +171,24 @@ def test_plate_statics_within_two_percent_at_39_and_modes_within_one_percent_at_
         omega = reduced_sheet.eigenfrequencies(q, 4)
         modes = [plate_theory.plate_frequency(q, m, n) for m, n in plate_theory.lowest_modes(4)]
         np.testing.assert_allclose(omega, modes, rtol=0.01)
+
+
+def test_complex_solve_products_are_the_real_matrices_products():
+    """The complex system's A_X, B copies (made once per Jacobian) give bit for bit the products of the real
+    matrices with a complex vector, and the reduced LU solves (μ I − J) x = f of the full system."""
+    from lightsail_mbs.solvers.reduced.sheet_radau import MU_COMPLEX, ReducedLU, ReducedSystem
+
+    model = reduced_sheet.SheetModel(SailParameters(n=4, ny=3, **SOFT))
+    y = model.y0()
+    J = model.jacobian(0.0, y)
+    system = ReducedSystem(J, model.kinematics(y), model.position_indices, model.velocity_indices)
+    f = np.array([1.0, 1.0j]) @ np.random.default_rng(1).normal(size=(2, model.n))
+    AX, B = system.products(True)
+    assert np.array_equal(AX @ f[system.X], system.AX @ f[system.X])
+    assert np.array_equal(B @ f[system.V], system.B @ f[system.V])
+    mu = MU_COMPLEX / 1e-3
+    x = ReducedLU(system, mu).solve(f)
+    x_x, x_v, f_x, f_v = x[system.X], x[system.V], f[system.X], f[system.V]
+    # the system it solves (sheet_radau's docstring): μ x_X − B x_V = f_X, μ x_V − A_X x_X − A_V x_V = f_V
+    assert np.max(np.abs(mu * x_x - system.B @ x_v - f_x)) < 1e-12 * np.max(np.abs(f))
+    assert np.max(np.abs(mu * x_v - system.AX @ x_x - system.AV @ x_v - f_v)) < 1e-9 * np.max(np.abs(mu * x_v))
