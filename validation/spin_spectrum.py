@@ -1,10 +1,10 @@
 """The spinning sheet's spectrum in its turning frame: `nice python validation/spin_spectrum.py` (writes
-validation/spin_spectrum.md; ~15 min of one core).
+validation/spin_spectrum.md; ~25 min of one core).
 
 A. Lamb & Southwell (1921): the transverse frequencies of a free membrane disc spinning at Ω (R = 0.5 m,
    h = 1 µm, E = 1e9 Pa: bending ~1e-8 of the centrifugal stiffness) in its turning frame, from the transverse
    block of the in-house solver's ``linearise_rotating`` (analysis.spin_spectrum.transverse_modes), against
-   (ω/Ω)² = [3(n + 2s)(n + 2s + 2) − n²]/8 (model.sheet_spin.membrane_disc_frequency) on three polar meshes.
+   (ω/Ω)² = [3(n + 2s)(n + 2s + 2) − n²]/8 (model.sheet_spin.membrane_disc_frequency) on four polar meshes.
 B. Spin against tension: the paper's soft sail (h = 1 µm, ρ = 1000 kg/m³, a₀ = 10 µm, ν_x = ν_y = 1.5, square
    and disc, 8 × 8 and 9 × 12 tiles) at E and I₀ of a small grid: T_cr,max per metre of edge (Eq. 10), the spin rate
    Ω_T whose centrifugal membrane force at the centre, 3ρhΩ²R²/8, equals it, the sheet's measured critical
@@ -33,7 +33,7 @@ from lightsail_mbs.analysis import spin_spectrum  # noqa: E402
 from lightsail_mbs.model import failure, sheet_spin, theory  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
-DISC_MESHES = ((9, 12), (17, 24), (33, 48))
+DISC_MESHES = ((9, 12), (17, 24), (33, 48), (49, 72))
 SPIN = 100.0  # rad/s, part A
 BELOW = 3.2  # part A: modes below this many Ω
 SOFT = dict(model="sheet", youngs_modulus=4.5e9, defect_mode_y=1.5)
