@@ -38,7 +38,7 @@ MAX_DIAMETERS = 6  # nodal diameters tried when a mode of a sheet that is not a 
 PAIR_TOLERANCE = 1e-3  # relative: two frequencies of one pair; |Re λ|/|Im λ| of an oscillating mode
 ZERO = 1e-3  # Im λ below this × the band's top: the translation along ẑ (its Jordan pair split by round-off)
 DENSE = 2000  # transverse blocks up to this size by a dense eigensolver, larger ones by shift-invert Arnoldi
-SPARSE_MODES = 80
+SPARSE_MODES = 120
 
 
 def rotating_linearisation(p: SailParameters, state: np.ndarray | None = None, solver: str = "reduced"):
@@ -101,7 +101,8 @@ def transverse_modes(p: SailParameters, below: float, solver: str = "reduced") -
     if block.shape[0] <= DENSE:
         values, vectors = sl.eig(block.toarray())
     else:  # shift-invert about the middle of the band: the SPARSE_MODES eigenvalues nearest to it
-        values, vectors = eigs(block, k=SPARSE_MODES, sigma=0.5j * below)
+        start = np.ones(block.shape[0])  # a fixed start vector: the same modes on every call
+        values, vectors = eigs(block, k=SPARSE_MODES, sigma=0.5j * below, v0=start)
     oscillating = (values.imag > ZERO * below) & (np.abs(values.real) < PAIR_TOLERANCE * values.imag)
     keep = np.nonzero(oscillating & (values.imag < below))[0]
     keep = keep[np.argsort(values[keep].imag)]
