@@ -1,5 +1,5 @@
-"""Spinning sheets: `python validation/spin.py [--turns N]` (part 3: N turns, default 100, ~15 s of one core
-per turn).
+"""Spinning sheets: `python validation/spin.py [--turns N]` (part 3: N turns, default 100, ~40 s of one core
+per turn; part 4: eight runs of one turn).
 
 The case field spin_rate (model.sheet_spin) against closed forms:
 
@@ -11,10 +11,13 @@ The case field spin_rate (model.sheet_spin) against closed forms:
 2. The unlit spinning flat sail at rest in its rotating frame (all three planforms, both solvers, Ω = 20
    rad/s, E_m = 1e8 Pa, 0.1 s): the tiles' largest displacement from their initial positions turned by Ωt
    about the centre of mass, and its largest height. Exudyn at three steps (its generalized-α phase error).
-3. A very stiff disc (h = 0.1 m, E = 1e11 Pa: lowest elastic frequency ~1000 Ω, 13 tiles) spun at Ω = 2π
-   rad/s with its angular velocity tilted by β = 1 mrad from its normal, over N turns: the centre
-   tile's body rates against the free symmetric top (Euler's equations, ω⊥ turning at (I₃ − I₁)ω₃/I₁ in the
-   body axes, I from the tiles as one rigid body), Exudyn at h = 2.5e-4 s, ρ∞ = 1.
+3. A very stiff disc (h = 0.1 m, E = 1e11 Pa: lowest elastic frequency ~1000 Ω, 13 tiles; in-plane springs
+   E_m = 1e9 Pa, whose lowest frequency is still ~300 Ω) spun at Ω = 2π rad/s with its angular velocity
+   tilted by β = 1 mrad from its normal, over N turns: the centre tile's body rates against the free
+   symmetric top (Euler's equations, ω⊥ turning at (I₃ − I₁)ω₃/I₁ in the body axes, I from the tiles as one
+   rigid body), Exudyn at h = 2.5e-4 s, ρ∞ = 1, Newton's relative tolerance 1e-12.
+4. What moves ω₃ (a free top keeps it): the same disc over one turn with one change at a time (no nutation,
+   membrane damping, step, Newton's tolerance, E_m).
 Writes validation/spin.md.
 """
 
@@ -77,24 +80,64 @@ def rest_rows():
     return rows
 
 
-def nutation(turns: float):
-    """Part 3: (p, I₁, I₃, largest |ω_b − closed form| per component / Ω, wall time)."""
-    omega = 2.0 * math.pi
-    p = SailParameters(planform="disc", n=5, ny=6, thickness=0.1, youngs_modulus=1e11, **UNLIT)
-    p = p.replace(spin_rate=omega, spin_tilt=1e-3)
+NUTATION_DISC = dict(
+    planform="disc", n=5, ny=6, thickness=0.1, youngs_modulus=1e11, spin_rate=2.0 * math.pi, spin_tilt=1e-3, **UNLIT
+)
+NUTATION_RUN = dict(step_size=2.5e-4, spectral_radius=1.0, newton_rel_tol=1e-12)  # with membrane_modulus 1e9 Pa
+# part 4: what moves ω₃ (label, case changes, Exudyn options), each over DRIFT_TURNS turns
+DRIFT_TURNS = 1.0
+DRIFT_ROWS = (
+    ("E_m = E, h = 2.5e-4 s, Newton rel. tol. 1e-8 (the solver's default)", {}, {}),
+    ("as above, β = 0 (no nutation)", {"spin_tilt": 0.0}, {}),
+    ("as above, membrane damping 1e-3 s (73 × the default)", {"membrane_damping": 1e-3}, {}),
+    ("E_m = E, h = 1.25e-4 s", {}, {"step_size": 1.25e-4}),
+    ("E_m = E, Newton rel. tol. 1e-12", {}, {"newton_rel_tol": 1e-12}),
+    ("E_m = E, Newton rel. tol. 1e-12, h = 1.25e-4 s", {}, {"newton_rel_tol": 1e-12, "step_size": 1.25e-4}),
+    ("E_m = 1e9 Pa, Newton rel. tol. 1e-8", {"membrane_modulus": 1e9}, {}),
+    ("E_m = 1e9 Pa, Newton rel. tol. 1e-12 (part 3's setting)", {"membrane_modulus": 1e9}, {"newton_rel_tol": 1e-12}),
+)
+
+
+def top_errors(p, turns: float, **options):
+    """(result, times, body-rate errors (T, 3) / Ω against the free symmetric top, wall time) of an Exudyn run."""
+    omega = p.spin_rate
     start = time.perf_counter()
     settings = RunSettings(t_final=turns * 2.0 * math.pi / omega, output_interval=0.05)
-    result = solve(p, "exudyn", settings, step_size=2.5e-4, spectral_radius=1.0)
+    result = solve(p, "exudyn", settings, **{"step_size": 2.5e-4, "spectral_radius": 1.0, **options})
     wall = time.perf_counter() - start
     centres, quaternions = sheet.initial_quaternions(p)
     inertia = sheet_spin.rigid_inertia(p, centres, quaternions)
-    i1, i3 = inertia[0, 0], inertia[2, 2]
     exact = sheet_spin.free_top_rates(
-        result.time, omega * math.cos(p.spin_tilt), omega * math.sin(p.spin_tilt), (i1, i3)
+        result.time, omega * math.cos(p.spin_tilt), omega * math.sin(p.spin_tilt), (inertia[0, 0], inertia[2, 2])
     )
     rotations = sheet.rotation_xyz(result.tile_angles[:, 0])
     body = np.einsum("tji,tj->ti", rotations, result.tile_angular_velocities[:, 0])
-    return p, i1, i3, np.max(np.abs(body - exact), axis=0) / omega, wall, result.error
+    return result, np.asarray(result.time), (body - exact) / omega, wall
+
+
+def nutation(turns: float):
+    """Part 3: (p, I₁, I₃, largest |ω_b − closed form| per component / Ω, ω₃'s drift per turn / Ω, wall, error)."""
+    p = SailParameters(**NUTATION_DISC).replace(membrane_modulus=1e9)
+    result, t, errors, wall = top_errors(p, turns, **NUTATION_RUN)
+    centres, quaternions = sheet.initial_quaternions(p)
+    inertia = sheet_spin.rigid_inertia(p, centres, quaternions)
+    late = t >= 0.5
+    drift = np.polyfit(t[late], errors[late, 2], 1)[0] * 2.0 * math.pi / p.spin_rate
+    return p, inertia[0, 0], inertia[2, 2], np.max(np.abs(errors), axis=0), drift, wall, result.error
+
+
+def drift_rows():
+    """Part 4: (label, ω₃ error at 0.2 s / Ω, its drift per turn / Ω, largest transverse error / Ω, wall)."""
+    rows = []
+    for label, changes, options in DRIFT_ROWS:
+        p = SailParameters(**NUTATION_DISC).replace(**changes)
+        _, t, errors, wall = top_errors(p, DRIFT_TURNS, **options)
+        late = t >= 0.5
+        drift = np.polyfit(t[late], errors[late, 2], 1)[0] * 2.0 * math.pi / p.spin_rate
+        early = errors[np.searchsorted(t, 0.2), 2]
+        rows.append((label, early, drift, np.abs(errors[:, :2]).max(), wall))
+        print(rows[-1], flush=True)
+    return rows
 
 
 def report(turns: int) -> str:
@@ -128,17 +171,19 @@ def report(turns: int) -> str:
     ]
     for planform, tiles, solver, step, drift, height, wall in rest_rows():
         lines.append(f"| {planform} | {tiles} | {solver} | {step} | {drift:.2e} | {height:.1e} | {wall:.1f} |")
-    p, i1, i3, errors, wall, error = nutation(turns)
+    p, i1, i3, errors, drift, wall, error = nutation(turns)
     lines += [
         "",
         "## 3. A stiff spinning disc nutates as a free symmetric top",
         "",
-        f"Disc of {sheet.tile_count(p)} tiles, h = {p.thickness} m, E = {p.youngs_modulus:g} Pa, Ω = 2π rad/s, "
+        f"Disc of {sheet.tile_count(p)} tiles, h = {p.thickness} m, E = {p.youngs_modulus:g} Pa (bending; lowest "
+        f"elastic frequency ~1000 Ω), in-plane springs E_m = {p.membrane_modulus:g} Pa, Ω = 2π rad/s, "
         f"β = {p.spin_tilt} rad, {turns} turns; I₁ = {i1:.6g} kg m², I₃ = {i3:.6g} kg m² "
-        f"(λ/ω₃ = {(i3 - i1) / i1:.6f}). Exudyn, h = 2.5e-4 s, ρ∞ = 1{'' if error is None else ', error: ' + error}.",
+        f"(λ/ω₃ = {(i3 - i1) / i1:.6f}). Exudyn, h = 2.5e-4 s, ρ∞ = 1, Newton's relative tolerance 1e-12"
+        f"{'' if error is None else ', error: ' + error}.",
         "",
         "The in-house solver is not run here: its Radau refreshes its frozen Jacobian as often as the stiff",
-        "disc turns noticeably (its in-plane frequencies ~1e4 Ω), too slow for 100 turns.",
+        "disc turns noticeably (its bending frequencies ~1000 Ω), too slow for 100 turns.",
         "",
         "| body rate | largest error / Ω | / ω⊥ |",
         "|---|---|---|",
@@ -146,7 +191,22 @@ def report(turns: int) -> str:
     transverse = math.sin(p.spin_tilt)
     for name, value in zip(("ω₁", "ω₂", "ω₃"), errors):
         lines.append(f"| {name} | {value:.2e} | {value / transverse:.2e} |")
-    lines += ["", f"Wall time {wall:.0f} s (loaded machine).", ""]
+    lines += [
+        "",
+        f"ω₃'s drift: {drift:.2e} Ω per turn (least squares over t ≥ 0.5 s). Wall time {wall:.0f} s (loaded machine).",
+        "",
+        "## 4. What moves ω₃",
+        "",
+        f"The same disc over {DRIFT_TURNS:g} turn, one change at a time (Exudyn, h = 2.5e-4 s unless said, ρ∞ = 1):",
+        "ω₃'s error at 0.2 s (the offset the first steps leave), its drift per turn (least squares over",
+        "t ≥ 0.5 s) and the largest error of the transverse rates.",
+        "",
+        "| run | ω₃ error at 0.2 s / Ω | ω₃ drift per turn / Ω | transverse error / Ω | wall (s) |",
+        "|---|---|---|---|---|",
+    ]
+    for label, early, rate, side, seconds in drift_rows():
+        lines.append(f"| {label} | {early:.2e} | {rate:.2e} | {side:.1e} | {seconds:.0f} |")
+    lines.append("")
     return "\n".join(lines)
 
 

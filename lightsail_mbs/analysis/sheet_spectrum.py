@@ -283,11 +283,12 @@ def spectrum(p: SailParameters, state: np.ndarray | None = None, solver: str = "
 
 
 def _deflection(p: SailParameters, xi: np.ndarray) -> np.ndarray:
-    """Δu_z of a mode (ny × nx), real, scaled to a peak of +1."""
+    """Δu_z of a mode (ny × nx on a grid, else one per tile), real, scaled to a peak of +1."""
     w = xi.reshape(-1, DOF)[:, 2]
     w = (w * np.exp(-1j * np.angle(w[np.argmax(np.abs(w))]))).real
     peak = w[np.argmax(np.abs(w))]
-    return (w / (peak if peak else 1.0)).reshape(p.ny, p.n)
+    w = w / (peak if peak else 1.0)
+    return w.reshape(p.ny, p.n) if w.size == p.ny * p.n else w
 
 
 def run_state(result, k: int) -> np.ndarray:

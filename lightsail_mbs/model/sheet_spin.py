@@ -31,6 +31,27 @@ from the equilibrium dσ_r/dr + (σ_r − σ_θ)/r + ρΩ²r = 0, compatibility,
 The sheet's in-plane springs have ν_p = 0 (model.sheet_connectors): σ_r = 3ρΩ²(R² − r²)/8,
 σ_θ = ρΩ²(3R² − r²)/8. edge_stresses reads the discrete sheet's normal stress across every shared edge.
 
+The transverse vibrations of a spinning free membrane disc (Lamb & Southwell 1921, Proc. R. Soc. A 99, 272,
+§2: the flexural rigidity negligible). In the frame turning with the disc a deflection w(r, θ, t) is driven
+only by the spun state's membrane stresses (the centrifugal field lies in the plane, and the Coriolis force
+of a velocity along ẑ is zero)::
+
+    ρ ∂²w/∂t² = (1/r) ∂/∂r (r σ_r ∂w/∂r) + (σ_θ/r²) ∂²w/∂θ².
+
+With w = W(x) cos nθ e^(iωt), x = r/R and the stresses above, dividing by ρΩ²R²/8::
+
+    (3 + ν_p)[(1 − x²)W'' + (1/x − 3x)W' − n²W/x²] + (1 + 3ν_p) n² W + 8(ω/Ω)² W = 0.
+
+x = 1 is a regular singular point (σ_r vanishes at the free rim): the solution finite there is a polynomial.
+Substituting W = Σ_j a_j x^(n+2j): the lowest power gives the exponent n (regular at the centre), and x^m
+has the coefficient −(3 + ν_p)(m² + 2m) + (1 + 3ν_p)n² + 8(ω/Ω)² times a_j (m = n + 2j) plus
+(3 + ν_p)((m + 2)² − n²) a_(j+1), so the series stops at m = n + 2s exactly when
+
+    (ω/Ω)² = [(3 + ν_p)(n + 2s)(n + 2s + 2) − (1 + 3ν_p) n²]/8,   s = 0, 1, 2, …
+
+(ν_p = 0: (ω/Ω)² = [3(n + 2s)(n + 2s + 2) − n²]/8; n = 0, s = 0 is the translation along ẑ, ω = 0, and n = 1,
+s = 0 the rigid tilt, ω = Ω) (membrane_disc_frequency).
+
 A free symmetric top (I₁ = I₂ ≠ I₃) has constant ω₃ and, in its body axes, Euler's equations
 I₁ω̇₁ = −(I₃ − I₁)ω₂ω₃, I₁ω̇₂ = (I₃ − I₁)ω₃ω₁: the transverse body rate ω₁ + iω₂ turns at
 λ = (I₃ − I₁)ω₃/I₁ (a thin disc: I₃ = 2I₁, λ = ω₃), (free_top_rates).
@@ -143,3 +164,10 @@ def disc_stress_errors(p: SailParameters, offset: np.ndarray, stiffness: np.ndar
     error_r = np.max(np.abs(sigma[radial] - exact_r[radial])) / peak
     error_t = np.max(np.abs(sigma[~radial] - exact_t[~radial])) / peak
     return len(sigma), float(error_r), float(error_t)
+
+
+def membrane_disc_frequency(n: int, s: int, poisson: float = 0.0) -> float:
+    """ω/Ω of the transverse mode with n nodal diameters and s nodal circles (counted inside the rim) of a free
+    membrane disc spinning at Ω, in its turning frame (Lamb & Southwell; module docstring)."""
+    m = n + 2 * s
+    return math.sqrt(((3.0 + poisson) * m * (m + 2) - (1.0 + 3.0 * poisson) * n * n) / 8.0)

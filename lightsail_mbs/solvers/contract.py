@@ -63,6 +63,8 @@ CAPABILITIES = {
     "eigenfrequencies": "(params[, count]) -> ω (rad/s, ascending) of the equations linearised at rest in the "
     "initial state",
     "linearise": "(params, state, ...) -> ∂ẏ/∂y of the first-order equations at rest in `state`",
+    "linearise_rotating": "(params, state) -> the sheet's equations linearised in the frame turning with its spin "
+    "about `state`: ξ̇ = η, η̇ = K ξ + C η (centrifugal and Coriolis terms included)",
     "mass_stiffness": "(params, load, step, relative_epsilon) -> (M, K) of M q̈ + K q = 0 at the initial state",
     "equations": "(params) -> the chain's equations of motion in minimal coordinates (rhs, accelerations, "
     "coordinates of a state, centres, state scales, slice loads)",

@@ -72,7 +72,11 @@ REDUCED_CHAIN_CAPABILITIES = {
 register(
     Solver("reduced", "chain", "reduced.solver", REDUCED_CHAIN_OPTIONS, REDUCED_CHAIN_CAPABILITIES, CHAIN_DEFAULTS)
 )
-REDUCED_SHEET_CAPABILITIES = {**SHEET_CAPABILITIES, "linearise": "linearise"}
+REDUCED_SHEET_CAPABILITIES = {
+    **SHEET_CAPABILITIES,
+    "linearise": "linearise",
+    "linearise_rotating": "sheet_rotating:linearise_rotating",
+}
 register(
     Solver(
         "reduced", "sheet", "reduced.sheet", (RTOL, MAX_STEP, PERTURBATION), REDUCED_SHEET_CAPABILITIES, SHEET_DEFAULTS

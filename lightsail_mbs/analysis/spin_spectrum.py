@@ -1,0 +1,156 @@
+"""The spectrum of a spinning sheet in the frame that turns with it.
+
+The solver's ``linearise_rotating`` capability (solvers.reduced.sheet_rotating) gives L = [[0, I], [K, C]] of
+the sheet's equations in the frame turning at Ω about ẑ through the centre of mass, about the initial state
+(the spun equilibrium's connectors), with the centrifugal and Coriolis terms: a load that does not change
+when the sail turns about that axis (unlit, a uniform beam, a round beam centred on the axis) makes the
+spun state steady there, so the eigenvalues λ of L are the growth rates (Re λ) and the frequencies seen by
+the turning sail.
+
+**Transverse modes of a flat disc** (:func:`transverse_modes`). On a flat sheet the deflection Δc_z and the
+tilts Δθ_x, Δθ_y decouple from the in-plane motion at first order (the Coriolis force of a velocity along ẑ
+is zero, the tiles' gyroscopic terms couple only their two tilts), so the transverse block of L, rows and
+columns (Δc_z, Δθ_x, Δθ_y) and their rates, holds the membrane's transverse modes. Each mode's nodal
+diameters n are read from the deflection w_k of the tile centres at polar angles θ_k: the largest of the
+mass-weighted Fourier powers |Σ_k m_k w_k e^(∓inθ_k)|²; its nodal circles s count the modes of the same n
+below it (a pair of modes cos nθ, sin nθ counted once). model.sheet_spin.membrane_disc_frequency is the
+closed form they are compared with (Lamb & Southwell).
+
+**Deformation spectrum** (:func:`rotating_spectrum`): L restricted, as analysis.sheet_spectrum restricts
+``linearise``, to the kinetic-metric complement of the six rigid-body motions; the fastest Re λ is the
+growth rate of the shape.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from lightsail_mbs.analysis import sheet_spectrum
+from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model import planforms
+from lightsail_mbs.model.parameters import SailParameters
+
+TRANSVERSE = (2, 3, 4)  # Δc_z, Δθ_x, Δθ_y of the 6 generalised displacements per tile
+MAX_DIAMETERS = 6  # nodal diameters tried when a mode of a sheet that is not a polar disc is classified
+PAIR_TOLERANCE = 1e-3  # relative: two frequencies of one pair; |Re λ|/|Im λ| of an oscillating mode
+ZERO = 1e-3  # Im λ below this × the band's top: the translation along ẑ (its Jordan pair split by round-off)
+DENSE = 2000  # transverse blocks up to this size by a dense eigensolver, larger ones by shift-invert Arnoldi
+SPARSE_MODES = 120
+
+
+def rotating_linearisation(p: SailParameters, state: np.ndarray | None = None, solver: str = "reduced"):
+    """L (12N × 12N, sparse) of the named solver's ``linearise_rotating`` capability (module docstring)."""
+    from lightsail_mbs.solvers import contract
+
+    if p.model != "sheet" or p.boundary != "free":
+        raise ParameterError(
+            f"model={p.model!r}, boundary={p.boundary!r} is invalid for a spin spectrum: allowed a free sheet"
+        )
+    return contract.lookup(solver, p).capability("linearise_rotating")(p, state)
+
+
+@dataclass(frozen=True)
+class TransverseMode:
+    """A transverse mode of a spinning flat sheet: its frequency in the turning frame ω (rad/s), its growth
+    rate Re λ (1/s), nodal diameters n and nodal circles s."""
+
+    frequency: float
+    growth_rate: float
+    diameters: int
+    circles: int
+
+
+def _transverse_block(L: sp.spmatrix, count: int) -> sp.csc_matrix:
+    dof = (6 * np.arange(count)[:, None] + np.array(TRANSVERSE)).ravel()
+    index = np.r_[dof, dof + 6 * count]
+    return L.tocsr()[index][:, index].tocsc()
+
+
+def _diameters(p: SailParameters, w: np.ndarray, largest: int) -> int:
+    """The nodal diameters n ≤ largest of a deflection w (N,) (module docstring; on a polar mesh of m sectors
+    n and m − n alias, so largest = m/2)."""
+    mesh = planforms.mesh_of(p)
+    rel = mesh.centres - mesh.centres.mean(axis=0)
+    theta = np.arctan2(rel[:, 1], rel[:, 0])
+    radius = np.hypot(rel[:, 0], rel[:, 1])
+    ring = np.unique(np.round(radius / radius.max(), 9), return_inverse=True)[1]
+    n = np.arange(largest + 1)
+    power = np.zeros(n.size)
+    for r in range(ring.max() + 1):  # ring by ring: an elastic mode's net Σ m w is zero (orthogonal to the translation)
+        on = ring == r
+        weighted = mesh.areas[on] * w[on]
+        for sign in (-1, 1):
+            power += np.abs(np.exp(sign * 1j * np.outer(n, theta[on])) @ weighted) ** 2
+    return int(np.argmax(power))
+
+
+def transverse_modes(p: SailParameters, below: float, solver: str = "reduced") -> list[TransverseMode]:
+    """The oscillating transverse modes of a flat spinning sheet (|Re λ| < PAIR_TOLERANCE·|Im λ|) with
+    frequencies in (ZERO·below, below) (rad/s) in its turning frame, ascending, after the translation along ẑ
+    (n = s = 0, ω = 0) (module docstring): each pair ±iω once, a cos/sin pair (same n, frequencies within
+    PAIR_TOLERANCE) once; the heavily damped modes of the stiff connectors are left out."""
+    import scipy.linalg as sl
+    from scipy.sparse.linalg import eigs
+
+    L = rotating_linearisation(p, None, solver)
+    count = L.shape[0] // 12
+    block = _transverse_block(L, count)
+    if block.shape[0] <= DENSE:
+        values, vectors = sl.eig(block.toarray())
+    else:  # shift-invert about the middle of the band: the SPARSE_MODES eigenvalues nearest to it
+        start = np.ones(block.shape[0])  # a fixed start vector: the same modes on every call
+        values, vectors = eigs(block, k=SPARSE_MODES, sigma=0.5j * below, v0=start)
+    oscillating = (values.imag > ZERO * below) & (np.abs(values.real) < PAIR_TOLERANCE * values.imag)
+    keep = np.nonzero(oscillating & (values.imag < below))[0]
+    keep = keep[np.argsort(values[keep].imag)]
+    modes, paired = [TransverseMode(0.0, 0.0, 0, 0)], set()  # (0, 0): the translation along ẑ, a null vector
+    for k in keep:
+        n = _diameters(p, vectors[0 : 3 * count : 3, k], p.ny // 2 if p.planform == "disc" else MAX_DIAMETERS)
+        frequency = float(values[k].imag)
+        previous = [m for m in modes if m.diameters == n]
+        close = previous and abs(previous[-1].frequency - frequency) <= PAIR_TOLERANCE * frequency
+        if n > 0 and close and len(modes) - 1 not in paired:
+            paired.add(modes.index(previous[-1]))
+            continue
+        modes.append(TransverseMode(frequency, float(values[k].real), n, len(previous)))
+    return modes
+
+
+@dataclass(frozen=True)
+class RotatingSpectrum:
+    """The deformation spectrum of a spinning sheet in its turning frame: eigenvalues λ (1/s, by descending
+    Re λ), each mode's share of kinetic energy in the tiles' tilts (the rest in their centres' motion), the
+    fastest growth rate, and the fastest of the modes that move mostly the centres (tilt share below ½: the
+    sheet's shape; a mode of mostly tilts is the tiles' own rotation, which a membrane does not have)."""
+
+    eigenvalues: np.ndarray
+    tilt_shares: np.ndarray
+
+    @property
+    def growth_rate(self) -> float:
+        return float(self.eigenvalues.real[0])
+
+    @property
+    def tilt_share(self) -> float:
+        return float(self.tilt_shares[0])
+
+    @property
+    def shape_rate(self) -> float:
+        return float(self.eigenvalues.real[self.tilt_shares < 0.5].max(initial=-np.inf))
+
+
+def rotating_spectrum(p: SailParameters, solver: str = "reduced") -> RotatingSpectrum:
+    """The spectrum of L in the turning frame restricted to the deformations (module docstring; dense,
+    meant for grids up to about 12 × 12)."""
+    L = rotating_linearisation(p, None, solver)
+    rigid = sheet_spectrum._scaled_rigid(p, None)
+    full, _ = np.linalg.qr(rigid, mode="complete")
+    modes = sheet_spectrum._deformation_modes(p, L, full[:, rigid.shape[1] :])
+    energy = (np.abs(modes.vectors) ** 2 * sheet_spectrum.kinetic_weights(p)[:, None]).reshape(
+        -1, 6, modes.vectors.shape[1]
+    )
+    shares = energy[:, 3:].sum(axis=(0, 1)) / energy.sum(axis=(0, 1))
+    return RotatingSpectrum(modes.eigenvalues, shares)

@@ -1,0 +1,87 @@
+"""The spinning sheet's linearisation in its turning frame (solvers.reduced.sheet_rotating through
+analysis.spin_spectrum): it reduces to the resting linearisation without spin, a spinning free membrane disc
+has Lamb & Southwell's transverse frequencies, and the spectrum's growth rate is the time-domain run's."""
+
+import numpy as np
+import pytest
+
+from lightsail_mbs import RunSettings, SailParameters, solve
+from lightsail_mbs.analysis import sheet_spectrum, spin_spectrum
+from lightsail_mbs.base.validation import ParameterError
+from lightsail_mbs.model import failure, sheet_spin
+
+SOFT = dict(model="sheet", planform="rectangle", n=6, ny=6, youngs_modulus=4.5e9, defect_mode_y=1.5)
+
+
+def test_without_spin_the_turning_frame_is_the_resting_linearisation():
+    p = SailParameters(**SOFT)
+    rest = sheet_spectrum.linearisation(p)
+    turning = spin_spectrum.rotating_linearisation(p)
+    assert abs(rest - turning).max() < 1e-8 * abs(rest).max()
+    with pytest.raises(ParameterError, match="boundary"):
+        spin_spectrum.rotating_linearisation(p.replace(boundary="clamped"))
+
+
+@pytest.mark.parametrize("n", [0, 1, 2, 3])
+def test_the_closed_form_solves_the_spinning_membrane_equation(n):
+    """W = Σ a_j x^(n+2j) from the recursion with membrane_disc_frequency's ω/Ω ends at x^(n+2s) and solves
+    (3 + ν)[(1 − x²)W'' + (1/x − 3x)W' − n²W/x²] + (1 + 3ν)n²W + 8(ω/Ω)²W = 0 (model.sheet_spin's docstring)."""
+    nu, s = 0.25, 2
+    k = sheet_spin.membrane_disc_frequency(n, s, nu) ** 2
+    a = [1.0]
+    for j in range(s):
+        m = n + 2 * j
+        a.append(
+            a[-1] * ((3 + nu) * (m * m + 2 * m) - (1 + 3 * nu) * n * n - 8 * k) / ((3 + nu) * ((m + 2) ** 2 - n * n))
+        )
+    W = np.polynomial.Polynomial(np.concatenate([[0.0] * n, *[[c, 0.0] for c in a]]))
+    x = np.linspace(0.1, 1.0, 7)
+    d1, d2 = W.deriv(1)(x), W.deriv(2)(x)
+    residual = (3 + nu) * ((1 - x**2) * d2 + (1 / x - 3 * x) * d1 - n * n * W(x) / x**2) + (
+        (1 + 3 * nu) * n * n + 8 * k
+    ) * W(x)
+    assert np.abs(residual).max() < 1e-10 * np.abs(W(x)).max()
+    assert sheet_spin.membrane_disc_frequency(1, 0) == pytest.approx(1.0)  # the rigid tilt turns at Ω
+
+
+def test_a_spinning_membrane_disc_has_lamb_and_southwells_frequencies():
+    """A free disc of 49 tiles (bending ~1e-8 of the centrifugal stiffness) at Ω = 100 rad/s: the transverse
+    modes below 3.2 Ω in its turning frame are those of the closed form, each within 7 % (validation/
+    spin_spectrum.py refines the mesh to 0.5 %), the rigid tilt at Ω to 1e-6; none grows faster than 2e-3 Ω."""
+    p = SailParameters(model="sheet", planform="disc", n=9, ny=12, intensity=0.0, defect_amplitude=0.0)
+    modes = spin_spectrum.transverse_modes(p.replace(youngs_modulus=1e9, spin_rate=100.0), 320.0)
+    found = {(m.diameters, m.circles): m for m in modes}
+    assert set(found) >= {(0, 0), (1, 0), (2, 0), (0, 1), (3, 0), (1, 1), (4, 0)}
+    for (n, s), mode in found.items():
+        exact = sheet_spin.membrane_disc_frequency(n, s)
+        assert mode.frequency / 100.0 == pytest.approx(exact, rel=0.07, abs=1e-9)
+        assert mode.growth_rate < 2e-3 * 100.0
+    assert found[(1, 0)].frequency == pytest.approx(100.0, rel=1e-6)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("solver, options", [("reduced", {}), ("exudyn", {"step_size": 1e-3})])
+def test_the_spectrum_gives_the_growth_rate_of_a_spinning_curved_sheet(solver, options):
+    """The paper's soft sail (6 × 6 tiles, a₀ = 10 µm) spun at 10 rad/s, unlit: the fastest Re λ of the
+    turning-frame spectrum (a mode mostly of the tiles' tilts) is the growth rate of each solver's amplitude
+    departure within 2 %; without spin the same sail does not grow."""
+    p = SailParameters(**SOFT, intensity=0.0).replace(spin_rate=10.0)
+    spectrum = spin_spectrum.rotating_spectrum(p)
+    run = solve(p, solver, RunSettings(t_final=1.0, output_interval=0.02), uncertainty=False, **options)
+    departure = np.abs(failure.plane_amplitude(run.tile_centres) - failure.plane_amplitude(run.tile_centres[0]))
+    late = np.asarray(run.time) >= 0.5
+    measured = np.polyfit(np.asarray(run.time)[late], np.log(departure[late]), 1)[0]
+    assert run.error is None and spectrum.growth_rate > 1.0 and spectrum.tilt_share > 0.5
+    assert measured == pytest.approx(spectrum.growth_rate, rel=0.02)
+    assert spin_spectrum.rotating_spectrum(p.replace(spin_rate=0.0)).growth_rate < 1e-6
+
+
+@pytest.mark.parametrize("amplitude", [0.0, 3e-6])
+def test_a_flat_or_nearly_flat_spinning_sheet_has_no_tilt_instability(amplitude):
+    """The soft sail (6 × 6 tiles, h = 1 µm) spun at 10 rad/s, unlit: flat or with a₀ = 3 µm no deformation
+    grows (faster than 1e-6 /s); with a₀ = 10 µm a mode of the tiles' tilts grows at over Ω (the slow test
+    above checks it against runs)."""
+    p = SailParameters(**SOFT, intensity=0.0).replace(spin_rate=10.0)
+    assert spin_spectrum.rotating_spectrum(p.replace(defect_amplitude=amplitude)).growth_rate < 1e-6
+    curved = spin_spectrum.rotating_spectrum(p)
+    assert curved.growth_rate > 10.0 and curved.tilt_share > 0.5
