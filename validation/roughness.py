@@ -22,7 +22,6 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 from lightsail_mbs import ParameterError, RunSettings, SailParameters, paper_case, paper_settings, solve  # noqa: E402
 from lightsail_mbs.model.film import REFERENCE_FILM  # noqa: E402
-from lightsail_mbs.result import with_uncertainty  # noqa: E402
 
 WHITE = (0.0, 1e-14, 1e-12, 1e-10, 1e-9, 1e-8)  # m: SailParameters.roughness
 FILM = (0.0, 1e-12, 1e-11, 1e-10, 1e-9, 1e-8)  # m: SailParameters.film_rms
@@ -31,26 +30,31 @@ SHEET_COLUMNS = (("reduced", 12),)
 SHEET_SETTINGS = RunSettings(t_final=6.0, output_interval=5e-3)
 # Written from the numbers of the run committed with this script (rerun and reread it if they change).
 INTERPRETATION = """\
-**The chain is roughness-dominated.** Its ideal answer (2.111214 s at n = 30, both solvers within their ±;
-2.19965 s at n = 80) holds only for a film smoother than any that exists. White roughness of 1e-14 m moves the
-n = 30 answer by 2.0e-4 s (40× the Exudyn ±); from 1e-10 to 1e-8 m the failure time falls by 0.23–0.26 s
-per decade (1.866, 1.634, 1.371 s). The issue's reduced-solver column (2.111418, 2.134585, 1.866389,
-1.634462, 1.371144 s) matches today's Exudyn column to 1e-6 s and today's reduced column to 7e-6 s (within
-the reduced ideal row's ±); its n = 80 column matches to 1e-5 s.
-1e-12 m *delays* failure at n = 30 (2.1346 s): the seeded phases can oppose the defect.
-The physical film only advances it, and less than white roughness of the same number: at n = 30 the failure
-time is 2.1095, 2.0954, 2.0193, 1.8438 and 1.5854 s for 1e-12 … 1e-8 m (−0.08 %, −0.75 %, −4.4 %, −12.7 %,
-−24.9 %), because a film's RMS is spread over its whole spectrum, while `roughness` puts that amplitude on
-every wave the chain carries. Even 1 pm of film moves the answer by 1.8e-3 s, 350× its ±; 1e-11 m moves it
-by 0.75 %, in line with the film twin's "holds below at most about 8e-12 m" (4e-12 m at n = 80).
-**At n = 80 the film matters about twice as much**: −3.1 % at 1e-12 m, −7.6 % at 1e-11 m, −24 % at 1 nm
-(1.6716 s against 1.8438 s at n = 30), −36 % at 1e-8 m. The same film on the finer chain keeps its long
-waves and adds the short ones between n = 30 and 80, and those grow fastest on the soft sail; so the film's
-answer moves *down* by 0.17 s from n = 30 to 80 while the ideal answer moves *up* by 0.088 s: with a film, the
-n = 30 answer is not converged either, and the ideal-defect n-convergence (docs/convergence.md: 2.2178 s) says
-nothing about it. White roughness moves the n = 80 chain more at small amplitudes too (−0.3 % at 1e-14 m,
-−5.5 % at 1e-12 m), since the finer chain carries more waves of that amplitude; at 1e-8 m both grids agree
-within 1 % (1.371, 1.359 s): there the roughness, not the defect, sets the time.
+**The chain is roughness-dominated.** Its ideal answer (2.111213 s at n = 30 by Exudyn, 2.111219 s by the
+reduced solver, within their numerical ±; 2.19965 s at n = 80) holds only for a film smoother than any that
+exists. Its full ± (0.16 s at n = 30, 0.21 s at n = 80) is the n-error (analysis.n_error: the twin at n = 15
+fails 0.082 s earlier; at n = 80 the twins at 40 and 20 fail at 2.148 and 2.045 s), and the answer at n = 80
+lies 0.088 s above the one at n = 30, inside both. The roughness rows carry no n-error; what they are compared
+with below is the numerical ± (8.7e-6 s Exudyn, 2e-5 s reduced, at n = 30). White roughness of 1e-14 m moves the
+n = 30 answer by 2.0e-4 s (23× the Exudyn numerical ±, 1/800 of the n-error); from 1e-10 to 1e-8 m the failure
+time falls by 0.23–0.26 s per decade (1.866, 1.634, 1.371 s), more than the n-error from 1e-10 m of white
+roughness and from 1e-9 m of film on. The issue's reduced-solver column (2.111418, 2.134585, 1.866389, 1.634462,
+1.371144 s) matches today's Exudyn column to 1e-6 s and today's reduced column to 7e-6 s (within the reduced
+ideal row's ±); its n = 80 column matches to 1e-5 s. 1e-12 m *delays* failure at n = 30 (2.1346 s): the seeded
+phases can oppose the defect. The physical film only advances it, and less than white roughness of the same
+number: at n = 30 the failure time is 2.1095, 2.0954, 2.0193, 1.8438 and 1.5854 s for 1e-12 … 1e-8 m (−0.08 %,
+−0.75 %, −4.4 %, −12.7 %, −24.9 %), because a film's RMS is spread over its whole spectrum, while `roughness`
+puts that amplitude on every wave the chain carries. Even 1 pm of film moves the answer by 1.8e-3 s, 200× the
+Exudyn numerical ± (1/90 of its n-error); 1e-11 m moves it by 0.75 %, in line with the film twin's "holds below
+at most about 8e-12 m" (4e-12 m at n = 80). **At n = 80 the film matters about twice as much**: −3.1 % at 1e-12
+m, −7.6 % at 1e-11 m, −24 % at 1 nm (1.6716 s against 1.8438 s at n = 30), −36 % at 1e-8 m. The same film on the
+finer chain keeps its long waves and adds the short ones between n = 30 and 80, and those grow fastest on the
+soft sail; so the film's answer moves *down* by 0.17 s from n = 30 to 80 while the ideal answer moves *up* by
+0.088 s: with a film, the n = 30 answer is not converged either, and the ideal-defect n-convergence
+(docs/convergence.md: 2.2178 s) says nothing about it. White roughness moves the n = 80 chain more at small
+amplitudes too (−0.3 % at 1e-14 m, −5.5 % at 1e-12 m), since the finer chain carries more waves of that
+amplitude; at 1e-8 m both grids agree within 1 % (1.371, 1.359 s): there the roughness, not the defect, sets the
+time.
 
 **The sheet takes the physical film only**: `roughness` (white, n-dependent) is refused for a sheet ("refused"
 in its rows); the film rows are the sheet's film (model.film's surface at the tile centres). Unlike the chain,
@@ -71,8 +75,14 @@ def answer(result) -> str:
     if result.error is not None:
         return f"error: {result.error}"
     bar = result.failure_time_uncertainty
+    if result.failed and bar is not None:
+        n_error = result.uncertainty.get("n_error") or {}
+        if not n_error.get("estimated"):
+            return f"{result.failure_time:.6f} ± {bar:.2g} (no n-error: {n_error.get('reason', 'not estimated')})"
+        numerical = result.uncertainty["uncertainty_numerics"]  # U without the n-error (analysis.n_error)
+        return f"{result.failure_time:.6f} ± {bar:.2g} (numerical ± {numerical:.2g})"
     if result.failed:
-        return with_uncertainty(result.failure_time, bar, 5) if bar is not None else f"{result.failure_time:.6f}"
+        return f"{result.failure_time:.6f}"
     return f"survives (max ratio {result.max_amplitude_ratio:.4f})"
 
 
@@ -175,8 +185,10 @@ def main(argv=None) -> int:
                 "# Failure time against the film's roughness",
                 "",
                 "Generated by `python validation/roughness.py`. Failure: amplitude ≥ 2 × initial; times in s. "
-                "The rows without roughness carry the default estimate's ± (tolerance sequence, perturbed twin, "
-                "sampling); every other row is one run (`uncertainty=False`), printed to 1e-6 s. White roughness: "
+                "The rows without roughness are the default run (solvers.uncertainty: the base run reported) with "
+                "its ± (the loose twin, the probe twin, sampling and, where the run's verdict is well posed in n, "
+                "the n-error of analysis.n_error) and, in brackets, the ± without the n-error or why it has none; "
+                "every other row is one run (`uncertainty=False`), printed to 1e-6 s. White roughness: "
                 "`SailParameters.roughness`, a seeded sine of that amplitude at every wavelength the grid carries "
                 "(so a finer grid gets more of it). Film: `SailParameters.film_rms` with the reference film's "
                 f"correlation length {REFERENCE_FILM.correlation_length:g} m and Hurst exponent "
