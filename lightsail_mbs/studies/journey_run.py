@@ -49,6 +49,7 @@ from lightsail_mbs.studies.journey import (
     lab_peak_intensity,
     notes,
     spectrum_of,
+    with_verdict,
 )
 
 SAMPLES = 500  # output samples over the run
@@ -182,6 +183,7 @@ def run_time_domain(
     settings = RunSettings(t_final=tau, output_interval=tau / samples)
     run = solve(case, solver, settings, uncertainty=False, progress=progress, **options)
     rows = rows_of(case, run, film, s.wavelength)
+    outcome = verdict(run, rows, film, s.target_speed)
     return {
         "case": case.to_dict(),
         "settings": asdict(s),
@@ -189,8 +191,8 @@ def run_time_domain(
         "solver": solver,
         "mass": craft_mass(p, s.carried_mass),
         "lab_peak_intensity": case.intensity,
-        "snapshots": rows,
-        "verdict": verdict(run, rows, film, s.target_speed),
+        "snapshots": with_verdict(rows, outcome),
+        "verdict": outcome,
         "run": {k: v for k, v in run.summary().items() if k not in ("parameters", "provenance", "info")},
         "wall_time": run.wall_time,
         "method": run.info.get("method"),
