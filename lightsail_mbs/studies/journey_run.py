@@ -25,7 +25,8 @@ segments (docs/journey.md says why); the snapshot journey resumes (studies/journ
 
 **An optical table with a wavelength axis** is read inside the run at the sail-frame wavelength of its state
 (model/terms/radiation.py): its force law and c_n(0), which drives the world line; the run lasts the proper time of
-the snapshots' quadrature trajectory. The heat keeps the film's absorptance (or the settings'), not the table's.
+the snapshots' quadrature trajectory. The heat reads its absorptance 1 − R − T at λ' too, as the snapshots do
+(model/heating.py), unless the settings give one or the table is lossless.
 
 **What it refuses.** The run's heat uses the material's emissivities, deep space around it and 293.15 K as the
 tensioning temperature (model/heating.py): settings that change them are refused, as is a film whose
