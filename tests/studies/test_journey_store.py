@@ -84,3 +84,20 @@ def test_the_verdict_column_is_intact_until_the_verdicts_moment():
     assert {r["verdict"] for r in slack["snapshots"]} == {"shape"}  # decided at τ = 0
     intact = run_journey(case(), SETTINGS)
     assert intact["verdict"]["verdict"] == "intact" and {r["verdict"] for r in intact["snapshots"]} == {"intact"}
+
+
+def test_the_command_resumes_in_its_output_folder(tmp_path, capsys):
+    from lightsail_mbs.cli import main
+
+    args = ["journey", "--model", "tnt", "--material", "silicon-nitride", "--length", "3.6", "--width", "3.6"]
+    args += ["--thickness", "2.5e-8", "--tension", "100", "--defect-amplitude", "1e-3", "--power", "4e10"]
+    args += ["--carried-mass", "1e-3", "--step", "0.1", "--out", str(tmp_path), "--quiet"]
+    assert main(args) == 0
+    first = (tmp_path / "journey.csv").read_text()
+    assert "resumed" not in capsys.readouterr().out
+    assert main(args) == 0
+    count = len(snapshot_speeds(0.2, 0.1))
+    assert f"resumed: {count} of {count} snapshots" in capsys.readouterr().out
+    assert (tmp_path / "journey.csv").read_text() == first
+    assert main(["0.2" if a == "0.1" else a for a in args]) == 0  # another step: other settings
+    assert "started afresh" in capsys.readouterr().err
