@@ -71,7 +71,12 @@ def register(sub) -> None:
     g.add_argument(
         "--samples", type=int, default=500, help="with --time-domain: the run's output samples [default: 500]"
     )
-    p.add_argument("--out", required=True, help="output folder: journey.csv, journey.json, journey.png")
+    p.add_argument(
+        "--out",
+        required=True,
+        help="output folder: journey.csv, journey.json, journey.png; the snapshots' rows are kept in "
+        "journey_rows.jsonl as they are made, and a rerun with the same case and settings resumes from them",
+    )
     p.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
     p.set_defaults(func=run)
 
@@ -93,7 +98,7 @@ def run(args) -> int:
         check("--shape-runs", args.shape_runs, not args.shape_runs, "off with --time-domain (the run is the shape's)")
         report = run_time_domain(params, settings, args.solver, args.samples, progress=not args.quiet)
     else:
-        report = run_journey(params, settings, progress=not args.quiet)
+        report = run_journey(params, settings, progress=not args.quiet, folder=out)
     write_csv(out / "journey.csv", report["snapshots"])
     (out / "journey.json").write_text(json.dumps(_plain(report), indent=1), encoding="utf-8")
     journey_figure(report, out / "journey.png")
@@ -106,8 +111,14 @@ def run(args) -> int:
     )
     if args.time_domain:
         print(f"time domain: {args.solver} solver, {report['wall_time']:.3g} s of wall time")
-    elif report["optics"]["wavelength_axis"]:
-        print(f"optics: {report['optics']['text']}")
+    else:
+        resume = report["resume"]
+        if resume["discarded"]:
+            print(f"note: {resume['discarded']}", file=sys.stderr)
+        elif resume["resumed"]:
+            print(f"resumed: {resume['resumed']} of {len(report['snapshots'])} snapshots read from {resume['file']}")
+        if report["optics"]["wavelength_axis"]:
+            print(f"optics: {report['optics']['text']}")
     for note in report["notes"]:
         print(f"note: {note}", file=sys.stderr)
     return 0

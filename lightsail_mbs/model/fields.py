@@ -322,9 +322,9 @@ FIELDS = {
     "heat_absorptance": FieldInfo(
         MATERIAL,
         "",
-        "with heated: the film's absorptance at the laser's wavelength",
+        "with heated: the film's absorptance at the laser's wavelength, at every wavelength",
         "0 ≤ A ≤ 1",
-        follows="the material's",
+        follows="the material's; with an absorbing optical table that has a wavelength axis, its 1 − R − T at λ'",
         models=TNT,
     ),
     "carried_mass": FieldInfo(

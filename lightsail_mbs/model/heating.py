@@ -5,8 +5,10 @@ temperature is the steady field of the sail-frame beam of each moment, I'(τ) = 
 (D the Doppler factor the run's beam loads follow: 1 at rest, the closed form or the world line in the run's
 state, model/terms/doppler.py and model/world_line.py). The field is radiative equilibrium per slice for a
 uniform beam and the conducting strip's steady field for a Gaussian one (:mod:`lightsail_mbs.model.thermal`):
-absorptance A (``heat_absorptance`` or the material's), emissivities ε_f + ε_b and conductivity k of the
-material, surroundings at DEEP_SPACE. It is quasi-steady because the film's thermal time ρ c_p h/(4εσT³) is
+absorptance A (``heat_absorptance`` or the material's; with an optical table that has a wavelength axis and
+records absorption, its 1 − R − T at the sail-frame wavelength of D, as the snapshot journey reads it:
+:func:`absorptance`), emissivities ε_f + ε_b and conductivity k of the material, surroundings at DEEP_SPACE. It
+is quasi-steady because the film's thermal time ρ c_p h/(4εσT³) is
 shorter than the beam's change time c/(2g₀) by orders of magnitude (docs/journey.md gives both for every case;
 :func:`lag` the fraction by which T would trail).
 
@@ -45,9 +47,29 @@ HEADER = 6
 POINTS, TOP, STEP, TENSION, RELIEF, REST = range(HEADER)
 
 
-def absorptance(p) -> float:
-    """A: the case's heat_absorptance, or its material's at the beam's wavelength."""
-    return materials.get(p.material).absorptance.value if p.heat_absorptance is None else p.heat_absorptance
+def absorptance(p, factor: float = 1.0) -> float:
+    """A at the Doppler factor D = factor: the case's heat_absorptance; else, for an optical table with a wavelength
+    axis that records absorption (not lossless), its normal-incidence 1 − R − T at the sail-frame wavelength
+    λ' = λ₀/√D (:meth:`~lightsail_mbs.model.optics.SpectralTable.normal_absorptance`, λ₀ the table's laser
+    wavelength; held at the table's end beyond its range, where the run's loads are not finite and the run
+    stops); else the material's at the beam's wavelength."""
+    if p.heat_absorptance is not None:
+        return p.heat_absorptance
+    spectrum = _absorbing_spectrum(p)
+    if spectrum is None:
+        return materials.get(p.material).absorptance.value
+    lo, hi = spectrum.range
+    return spectrum.normal_absorptance(min(max(spectrum.wavelength / math.sqrt(factor), lo), hi))
+
+
+def _absorbing_spectrum(p):
+    """The case's optical table with a wavelength axis if it records absorption, else None."""
+    if not p.optics_file:
+        return None
+    from lightsail_mbs.model import optics
+
+    spectrum = optics.read_spectrum(p.optics, single=True)
+    return None if spectrum is None or spectrum.lossless else spectrum
 
 
 def profile(p) -> np.ndarray:
@@ -65,7 +87,7 @@ def temperatures(p, factor: float) -> np.ndarray:
     from lightsail_mbs.model import thermal
 
     film = materials.get(p.material)
-    flux = absorptance(p) * p.intensity * factor * profile(p)
+    flux = absorptance(p, factor) * p.intensity * factor * profile(p)
     if p.uniform_beam:
         return np.asarray(thermal.equilibrium_temperature(flux, film.emissivity))
     edges = np.linspace(0.0, p.length, p.n + 1)

@@ -120,7 +120,7 @@ class SailParameters(DerivedQuantities):
     velocity_terms: bool = False  # the first-order Doppler and aberration of each body's velocity (terms/velocity.py)
     initial_beta: float = 0.0  # β₀: the sail's speed along the beam at t = 0, a fraction of c (terms/doppler.py)
     heated: bool = False  # the film's quasi-steady temperature and the tension it leaves, inside the run (heating.py)
-    heat_absorptance: float | None = None  # A at the laser's wavelength (None: the material's)
+    heat_absorptance: float | None = None  # A at every wavelength (None: the material's or the table's, heating.py)
     carried_mass: float = 0.0  # kg the craft carries that is no body: it slows only the trajectory (terms/doppler.py)
     integrated_trajectory: bool = False  # the world line integrated in the run's state (model/world_line.py)
 

@@ -268,17 +268,27 @@ class Journey:
             **extra,
         }
 
-    def run(self, progress: bool = False) -> list[dict]:
-        """The snapshots from rest to the target speed (and, with shape_runs, each one's shape run)."""
+    def run(self, progress: bool = False, store=None, limit: int | None = None) -> list[dict]:
+        """The snapshots from rest to the target speed (and, with shape_runs, each one's shape run). store: a
+        :class:`~lightsail_mbs.studies.journey_store.RowStore` that the finished rows are read from and written
+        to as they are made; limit: compute at most this many snapshots now (the rows so far are returned, the
+        journey unfinished)."""
         from tqdm import tqdm
 
         betas = snapshot_speeds(self.settings.target_speed, self.settings.step)
-        rows = []
-        for beta in tqdm(betas, desc="journey", unit="snapshot", disable=not progress):
+        rows = store.done() if store is not None else []
+        todo = betas[len(rows) :] if limit is None else betas[len(rows) : len(rows) + limit]
+        for beta in tqdm(
+            todo, desc="journey", unit="snapshot", disable=not progress, initial=len(rows), total=len(betas)
+        ):
             row = self.snapshot(float(beta))
             if self.settings.shape_runs:
                 row.update(shape_run(self.optics_at(float(beta))[0], row, self.settings.shape_time))
             rows.append(row)
+            if store is not None:
+                store.add(row)
+        if len(rows) < len(betas):
+            return rows
         worst = max(r["thermal_lag"] for r in rows)
         if worst > QUASI_STEADY_LIMIT:
             raise ParameterError(
@@ -351,24 +361,41 @@ def notes(p: SailParameters, film: Film) -> list[str]:
     ]
 
 
-def run_journey(p: SailParameters, s: JourneySettings, progress: bool = False) -> dict:
-    """The journey's report: the case, the settings, the film, the snapshots, the verdict and the ratio of the
-    thermal to the beam's time scale (what makes the temperature quasi-steady)."""
+def run_journey(p: SailParameters, s: JourneySettings, progress: bool = False, folder=None) -> dict:
+    """The journey's report: the case, the settings, the film, the snapshots (each with the verdict so far,
+    :func:`with_verdict`), the verdict and the ratio of the thermal to the beam's time scale (what makes the
+    temperature quasi-steady). folder: keep the finished rows there and resume from them
+    (:mod:`lightsail_mbs.studies.journey_store`)."""
     journey = Journey(p, s)
-    rows = journey.run(progress)
+    store = None
+    if folder is not None:
+        from lightsail_mbs.studies.journey_store import RowStore, key_of
+
+        store = RowStore(folder, key_of(p.to_dict(), asdict(s)), snapshot_speeds(s.target_speed, s.step))
+    rows = journey.run(progress, store)
+    verdict = journey.verdict(rows)
     return {
         "case": p.to_dict(),
         "settings": asdict(s),
         "film": asdict(journey.film),
         "mass": journey.mass,
         "lab_peak_intensity": journey.peak,
-        "snapshots": rows,
-        "verdict": journey.verdict(rows),
+        "snapshots": with_verdict(rows, verdict),
+        "verdict": verdict,
         "quasi_steady_ratio": max(r["thermal_time"] / r["change_time"] for r in rows),
         "thermal_lag": max(r["thermal_lag"] for r in rows),
         "notes": notes(p, journey.film),
         "optics": optics_report(journey),
+        "resume": None if store is None else store.report(),
     }
+
+
+def with_verdict(rows: list[dict], verdict: dict) -> list[dict]:
+    """The rows with the column ``verdict``: the journey's outcome so far, 'intact' before the verdict's moment and
+    its kind ('temperature', 'shape', 'stopped') from the first row at or after it (the last row's is the
+    journey's; a verdict without a moment, a run stopped by its error, marks the last row)."""
+    moment = verdict.get("tau", math.inf if verdict["verdict"] == "intact" else rows[-1]["tau"])
+    return [{**row, "verdict": verdict["verdict"] if row["tau"] >= moment else "intact"} for row in rows]
 
 
 def optics_report(journey: Journey) -> dict:

@@ -15,13 +15,18 @@ and is sampled `samples` times.
 intensity_sail, acceleration, wavelength, temperature_max, temperature_mean, thermal_strain, tension, critical,
 margin) read from the run's own record: the world line for t, β and the Doppler factor D, the heating table the
 kernels read for the temperatures and the tension at that D, the paper's criterion at I₀ D for the margin, and the
-shape's amplitude (``amplitude``, m, and ``amplitude_ratio`` to the start). The verdict is the run's: the limit
-temperature exceeded at the first sample above it, a shape failure at the run's failure time (the failure rule of
-model/failure.py), or the target reached intact.
+shape's amplitude (``amplitude``, m, and ``amplitude_ratio`` to the start), and the verdict so far
+(studies.journey.with_verdict). The verdict is the run's: the limit temperature exceeded at the first sample above
+it, a shape failure at the run's failure time (the failure rule of model/failure.py), with its ± by the package's
+uncertainty rule on a rerun over [0, WINDOW × t_f] (:func:`failure_uncertainty`), or the target reached intact.
+
+**Not resumable.** Both solvers start a run from the case's initial shape at rest, so the run is not split into
+segments (docs/journey.md says why); the snapshot journey resumes (studies/journey_store.py).
 
 **An optical table with a wavelength axis** is read inside the run at the sail-frame wavelength of its state
 (model/terms/radiation.py): its force law and c_n(0), which drives the world line; the run lasts the proper time of
-the snapshots' quadrature trajectory. The heat keeps the film's absorptance (or the settings'), not the table's.
+the snapshots' quadrature trajectory. The heat reads its absorptance 1 − R − T at λ' too, as the snapshots do
+(model/heating.py), unless the settings give one or the table is lossless.
 
 **What it refuses.** The run's heat uses the material's emissivities, deep space around it and 293.15 K as the
 tensioning temperature (model/heating.py): settings that change them are refused, as is a film whose
@@ -36,6 +41,7 @@ from dataclasses import asdict
 
 import numpy as np
 
+from lightsail_mbs.base.formatting import with_uncertainty
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError, check
 from lightsail_mbs.model import expansion, heating, relativity, thermal
@@ -49,9 +55,11 @@ from lightsail_mbs.studies.journey import (
     lab_peak_intensity,
     notes,
     spectrum_of,
+    with_verdict,
 )
 
 SAMPLES = 500  # output samples over the run
+WINDOW = 1.5  # the failure-time estimate reruns the case over [0, WINDOW × t_f]
 
 
 def run_case(p: SailParameters, s: JourneySettings) -> SailParameters:
@@ -141,14 +149,19 @@ def rows_of(case: SailParameters, run, film: Film, laser: float) -> list[dict]:
 
 
 def verdict(run, rows: list[dict], film: Film, target: float) -> dict:
-    """The run's outcome: 'temperature' (the first sample above T_lim), 'shape' (the run failed), 'intact' (the
-    target reached), or 'stopped' (the run ended early: its error)."""
+    """The run's outcome: 'temperature' (the first sample above T_lim), 'shape' (the run failed: at its failure
+    time, located between the samples by solvers.events, with t and β interpolated there), 'intact' (the target
+    reached), or 'stopped' (the run ended early: its error)."""
     hot = next((r for r in rows if r["temperature_max"] > film.limit_temperature), None)
     if hot is not None:
         what, kind, row = f"exceeds the limit temperature {film.limit_temperature:.4g} K", "temperature", hot
     elif run.failed:
         what, kind = f"fails by shape (amplitude {run.settings.failure_ratio:g} × its start)", "shape"
-        row = rows[-1]
+        tau = [r["tau"] for r in rows]  # the world line between the samples that bracket the failure time
+        row = {
+            "tau": run.failure_time,
+            **{k: float(np.interp(run.failure_time, tau, [r[k] for r in rows])) for k in ("t", "beta")},
+        }
     elif run.error:
         return {"verdict": "stopped", "text": f"the run stopped: {run.error}"}
     else:
@@ -163,10 +176,12 @@ def run_time_domain(
     solver: str = "reduced",
     samples: int = SAMPLES,
     progress: bool = False,
+    uncertainty: bool = True,
     **options,
 ) -> dict:
-    """The time-domain journey's report: the run's case, the settings, the film, the rows, the verdict, the
-    run's summary and the thermal lag at the start (the hottest moment)."""
+    """The time-domain journey's report: the run's case, the settings, the film, the rows, the verdict (with
+    uncertainty, a shape failure's time with its ± from :func:`failure_uncertainty`), the run's summary and the
+    thermal lag at the start (the hottest moment)."""
     from lightsail_mbs.analysis.runs import solve
 
     check("samples", samples, isinstance(samples, int) and samples >= 2, "an integer ≥ 2")
@@ -182,6 +197,11 @@ def run_time_domain(
     settings = RunSettings(t_final=tau, output_interval=tau / samples)
     run = solve(case, solver, settings, uncertainty=False, progress=progress, **options)
     rows = rows_of(case, run, film, s.wavelength)
+    outcome = verdict(run, rows, film, s.target_speed)
+    if outcome["verdict"] == "shape" and uncertainty:
+        outcome.update(failure_uncertainty(case, solver, run.failure_time, tau, samples, options))
+        estimate = with_uncertainty(outcome["failure_time"], outcome["failure_time_uncertainty"])
+        outcome["text"] += f"; the failure time {estimate} s by the package's uncertainty rule"
     return {
         "case": case.to_dict(),
         "settings": asdict(s),
@@ -189,14 +209,36 @@ def run_time_domain(
         "solver": solver,
         "mass": craft_mass(p, s.carried_mass),
         "lab_peak_intensity": case.intensity,
-        "snapshots": rows,
-        "verdict": verdict(run, rows, film, s.target_speed),
+        "snapshots": with_verdict(rows, outcome),
+        "verdict": outcome,
         "run": {k: v for k, v in run.summary().items() if k not in ("parameters", "provenance", "info")},
         "wall_time": run.wall_time,
         "method": run.info.get("method"),
         "steps": run.info.get("steps"),
         "thermal_lag": lag,
         "notes": notes(p, film),
+    }
+
+
+def failure_uncertainty(case: SailParameters, solver: str, failure: float, tau: float, samples: int, options) -> dict:
+    """The failure time's uncertainty by the package's rule (:mod:`lightsail_mbs.solvers.uncertainty`: the base run
+    and its loose, probe and film twins, U = SAFETY (E_int + S) + E_s, the n-error of analysis.n_error folded in
+    where the case is well posed in n), on the journey's case rerun over the window [0, WINDOW × t_f] (at most the
+    journey's τ) with `samples` output samples: the twins need not cross the rest of the journey. A twin that does
+    not fail within the window makes U infinite. Returns the window run's failure time, its ±, the window and the
+    rule's one-line explanation; the journey's own failure time is the verdict's τ (the two differ by the
+    sampling's effect on the step sequence, within U)."""
+    from lightsail_mbs.analysis.runs import solve
+
+    window = min(tau, WINDOW * failure)
+    run = solve(case, solver, RunSettings(t_final=window, output_interval=window / samples), **options)
+    u = run.uncertainty or {}
+    return {
+        "failure_time": run.failure_time,
+        "failure_time_uncertainty": run.failure_time_uncertainty,
+        "uncertainty_window": window,
+        "uncertainty_text": u.get("explanation", ""),
+        "n_error": (u.get("n_error") or {}).get("reason", "folded in") if "n_error" in u else "not estimated",
     }
 
 

@@ -56,7 +56,7 @@ def test_a_table_flat_in_wavelength_gives_the_single_tables_journey(tmp_path):
         )
         for key, value in ra.items():
             # the quadrature of the trajectory against its closed form; every other column to the bit
-            assert rb[key] == pytest.approx(value, rel=1e-11, abs=0), key
+            assert rb[key] == (value if isinstance(value, str) else pytest.approx(value, rel=1e-11, abs=0)), key
 
 
 def trajectory_by_ode(normal_of_wavelength, mass: float, power: float, target: float):
