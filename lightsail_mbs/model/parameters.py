@@ -109,6 +109,9 @@ class SailParameters(DerivedQuantities):
     material: str | None = None  # the film's name in model.materials (its density and E fill the case: materials.fill)
     velocity_terms: bool = False  # the first-order Doppler and aberration of each body's velocity (terms/velocity.py)
     initial_beta: float = 0.0  # β₀: the sail's speed along the beam at t = 0, a fraction of c (terms/doppler.py)
+    payload_tethers: int = 0  # sheet: tethers from the rim to the payload (model/sheet_payload.py); 0: the stem
+    tether_stiffness: float = 0.0  # k, N/m: axial stiffness of each tether (slack in compression)
+    initial_tilt_y: float = 0.0  # rad, sheet: the initial shape turned about x, its y axis towards the beam
 
     def __post_init__(self):
         sections.check_sections(self)
@@ -163,14 +166,15 @@ class SailParameters(DerivedQuantities):
                 )
         if self.payload_mass != 0:
             check("payload_mass", self.payload_mass, self.boundary == "free", "0 unless boundary='free'")
-            check("payload_mass", self.payload_mass, self.n >= 3, "0 for n < 3 (the payload slice is not an end slice)")
+            chain = self.model != "sheet"
+            check("payload_mass", self.payload_mass, self.n >= 3 or not chain, "0 for n < 3 (not an end slice)")
             check(
                 "payload_mass",
                 self.payload_mass,
                 not self.extensible,
                 "0 for the extensible TnT chain (axial_springs=False: its inextensible limit carries one)",
             )
-        for name in ("initial_tilt", "spin_rate"):
+        for name in ("initial_tilt", "initial_tilt_y", "spin_rate"):
             check(
                 name,
                 getattr(self, name),
@@ -221,7 +225,7 @@ class SailParameters(DerivedQuantities):
         """The sheet's rules that join its own section to the sail's: its size, planform, supports, the
         defect across the width and the membrane's modulus."""
         check("n", self.n, self.n <= 500, "an integer 2 ≤ n ≤ 500 for a sheet (n × ny tiles)")
-        for name, value, allowed in planforms.problems(self):
+        for name, value, allowed in planforms.problems(self) + sections.payload_problems(self):
             check(name, value, False, allowed)
         check(
             "boundary",
@@ -304,8 +308,8 @@ class SailParameters(DerivedQuantities):
         α = 0 and a uniform beam: 2 I₀ / (c ρ h)); with an optical table, c_n(0) Ī / (c ρ h); with a payload
         of mass m_p, times M_sail/(M_sail + m_p) (the whole craft accelerates)."""
         momentum = self.normal_momentum
-        if self.payload_mass > 0:  # the whole craft accelerates: c_n(0) Ī L W / (c (M_sail + m_p))
-            sail = self.density * self.thickness * self.length * self.width
+        if self.payload_mass > 0:  # the whole craft accelerates: c_n(0) Ī A / (c (M_sail + m_p))
+            sail = self.density * self.thickness * self.sail_area
             return (
                 momentum
                 * self.mean_intensity

@@ -53,6 +53,9 @@ LATER_DEFAULTS = {
     "material": None,
     "velocity_terms": False,
     "initial_beta": 0.0,
+    "payload_tethers": 0,
+    "tether_stiffness": 0.0,
+    "initial_tilt_y": 0.0,
 }
 # Names under which saved runs and store records written before the current field names hold them.
 LEGACY_NAMES = {

@@ -75,6 +75,8 @@ def _add_term(term, block, bodies, forces, tiles, time):
         radiation.tiles_into(block, bodies, forces)
     elif term == frame.ID and not tiles:
         frame.chain_into(block, bodies, forces)
+    elif term == frame.ID:
+        frame.tiles_into(block, bodies, forces)
     elif term == pressure.ID and tiles:
         pressure.tiles_into(block, bodies, forces)
     elif term == body_force.ID and not tiles:

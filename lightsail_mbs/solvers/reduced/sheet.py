@@ -52,12 +52,13 @@ import scipy.sparse as sp
 
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import failure, sheet, sheet_spin, terms
+from lightsail_mbs.model import failure, sheet, sheet_payload, sheet_pose, terms
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.solvers.reduced.sheet_kernels import STATE, fill_jacobian, rhs_kernel, unpack_into
 from lightsail_mbs.solvers.reduced.sheet_radau import SheetRadau
+from lightsail_mbs.solvers.reduced.sheet_tethers import append_payload
 from lightsail_mbs.solvers.skeleton import FailureMonitor
 
 DEFAULT_RTOL = 1e-7
@@ -71,7 +72,6 @@ class SheetModel:
     def __init__(self, p: SailParameters, perturbation: float = 0.0):
         self.p = p
         self.tiles = sheet.Tiles.of(p)
-        N = self.tiles.count
         self.flat = sheet.flat_centres(p)
         self.centres0, self.q0 = sheet.initial_quaternions(p)
         c = sheet.connectors(p, self.centres0, self.q0)
@@ -92,17 +92,21 @@ class SheetModel:
         self.inverse = np.linalg.inv(self.inertia)
         off_diagonal = self.inertia - np.einsum("kii->ki", self.inertia)[:, :, None] * np.eye(3)
         self.diagonal = ~np.any(off_diagonal != 0, axis=(1, 2))
-        self.n = STATE * N
+        self.payload = sheet_payload.payload(p, self.centres0, self.q0, c)
+        append_payload(self, self.payload)  # the payload: body N, its stem a connector, its tethers
+        self.count = len(self.flat)  # bodies: the tiles, then the payload
+        self.n = STATE * self.count
         self.calls = 0
         self._pattern()
 
     def y0(self) -> np.ndarray:
-        y = np.zeros((self.tiles.count, STATE))
-        y[:, 0:3] = self.start - self.flat
-        y[:, 3:7] = self.q0
-        if self.p.spin_rate != 0:  # rigid rotation (model.sheet_spin); ω in the tiles' body axes
-            y[:, 7:10], omega = sheet_spin.spin_velocities(self.p, self.start)
-            y[:, 10:13] = np.einsum("kji,kj->ki", sheet.quaternion_rotation(self.q0), omega)
+        centres, q, velocities, omega = sheet_pose.initial_motion(self.p, self.start, self.q0, self.payload)
+        y = np.zeros((self.count, STATE))
+        y[:, 0:3] = centres - self.flat
+        y[:, 3:7] = q
+        if self.p.spin_rate != 0:  # rigid rotation (model.sheet_spin); ω in the bodies' axes
+            y[:, 7:10] = velocities
+            y[:, 10:13] = np.einsum("kji,kj->ki", sheet.quaternion_rotation(q), omega)
         return y.ravel()
 
     def rhs(self, t, y, out=None):
@@ -128,6 +132,9 @@ class SheetModel:
             *self.followers,
             self.load,
             float(t),
+            self.lit,
+            self.dead,
+            *self.tethers,
             out,
         )
         return out
@@ -135,9 +142,9 @@ class SheetModel:
     def _pattern(self):
         """CSC sparsity of ∂ẏ/∂y (each tile's 13 rows depend on its own and its neighbours' 13 columns) and
         the colouring of the tiles (distance2_colouring of the mesh's adjacency)."""
-        N = self.tiles.count
+        N = self.count
         neighbours = [{k} for k in range(N)]
-        for a, b in zip(self.ta, self.tb):
+        for a, b in [*zip(self.ta, self.tb), *((k, self.lit) for k in self.tethers[0])]:
             if a >= 0:
                 neighbours[a].add(b)
                 neighbours[b].add(a)
@@ -175,16 +182,16 @@ class SheetModel:
     @property
     def position_indices(self) -> np.ndarray:
         """Indices of X = (u, q) of every tile in the state vector."""
-        return (STATE * np.arange(self.tiles.count)[:, None] + np.arange(7)).ravel()
+        return (STATE * np.arange(self.count)[:, None] + np.arange(7)).ravel()
 
     @property
     def velocity_indices(self) -> np.ndarray:
         """Indices of V = (v, ω_b) of every tile in the state vector."""
-        return (STATE * np.arange(self.tiles.count)[:, None] + np.arange(7, 13)).ravel()
+        return (STATE * np.arange(self.count)[:, None] + np.arange(7, 13)).ravel()
 
     def kinematics(self, y: np.ndarray) -> sp.csr_matrix:
         """B(X) with Ẋ = B V: per tile I₃ (u̇ = v) and ½ Q(q) (q̇ = ½ q ⊗ (0, ω_b)), 7N × 6N."""
-        N = self.tiles.count
+        N = self.count
         q0, q1, q2, q3 = y.reshape(N, STATE)[:, 3:7].T
         blocks = np.zeros((N, 7, 6))
         blocks[:, 0, 0] = blocks[:, 1, 1] = blocks[:, 2, 2] = 1.0
@@ -201,7 +208,7 @@ class SheetModel:
 
     def unpack(self, Y: np.ndarray):
         """(centres, xyz angles, velocities, global angular velocities) of state rows (T, 13N), each (T, N, 3)."""
-        Y = np.ascontiguousarray(np.asarray(Y).reshape(len(Y), self.tiles.count, STATE))
+        Y = np.ascontiguousarray(np.asarray(Y).reshape(len(Y), self.count, STATE))
         angles = np.empty(Y.shape[:2] + (3,))
         omega = np.empty(Y.shape[:2] + (3,))
         unpack_into(Y, angles, omega)
@@ -283,7 +290,8 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     cpu = _time.process_time()
     model = SheetModel(params, perturbation)
     y0 = model.y0()
-    atol = rtol * state_scales(params)
+    scales = state_scales(params).reshape(-1, STATE)
+    atol = rtol * np.vstack([scales, scales[: model.count - model.lit]]).ravel()  # the payload as a tile
     dt = settings.sample_interval
     if max_step >= dt:
         h_max = dt * max(1, int(round(max_step / dt)))
@@ -325,7 +333,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
                 batch.append(solver.y.copy())
             states.extend(batch)
             bar.update(solver.t)
-            centres = model.flat + np.array(batch).reshape(len(batch), -1, STATE)[..., :3]
+            centres = (model.flat + np.array(batch).reshape(len(batch), -1, STATE)[..., :3])[:, : model.lit]
             stop = monitor.first_failure(failure.plane_amplitude(centres))
             if stop is not None:
                 del states[len(states) - len(batch) + stop + 1 :]
@@ -334,6 +342,8 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         bar.close()
     wall = _time.perf_counter() - start
     centres, angles, velocities, omega = model.unpack(np.array(states))
+    payload = sheet_payload.record(centres[:, model.lit :], velocities[:, model.lit :])
+    centres, angles, velocities, omega = (a[:, : model.lit] for a in (centres, angles, velocities, omega))
     info = {
         "formulation": "tiles in maximal coordinates (quaternions), Radau IIA with a velocity-reduced sparse solve",
         "rtol": rtol,
@@ -349,6 +359,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         "membrane_modulus": model.tiles.membrane_modulus,
         "membrane_damping": model.tiles.membrane_damping,
         "cpu_time": _time.process_time() - cpu,
+        **payload,
     }
     return Result.from_tiles(
         params,
@@ -428,7 +439,7 @@ def linearise(p: SailParameters, state: np.ndarray | None = None) -> sp.csc_matr
     deviations about the state before it has moved."""
     model = SheetModel(p)
     y = model.y0() if state is None else np.array(state, float)
-    y.reshape(model.tiles.count, STATE)[:, 7:] = 0.0
+    y.reshape(model.count, STATE)[:, 7:] = 0.0
     J = model.jacobian(0.0, y).tocsr()
     V = model.velocity_indices
     K = J[V][:, model.position_indices] @ model.kinematics(y)
