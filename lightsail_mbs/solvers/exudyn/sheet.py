@@ -47,7 +47,7 @@ import numpy as np
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import failure, sheet, sheet_payload, sheet_pose, terms
+from lightsail_mbs.model import failure, sheet, sheet_payload, sheet_pose, sheet_ride, terms
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.model.terms.bodies import VELOCITIES
 from lightsail_mbs.result import Result
@@ -339,6 +339,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         "membrane_damping": system.tiles.membrane_damping,
         "cpu_time": _time.process_time() - cpu,
         **payload,
+        **sheet_ride.record(p, state[0], state[3], payload),
     }
     result = Result.from_tiles(p, "exudyn", times, *state, wall_time=wall, error=error, info=info, settings=settings)
     note = round_off_warning(p, system.conn)

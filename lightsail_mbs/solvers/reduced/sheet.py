@@ -52,7 +52,7 @@ import scipy.sparse as sp
 
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import failure, sheet, sheet_payload, sheet_pose, terms
+from lightsail_mbs.model import failure, sheet, sheet_payload, sheet_pose, sheet_ride, terms
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.progress import Progress
@@ -360,6 +360,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         "membrane_damping": model.tiles.membrane_damping,
         "cpu_time": _time.process_time() - cpu,
         **payload,
+        **sheet_ride.record(params, centres, omega, payload),
     }
     return Result.from_tiles(
         params,
