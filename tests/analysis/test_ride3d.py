@@ -89,6 +89,7 @@ def test_a_runs_histories_start_from_its_pose_and_give_a_verdict():
     np.testing.assert_allclose(ride.tilt[0], [0.02, -0.01], atol=1e-4)  # α_y after α_x: 2nd order
     assert ride.spin_rate[0] == pytest.approx(20.0, rel=1e-12)
     assert ride.verdict == "rides" and ride.decided_at is None
+    assert ride.deformation[0] < 1e-15 and 0 < ride.deformation.max() < 1e-2
     assert sheet_ride(r, crumple=1e-12).verdict == "crumples"
     assert sheet_ride(r, drift_factor=0.05).verdict == "drifts out"
     with pytest.raises(ParameterError, match="crumple"):
