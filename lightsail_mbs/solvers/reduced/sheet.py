@@ -52,13 +52,13 @@ import scipy.sparse as sp
 
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import failure, sheet, sheet_payload, sheet_pose, sheet_ride, terms
+from lightsail_mbs.model import failure, sheet, sheet_payload, sheet_pose, terms
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.solvers.reduced.sheet_kernels import STATE, fill_jacobian, rhs_kernel, unpack_into
 from lightsail_mbs.solvers.reduced.sheet_radau import SheetRadau
-from lightsail_mbs.solvers.reduced.sheet_tethers import append_payload
+from lightsail_mbs.solvers.reduced.sheet_tethers import append_payload, split_bodies
 from lightsail_mbs.solvers.skeleton import FailureMonitor
 
 DEFAULT_RTOL = 1e-7
@@ -341,9 +341,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     finally:
         bar.close()
     wall = _time.perf_counter() - start
-    centres, angles, velocities, omega = model.unpack(np.array(states))
-    payload = sheet_payload.record(centres[:, model.lit :], velocities[:, model.lit :])
-    centres, angles, velocities, omega = (a[:, : model.lit] for a in (centres, angles, velocities, omega))
+    (centres, angles, velocities, omega), extra = split_bodies(params, model.lit, model.unpack(np.array(states)))
     info = {
         "formulation": "tiles in maximal coordinates (quaternions), Radau IIA with a velocity-reduced sparse solve",
         "rtol": rtol,
@@ -359,8 +357,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         "membrane_modulus": model.tiles.membrane_modulus,
         "membrane_damping": model.tiles.membrane_damping,
         "cpu_time": _time.process_time() - cpu,
-        **payload,
-        **sheet_ride.record(params, centres, omega, payload),
+        **extra,
     }
     return Result.from_tiles(
         params,

@@ -17,6 +17,7 @@ import math
 import numpy as np
 
 from lightsail_mbs.base.kernels import njit
+from lightsail_mbs.model import sheet_payload, sheet_ride
 
 STATE = 13  # u(3) q(4) v(3) ω_b(3) per body
 
@@ -84,3 +85,12 @@ def append_payload(model, payload) -> None:
     law = np.array([payload.tether_stiffness, payload.tether_damping])
     tile, point = payload.tether_tile.astype(np.int64), np.ascontiguousarray(payload.tether_point)
     model.tethers = (tile, point, payload.tether_rest, law)
+
+
+def split_bodies(params, lit: int, arrays: tuple) -> tuple[tuple, dict]:
+    """The tiles' (centres, angles, velocities, angular velocities), each (T, lit, 3), of the bodies' arrays,
+    and what the run's info records beside them: the payload's path and the ride histories (model.sheet_ride)."""
+    centres, _, velocities, omega = arrays
+    payload = sheet_payload.record(centres[:, lit:], velocities[:, lit:])
+    tiles = tuple(a[:, :lit] for a in arrays)
+    return tiles, {**payload, **sheet_ride.record(params, tiles[0], tiles[3], payload)}
