@@ -28,37 +28,14 @@ from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.studies.tables import markdown_table
 
-CAP = SailParameters(
-    model="sheet",
-    n=9,
-    ny=12,
-    planform="disc",
-    billow_radius=1.0,
-    billow_rest=True,
-    beam_waist=0.5,
-    defect_amplitude=0.0,
-    intensity=1e8,
-    beam_centre=0.5005,
-)
+DISC = dict(model="sheet", n=9, ny=12, planform="disc")  # 49 tiles
+CAP = SailParameters(**DISC, billow_radius=1.0, billow_rest=True, beam_waist=0.5, defect_amplitude=0.0, intensity=1e8)
+CAP = CAP.replace(beam_centre=0.5005)
 SAIL_MASS = 1e-3 * math.pi / 4  # ρh πL²/4 of the 1 µm film
 FILMS = {"very stiff": dict(youngs_modulus=1e21, membrane_modulus=1e13), "paper's stiff film": {}}
-CROSSCHECK = SailParameters(
-    model="sheet",
-    n=9,
-    ny=12,
-    planform="disc",
-    youngs_modulus=1e18,
-    membrane_modulus=4.5e9,
-    defect_amplitude=1e-3,
-    bending_reference="initial",
-    intensity=1e6,
-    beam_waist=0.4,
-    beam_centre=0.45,
-    beam_centre_y=0.52,
-    spin_rate=20.0,
-    initial_tilt=0.02,
-    initial_tilt_y=-0.01,
-)
+CROSSCHECK = SailParameters(**DISC, youngs_modulus=1e18, membrane_modulus=4.5e9, intensity=1e6, spin_rate=20.0)
+CROSSCHECK = CROSSCHECK.replace(defect_amplitude=1e-3, bending_reference="initial", beam_waist=0.4)
+CROSSCHECK = CROSSCHECK.replace(beam_centre=0.45, beam_centre_y=0.52, initial_tilt=0.02, initial_tilt_y=-0.01)
 
 
 def criterion_rows() -> list[dict]:

@@ -10,6 +10,7 @@ from lightsail_mbs import ParameterError, RunSettings, SailParameters
 from lightsail_mbs.analysis.ride3d import sheet_ride
 from lightsail_mbs.analysis.ride3d_criterion import cap_criterion, stem_boundaries
 from lightsail_mbs.model import sheet, terms
+from lightsail_mbs.paper.spinning_beam import CROSSCHECK
 from lightsail_mbs.solvers.reduced import sheet as reduced_sheet
 
 CAP = SailParameters(
@@ -67,22 +68,7 @@ def test_a_flatter_cap_needs_a_longer_stem_and_a_flat_sail_never_rides():
 
 
 def test_a_runs_histories_start_from_its_pose_and_give_a_verdict():
-    p = SailParameters(
-        model="sheet",
-        n=5,
-        ny=6,
-        planform="disc",
-        youngs_modulus=4.5e13,
-        membrane_modulus=4.5e9,
-        defect_amplitude=0.0,
-        intensity=1e6,
-        beam_waist=0.4,
-        beam_centre=0.45,
-        beam_centre_y=0.52,
-        spin_rate=20.0,
-        initial_tilt=0.02,
-        initial_tilt_y=-0.01,
-    )
+    p = CROSSCHECK.replace(n=5, ny=6, youngs_modulus=4.5e13, defect_amplitude=0.0, bending_reference="flat")
     r = reduced_sheet.run(p, RunSettings(t_final=0.05, output_interval=0.01, stop_at_failure=False))
     ride = sheet_ride(r)
     np.testing.assert_allclose(ride.lateral[0], [0.05, -0.02], atol=1e-12)

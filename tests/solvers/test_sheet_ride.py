@@ -4,30 +4,15 @@ tilt and spin rate at 1 s within 1e-3 relative, shape amplitude within 1e-3 a₀
 import numpy as np
 import pytest
 
-from lightsail_mbs import RunSettings, SailParameters
+from lightsail_mbs import RunSettings
 from lightsail_mbs.analysis.ride3d import sheet_ride
+from lightsail_mbs.paper.spinning_beam import CROSSCHECK
 from lightsail_mbs.solvers.exudyn import sheet as exudyn_sheet
 from lightsail_mbs.solvers.reduced import sheet as reduced_sheet
 
 # a 1 m disc (49 tiles), spinning at 20 rad/s, offset by (5, −2) cm from a beam 0.4 m wide, tilted 0.02 and
 # −0.01 rad, with a manufactured (stress-free) defect of a₀ = 1 mm
-DISC = SailParameters(
-    model="sheet",
-    n=9,
-    ny=12,
-    planform="disc",
-    youngs_modulus=1e18,
-    membrane_modulus=4.5e9,
-    defect_amplitude=1e-3,
-    bending_reference="initial",
-    intensity=1e6,
-    beam_waist=0.4,
-    beam_centre=0.45,
-    beam_centre_y=0.52,
-    spin_rate=20.0,
-    initial_tilt=0.02,
-    initial_tilt_y=-0.01,
-)
+DISC = CROSSCHECK
 
 
 @pytest.mark.slow
