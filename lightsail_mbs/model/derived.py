@@ -25,6 +25,15 @@ class DerivedQuantities:
         return self.density * self.thickness * self.width * self.slice_length
 
     @property
+    def sail_area(self) -> float:
+        """A: L W, or a sheet's mesh area (its tiles' areas summed: πL²/4 for the disc)."""
+        if self.model == "sheet" and self.planform != "rectangle":
+            from lightsail_mbs.model import planforms
+
+            return float(planforms.mesh_of(self).areas.sum())
+        return self.length * self.width
+
+    @property
     def slice_inertia(self) -> float:
         """J = m l² / 12 about the slice centre."""
         return self.slice_mass * self.slice_length**2 / 12.0

@@ -268,11 +268,14 @@ FIELDS = {
         models=CHAINS,
     ),
     "payload_mass": FieldInfo(
-        PAYLOAD, "kg", "payload mass m_p on a rigid stem from the sail's middle", "≥ 0", models=CHAINS
+        PAYLOAD, "kg", "payload mass m_p on a rigid stem from the sail's middle (sheet: or on tethers)", "≥ 0"
     ),
-    "payload_inertia": FieldInfo(PAYLOAD, "kg·m²", "the payload's own inertia J_p", "≥ 0", models=CHAINS),
+    "payload_inertia": FieldInfo(PAYLOAD, "kg·m²", "the payload's own inertia J_p", "≥ 0"),
     "payload_stem": FieldInfo(
-        PAYLOAD, "m", "stem length d from the sail's middle towards the laser", "≥ 0", models=CHAINS
+        PAYLOAD,
+        "m",
+        "stem length d from the sail's middle towards the laser (sheet tethers: the payload's distance there)",
+        "≥ 0",
     ),
     "billow_rest": FieldInfo(
         SAIL,
@@ -284,9 +287,9 @@ FIELDS = {
     "initial_tilt": FieldInfo(
         SUPPORTS,
         "rad",
-        "the initial shape turned counter-clockwise about the craft's centre of mass",
+        "the initial shape turned about the craft's centre of mass: a chain counter-clockwise, a sheet about y "
+        "(its x axis towards the beam, +z)",
         "|tilt| < π/2",
-        models=CHAINS,
     ),
     "material": FieldInfo(
         MATERIAL,
@@ -343,5 +346,22 @@ FIELDS = {
         "form of the constant-power trajectory (model/world_line.py); only with boundary free",
         "",
         models=CHAINS,
+    ),
+    "payload_tethers": FieldInfo(
+        PAYLOAD,
+        "",
+        "tethers from the rim to the payload, elastic cables slack in compression (model.sheet_payload); 0: the stem",
+        "0 or an integer 3 ≤ tethers ≤ the rim's edges; 0 without a payload",
+        models=SHEETS,
+    ),
+    "tether_stiffness": FieldInfo(
+        PAYLOAD, "N/m", "axial stiffness k of each tether", "> 0 with tethers, else 0", models=SHEETS
+    ),
+    "initial_tilt_y": FieldInfo(
+        SUPPORTS,
+        "rad",
+        "the initial shape turned about x through the craft's centre of mass (its y axis towards the beam, +z)",
+        "|tilt| < π/2",
+        models=SHEETS,
     ),
 }

@@ -123,6 +123,9 @@ class SailParameters(DerivedQuantities):
     heat_absorptance: float | None = None  # A at every wavelength (None: the material's or the table's, heating.py)
     carried_mass: float = 0.0  # kg the craft carries that is no body: it slows only the trajectory (terms/doppler.py)
     integrated_trajectory: bool = False  # the world line integrated in the run's state (model/world_line.py)
+    payload_tethers: int = 0  # sheet: tethers from the rim to the payload (model/sheet_payload.py); 0: the stem
+    tether_stiffness: float = 0.0  # k, N/m: axial stiffness of each tether (slack in compression)
+    initial_tilt_y: float = 0.0  # rad, sheet: the initial shape turned about x, its y axis towards the beam
 
     def __post_init__(self):
         sections.check_sections(self)
@@ -193,14 +196,15 @@ class SailParameters(DerivedQuantities):
                 )
         if self.payload_mass != 0:
             check("payload_mass", self.payload_mass, self.boundary == "free", "0 unless boundary='free'")
-            check("payload_mass", self.payload_mass, self.n >= 3, "0 for n < 3 (the payload slice is not an end slice)")
+            chain = self.model != "sheet"
+            check("payload_mass", self.payload_mass, self.n >= 3 or not chain, "0 for n < 3 (not an end slice)")
             check(
                 "payload_mass",
                 self.payload_mass,
                 not self.extensible,
                 "0 for the extensible TnT chain (axial_springs=False: its inextensible limit carries one)",
             )
-        for name in ("initial_tilt", "spin_rate"):
+        for name in ("initial_tilt", "initial_tilt_y", "spin_rate"):
             check(
                 name,
                 getattr(self, name),
@@ -251,7 +255,7 @@ class SailParameters(DerivedQuantities):
         """The sheet's rules that join its own section to the sail's: its size, planform, supports, the
         defect across the width and the membrane's modulus."""
         check("n", self.n, self.n <= 500, "an integer 2 ≤ n ≤ 500 for a sheet (n × ny tiles)")
-        for name, value, allowed in planforms.problems(self):
+        for name, value, allowed in planforms.problems(self) + sections.payload_problems(self):
             check(name, value, False, allowed)
         check(
             "boundary",
@@ -334,8 +338,8 @@ class SailParameters(DerivedQuantities):
         α = 0 and a uniform beam: 2 I₀ / (c ρ h)); with an optical table, c_n(0) Ī / (c ρ h); with a payload
         of mass m_p, times M_sail/(M_sail + m_p) (the whole craft accelerates)."""
         momentum = self.normal_momentum
-        if self.payload_mass > 0:  # the whole craft accelerates: c_n(0) Ī L W / (c (M_sail + m_p))
-            sail = self.density * self.thickness * self.length * self.width
+        if self.payload_mass > 0:  # the whole craft accelerates: c_n(0) Ī A / (c (M_sail + m_p))
+            sail = self.density * self.thickness * self.sail_area
             return (
                 momentum
                 * self.mean_intensity

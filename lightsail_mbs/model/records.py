@@ -57,6 +57,9 @@ LATER_DEFAULTS = {
     "heat_absorptance": None,
     "carried_mass": 0.0,
     "integrated_trajectory": False,
+    "payload_tethers": 0,
+    "tether_stiffness": 0.0,
+    "initial_tilt_y": 0.0,
 }
 # Names under which saved runs and store records written before the current field names hold them.
 LEGACY_NAMES = {

@@ -164,16 +164,20 @@ def _supports(s) -> None:
     v = finite("tip_load_time_constant", s.tip_load_time_constant)
     check("tip_load_time_constant", v, v >= 0, "≥ 0 (0: the full load from t = 0)")
     finite("body_force", s.body_force)
-    v = finite("initial_tilt", s.initial_tilt)
-    check("initial_tilt", v, abs(v) < math.pi / 2, "|tilt| < π/2 rad")
+    for name in ("initial_tilt", "initial_tilt_y"):
+        v = finite(name, getattr(s, name))
+        check(name, v, abs(v) < math.pi / 2, "|tilt| < π/2 rad")
 
 
 @_section("payload")
 def _payload(s) -> None:
-    _at_least(s, ("payload_mass", "payload_inertia", "payload_stem", "carried_mass"))
+    _at_least(s, ("payload_mass", "payload_inertia", "payload_stem", "carried_mass", "tether_stiffness"))
+    tethers = s.payload_tethers
+    check("payload_tethers", tethers, integer(tethers, 0, 10**6) and tethers != 1 and tethers != 2, "0 or ≥ 3")
     if s.payload_mass == 0:
-        for name in ("payload_inertia", "payload_stem"):
+        for name in ("payload_inertia", "payload_stem", "payload_tethers"):
             check(name, getattr(s, name), getattr(s, name) == 0, "0 without a payload (payload_mass = 0)")
+    check("tether_stiffness", s.tether_stiffness, (s.tether_stiffness > 0) == (tethers > 0), "> 0 with tethers, else 0")
 
 
 @_section("sheet")
@@ -205,6 +209,19 @@ def _sheet(s) -> None:
 def _spin(s) -> None:
     spin, tilt = finite("spin_rate", s.spin_rate), finite("spin_tilt", s.spin_tilt)
     check("spin_tilt", tilt, abs(tilt) < math.pi / 2 and (tilt == 0 or spin != 0), "|β| < π/2, 0 unless spinning")
+
+
+def payload_problems(case) -> list:
+    """[(field, value, allowed)]: why a sheet's payload tethers cannot be attached (empty if they can)."""
+    tethers = case.payload_tethers
+    if tethers == 0:
+        return []
+    edges = len(planforms.mesh_of(case).boundary_tile)
+    if tethers > edges:
+        return [("payload_tethers", tethers, f"≤ {edges} (the rim's boundary edges)")]
+    if case.payload_stem <= 0:
+        return [("payload_stem", case.payload_stem, "> 0 with tethers (the payload hangs behind the rim)")]
+    return []
 
 
 def check_sections(case) -> None:

@@ -114,7 +114,7 @@ def test_a_case_file_holds_what_describes_the_sail(tmp_path):
         ("[beam]\nbeam_wasit = 0.3", ["beam.beam_wasit", "did you mean beam_waist", "allowed in [beam]"]),
         ('[beam]\nbeam_waist = "wide"', ["beam.beam_waist", "a number"]),
         ('[sail]\nmodel = "torsion"\n[sheet]\nny = 3', ["ny=3", "unless model='sheet'"]),
-        ('[sail]\nmodel = "sheet"\n[payload]\npayload_mass = 1e-3', ["payload_mass", "unless model is one of"]),
+        ('[sail]\nmodel = "torsion"\n[supports]\ninitial_tilt_y = 0.1', ["initial_tilt_y", "unless model='sheet'"]),
         ("[run]\nt_fnal = 1.0", ["run.t_fnal", "t_final"]),
         ("[run]\nstop_at_failure = 1", ["run.stop_at_failure = 1", "allowed true or false"]),
         ("[run]\nt_final = true", ["run.t_final = true", "allowed a number"]),
@@ -153,7 +153,7 @@ def test_a_version_1_file_and_its_version_2_file_are_the_same_case(tmp_path):
     text = p.to_toml(tmp_path / "sections.toml").read_text()
     tables = tomllib.loads(text)
     assert tables["version"] == 2 and tables["sail"]["model"] == "sheet" and tables["sheet"]["ny"] == 3
-    assert tables["beam"]["beam_centre"] == 0.3 and "payload" not in tables  # the chain's sections left out
+    assert tables["beam"]["beam_centre"] == 0.3 and "optics" not in tables  # the chain's sections left out
     assert SailParameters.from_toml(tmp_path / "sections.toml") == p
     old = tmp_path / "old_names.toml"
     old.write_text('[sail]\nmodel = "sheet"\nn = 4\nny = 3\n[beam]\nbeam_waist = 0.5\nbeam_center = 0.3\n')

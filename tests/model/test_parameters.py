@@ -222,8 +222,8 @@ def test_sheet_fields_round_trip_and_defaults():
         (dict(torsional_damping=1.0), "torsional_damping", "stiffness_damping"),
         (dict(beam_centre_y=math.nan), "beam_centre_y", "finite"),
         (dict(optics="mirror"), "optics", "the R/α law, unless model is one of rigid, torsion, tnt"),
-        (dict(payload_mass=1e-3), "payload_mass", "0 unless model is one of rigid, torsion, tnt"),
-        (dict(initial_tilt=0.1), "initial_tilt", "0 unless model is one of rigid, torsion, tnt"),
+        (dict(initial_tilt_y=2.0), "initial_tilt_y", "|tilt| < π/2"),
+        (dict(payload_mass=1e-3, payload_stem=0.2, payload_tethers=3), "tether_stiffness", "> 0 with tethers"),
         (dict(billow_radius=0.2), "billow_radius", "90° from its apex"),
     ],
 )

@@ -89,10 +89,9 @@ UNUSED = {
     "roughness_seed": 3,
     "optics": "mirror",
     "optics_layout": "mirrored-halves",
-    "payload_mass": 1e-3,
-    "payload_inertia": 1e-6,
-    "payload_stem": 0.1,
-    "initial_tilt": 0.1,
+    "payload_tethers": 3,
+    "tether_stiffness": 1.0,
+    "initial_tilt_y": 0.1,
     "ny": 3,
     "defect_mode_y": 0.5,
     "membrane_modulus": 1e9,
@@ -111,14 +110,16 @@ UNUSED = {
     "heat_absorptance": 1e-5,
     "carried_mass": 1e-3,
 }
-REFUSED_BY_THEIR_SECTION = {"optics_layout", "payload_inertia", "payload_stem", "spin_tilt"}
+REFUSED_BY_THEIR_SECTION = {"optics_layout", "payload_tethers", "tether_stiffness", "spin_tilt"}
 COMPANIONS = {
     "optics_layout": {"optics": "mirror"},
     "spin_tilt": {"spin_rate": 1.0},
     "planform": {"ny": 8},
     "heated": {"material": "silicon-nitride"},
     "heat_absorptance": {"material": "silicon-nitride", "heated": True},
-} | dict.fromkeys(("payload_inertia", "payload_stem"), {"payload_mass": 1e-3})
+    "payload_tethers": {"payload_mass": 1e-3, "payload_stem": 0.1, "tether_stiffness": 1.0},
+    "tether_stiffness": {"payload_mass": 1e-3, "payload_stem": 0.1, "payload_tethers": 3},
+}
 
 
 def test_every_field_a_model_does_not_use_is_refused_in_the_line_its_declaration_generates():

@@ -7,7 +7,8 @@ import pytest
 from lightsail_mbs import SailParameters
 from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import planforms, sheet, sheet_mesh
-from lightsail_mbs.solvers.reduced.sheet import SheetModel, distance2_colouring
+from lightsail_mbs.solvers.reduced.sheet import SheetModel
+from lightsail_mbs.solvers.reduced.sheet_radau import distance2_colouring
 
 
 def grid_polygons(nx, ny, length, width):

@@ -34,6 +34,7 @@ SHEETS = {
     ),
     "gaussian-moving": UNIFORM_SHEET.replace(beam_waist=0.6, reflectivity=0.8, absorptivity=0.15, velocity_terms=True),
     "doppler-pressure": UNIFORM_SHEET.replace(pressure=0.2, velocity_terms=True, initial_beta=0.3),
+    "payload-gaussian": UNIFORM_SHEET.replace(payload_mass=1e-4, payload_stem=0.2, beam_waist=0.8),
 }
 TIME = 0.6  # s: the run's time at which the sums are compared (read by the Doppler term)
 

@@ -17,7 +17,9 @@ new one follows them from this docstring alone):
    block: a 1-D float array; the case and its derived quantities are read here, never in a kernel).
 2. **Bodies in, forces out.** For each family it declares, a numpy form ``chain(p, bodies, forces)`` or
    ``tiles(p, bodies, forces)`` and a compiled form ``chain_into(block, bodies, forces)`` or
-   ``tiles_into(block, bodies, forces)`` (``base.kernels.njit(cache=True)``). ``bodies`` holds the bodies'
+   ``tiles_into(block, bodies, forces)`` (``base.kernels.njit(cache=True)``), or one compiled form
+   ``into(block, bodies, forces, tiles)`` for both families where they share it (a force per body along one
+   axis: :mod:`~lightsail_mbs.model.terms.uniform`). ``bodies`` holds the bodies'
    state row by row (:mod:`~lightsail_mbs.model.terms.bodies`: centres, angle or normal, velocities,
    angular velocities, in the frame accelerating with the flat sail); both forms *add* the force on each
    body centre, in inertial directions (N), into ``forces`` (2 or 3 rows, one column per body). The numpy

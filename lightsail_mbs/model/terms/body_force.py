@@ -13,6 +13,7 @@ import numpy as np
 
 from lightsail_mbs.base.kernels import njit
 from lightsail_mbs.model.sheet_grid import Tiles
+from lightsail_mbs.model.terms import uniform
 
 ID = 4
 FAMILIES = ("chain", "sheet")
@@ -28,9 +29,7 @@ def reads(p) -> int:
 
 def constants(p, family: str) -> np.ndarray:
     """m b: the force on each slice (m = ρ h W l, one value) or on each tile k (m_k = ρ h A_k, N values), N."""
-    if family == "chain":
-        return np.array([p.slice_mass * p.body_force])
-    return Tiles.of(p).masses * p.body_force
+    return uniform.per_body(family, lambda: p.slice_mass * p.body_force, lambda: Tiles.of(p).masses * p.body_force)
 
 
 def chain(p, bodies: np.ndarray, forces: np.ndarray) -> None:
@@ -44,14 +43,6 @@ def tiles(p, bodies: np.ndarray, forces: np.ndarray) -> None:
 
 
 @njit(cache=True)
-def chain_into(block, bodies, forces):
-    """Adds m b x̂ on every slice (compiled form)."""
-    for i in range(forces.shape[1]):
-        forces[0, i] += block[0]
-
-
-@njit(cache=True)
-def tiles_into(block, bodies, forces):
-    """Adds m_k b x̂ on every tile (compiled form)."""
-    for k in range(forces.shape[1]):
-        forces[0, k] += block[k]
+def into(block, bodies, forces, tiles):
+    """Adds m b x̂ on every slice or m_k b x̂ on every tile: the compiled form of both families."""
+    uniform.add_along(block, forces, 0, not tiles)

@@ -73,14 +73,12 @@ def _add_term(term, block, bodies, forces, tiles, time):
         radiation.chain_into(block, bodies, forces)
     elif term == radiation.ID:
         radiation.tiles_into(block, bodies, forces)
-    elif term == frame.ID and not tiles:
-        frame.chain_into(block, bodies, forces)
+    elif term == frame.ID:
+        frame.into(block, bodies, forces, tiles)
     elif term == pressure.ID and tiles:
         pressure.tiles_into(block, bodies, forces)
-    elif term == body_force.ID and not tiles:
-        body_force.chain_into(block, bodies, forces)
     elif term == body_force.ID:
-        body_force.tiles_into(block, bodies, forces)
+        body_force.into(block, bodies, forces, tiles)
     elif term == velocity.ID and not tiles:
         velocity.chain_into(block, bodies, forces)
     elif term == velocity.ID:

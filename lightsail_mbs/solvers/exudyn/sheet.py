@@ -47,11 +47,12 @@ import numpy as np
 from lightsail_mbs.base.constants import SPEED_OF_LIGHT
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import failure, sheet, sheet_spin, terms
+from lightsail_mbs.model import failure, sheet, sheet_payload, sheet_pose, sheet_ride, terms
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.model.terms.bodies import VELOCITIES
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.exudyn.console import silenced, solve_steps
+from lightsail_mbs.solvers.exudyn.sheet_tethers import add_payload_links
 from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.solvers.skeleton import FailureMonitor
 
@@ -141,28 +142,32 @@ class SheetSystem:
 
         self.p = p
         self.tiles = sheet.Tiles.of(p)
-        N = self.tiles.count
         self.flat = sheet.flat_centres(p)
         self.centres0, self.q0 = sheet.initial_quaternions(p)
-        start = sheet.perturbed(p, self.centres0, perturbation)
-        angles0 = sheet.angles_xyz(sheet.quaternion_rotation(self.q0))
         self.conn = sheet.connectors(p, self.centres0, self.q0)
-        velocities, rates = np.zeros((N, 3)), np.zeros((N, 3))
+        self.payload = sheet_payload.payload(p, self.centres0, self.q0, self.conn)
+        start = sheet.perturbed(p, self.centres0, perturbation)
+        start, q, velocities, omega = sheet_pose.initial_motion(p, start, self.q0, self.payload)  # all bodies
+        angles0 = sheet.angles_xyz(sheet.quaternion_rotation(q))
+        rates = np.zeros_like(velocities)
         if p.spin_rate != 0:  # rigid rotation (model.sheet_spin); the angles' rates φ̇ = G⁻¹ω
-            velocities, omega = sheet_spin.spin_velocities(p, start)
             G = angular_velocity_xyz(angles0[:, None, :], np.eye(3)).transpose(0, 2, 1)  # ω = G φ̇
             rates = np.linalg.solve(G, omega[:, :, None])[:, :, 0]
+        else:
+            velocities = np.zeros_like(velocities)
+        reference = self.flat if self.payload is None else np.vstack([self.flat, self.payload.start])
         self.SC = exu.SystemContainer()
         mbs = self.mbs = self.SC.AddSystem()
         J = self.tiles.inertias  # Exudyn's order: J_xx, J_yy, J_zz, J_yz, J_xz, J_xy
-        inertias = [[J[k, 0, 0], J[k, 1, 1], J[k, 2, 2], J[k, 1, 2], J[k, 0, 2], J[k, 0, 1]] for k in range(N)]
-        masses = self.tiles.masses
+        masses = sheet_pose.body_masses(p, self.payload)
+        J = J if self.payload is None else np.concatenate([J, self.payload.inertia[None]])
+        inertias = [[J[k, 0, 0], J[k, 1, 1], J[k, 2, 2], J[k, 1, 2], J[k, 0, 2], J[k, 0, 1]] for k in range(len(J))]
         self.nodes, self.bodies = [], []
-        for k in range(N):
+        for k in range(len(J)):
             node = mbs.AddNode(
                 NodeRigidBodyRxyz(
-                    referenceCoordinates=[*self.flat[k], 0.0, 0.0, 0.0],
-                    initialCoordinates=[*(start[k] - self.flat[k]), *angles0[k]],
+                    referenceCoordinates=[*reference[k], 0.0, 0.0, 0.0],
+                    initialCoordinates=[*(start[k] - reference[k]), *angles0[k]],
                     initialVelocities=[*velocities[k], *rates[k]],
                 )
             )
@@ -197,7 +202,9 @@ class SheetSystem:
         for tile, point, force in zip(*sheet.edge_followers(p)):
             marker = mbs.AddMarker(MarkerBodyRigid(bodyNumber=self.bodies[tile], localPosition=list(point)))
             mbs.AddLoad(LoadForceVector(markerNumber=marker, loadVector=list(force), bodyFixed=True))
-        self.force = np.zeros(6 * N)
+        self.tether_rows = add_payload_links(mbs, self.bodies, self.payload)  # the stem or the tethers
+        self.force = np.zeros(6 * len(self.nodes))
+        self.packed = terms.pack(p, "sheet")
         self.reads_velocities = bool(terms.reads(terms.pack(p, "sheet")) & VELOCITIES)
         self.load_calls, self.load_time = 0, 0.0
         self.generic = mbs.AddObject(ObjectGenericODE2(nodeNumbers=self.nodes, forceVector=self.force.tolist()))
@@ -215,7 +222,9 @@ class SheetSystem:
             q_t = np.asarray(q_t)[: 6 * self.tiles.count].reshape(-1, 6)
             rates = (q_t[:, :3], angular_velocity_xyz(q[:, 3:], q_t[:, 3:]))
         forces = terms.tile_forces(self.p, self.flat + q[:, :3], sheet.normal_xyz(q[:, 3:]), *rates, time=t)
-        self.force.reshape(-1, 6)[:, :3] = forces
+        self.force.reshape(-1, 6)[: self.tiles.count, :3] = forces
+        if self.payload is not None:  # its own frame force −m_p g₀ ẑ, with the beam's factor
+            self.force[-4] = self.payload.frame_force * terms.beam_factor(self.packed, t)
         self.load_calls += 1
         self.load_time += _time.perf_counter() - t0
         return self.force
@@ -299,11 +308,16 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     error = solve_steps(solver, mbs, s, bar, failure="Newton did not converge", stopped=lambda: recorder.failed)
     wall = _time.perf_counter() - start
     whole = min(len(recorder.rows_q), len(recorder.rows_v), len(recorder.times))  # an interrupt may cut a record
-    state = system.state(np.array(recorder.rows_q[:whole]), np.array(recorder.rows_v[:whole]))
-    times = recorder.times[:whole]
+    rows_q, rows_v = np.array(recorder.rows_q[:whole]), np.array(recorder.rows_v[:whole])
+    state, times = system.state(rows_q, rows_v), recorder.times[:whole]
     stop = monitor.first_failure(failure.plane_amplitude(state[0]))
     if stop is not None:  # end at the first sample past failure
-        state, times = tuple(a[: stop + 1] for a in state), times[: stop + 1]
+        state = tuple(a[: stop + 1] for a in state)
+        times, rows_q, rows_v = times[: stop + 1], rows_q[: stop + 1], rows_v[: stop + 1]
+    tail = (a[:, 6 * system.tiles.count :].reshape(len(a), -1, 6)[..., :3] for a in (rows_q, rows_v))
+    payload = sheet_payload.record(*tail)  # the payload's displacement and velocity
+    if payload:
+        payload["payload_centre"] = (np.array(payload["payload_centre"]) + system.payload.start).tolist()
     info = {
         "formulation": "rigid tiles (NodeRigidBodyRxyz) and ObjectConnectorRigidBodySpringDamper edges, "
         "generalized-alpha, modified Newton, sparse LU",
@@ -324,6 +338,8 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         "membrane_modulus": system.tiles.membrane_modulus,
         "membrane_damping": system.tiles.membrane_damping,
         "cpu_time": _time.process_time() - cpu,
+        **payload,
+        **sheet_ride.record(p, state[0], state[3], payload),
     }
     result = Result.from_tiles(p, "exudyn", times, *state, wall_time=wall, error=error, info=info, settings=settings)
     note = round_off_warning(p, system.conn)

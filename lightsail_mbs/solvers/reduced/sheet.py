@@ -43,7 +43,6 @@ perturbation (m: seeded tile offsets along z at the start, model.sheet.perturbed
 
 from __future__ import annotations
 
-import heapq
 import math
 import time as _time
 
@@ -52,12 +51,13 @@ import scipy.sparse as sp
 
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import failure, sheet, sheet_spin, terms
+from lightsail_mbs.model import failure, sheet, sheet_payload, sheet_pose, terms
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.solvers.reduced.sheet_kernels import STATE, fill_jacobian, rhs_kernel, unpack_into
-from lightsail_mbs.solvers.reduced.sheet_radau import SheetRadau
+from lightsail_mbs.solvers.reduced.sheet_radau import SheetRadau, distance2_colouring
+from lightsail_mbs.solvers.reduced.sheet_tethers import append_payload, split_bodies
 from lightsail_mbs.solvers.skeleton import FailureMonitor
 
 DEFAULT_RTOL = 1e-7
@@ -71,7 +71,6 @@ class SheetModel:
     def __init__(self, p: SailParameters, perturbation: float = 0.0):
         self.p = p
         self.tiles = sheet.Tiles.of(p)
-        N = self.tiles.count
         self.flat = sheet.flat_centres(p)
         self.centres0, self.q0 = sheet.initial_quaternions(p)
         c = sheet.connectors(p, self.centres0, self.q0)
@@ -92,17 +91,21 @@ class SheetModel:
         self.inverse = np.linalg.inv(self.inertia)
         off_diagonal = self.inertia - np.einsum("kii->ki", self.inertia)[:, :, None] * np.eye(3)
         self.diagonal = ~np.any(off_diagonal != 0, axis=(1, 2))
-        self.n = STATE * N
+        self.payload = sheet_payload.payload(p, self.centres0, self.q0, c)
+        append_payload(self, self.payload)  # the payload: body N, its stem a connector, its tethers
+        self.count = len(self.flat)  # bodies: the tiles, then the payload
+        self.n = STATE * self.count
         self.calls = 0
         self._pattern()
 
     def y0(self) -> np.ndarray:
-        y = np.zeros((self.tiles.count, STATE))
-        y[:, 0:3] = self.start - self.flat
-        y[:, 3:7] = self.q0
-        if self.p.spin_rate != 0:  # rigid rotation (model.sheet_spin); ω in the tiles' body axes
-            y[:, 7:10], omega = sheet_spin.spin_velocities(self.p, self.start)
-            y[:, 10:13] = np.einsum("kji,kj->ki", sheet.quaternion_rotation(self.q0), omega)
+        centres, q, velocities, omega = sheet_pose.initial_motion(self.p, self.start, self.q0, self.payload)
+        y = np.zeros((self.count, STATE))
+        y[:, 0:3] = centres - self.flat
+        y[:, 3:7] = q
+        if self.p.spin_rate != 0:  # rigid rotation (model.sheet_spin); ω in the bodies' axes
+            y[:, 7:10] = velocities
+            y[:, 10:13] = np.einsum("kji,kj->ki", sheet.quaternion_rotation(q), omega)
         return y.ravel()
 
     def rhs(self, t, y, out=None):
@@ -128,6 +131,9 @@ class SheetModel:
             *self.followers,
             self.load,
             float(t),
+            self.lit,
+            self.dead,
+            *self.tethers,
             out,
         )
         return out
@@ -135,9 +141,9 @@ class SheetModel:
     def _pattern(self):
         """CSC sparsity of ∂ẏ/∂y (each tile's 13 rows depend on its own and its neighbours' 13 columns) and
         the colouring of the tiles (distance2_colouring of the mesh's adjacency)."""
-        N = self.tiles.count
+        N = self.count
         neighbours = [{k} for k in range(N)]
-        for a, b in zip(self.ta, self.tb):
+        for a, b in [*zip(self.ta, self.tb), *((k, self.lit) for k in self.tethers[0])]:
             if a >= 0:
                 neighbours[a].add(b)
                 neighbours[b].add(a)
@@ -175,16 +181,16 @@ class SheetModel:
     @property
     def position_indices(self) -> np.ndarray:
         """Indices of X = (u, q) of every tile in the state vector."""
-        return (STATE * np.arange(self.tiles.count)[:, None] + np.arange(7)).ravel()
+        return (STATE * np.arange(self.count)[:, None] + np.arange(7)).ravel()
 
     @property
     def velocity_indices(self) -> np.ndarray:
         """Indices of V = (v, ω_b) of every tile in the state vector."""
-        return (STATE * np.arange(self.tiles.count)[:, None] + np.arange(7, 13)).ravel()
+        return (STATE * np.arange(self.count)[:, None] + np.arange(7, 13)).ravel()
 
     def kinematics(self, y: np.ndarray) -> sp.csr_matrix:
         """B(X) with Ẋ = B V: per tile I₃ (u̇ = v) and ½ Q(q) (q̇ = ½ q ⊗ (0, ω_b)), 7N × 6N."""
-        N = self.tiles.count
+        N = self.count
         q0, q1, q2, q3 = y.reshape(N, STATE)[:, 3:7].T
         blocks = np.zeros((N, 7, 6))
         blocks[:, 0, 0] = blocks[:, 1, 1] = blocks[:, 2, 2] = 1.0
@@ -201,7 +207,7 @@ class SheetModel:
 
     def unpack(self, Y: np.ndarray):
         """(centres, xyz angles, velocities, global angular velocities) of state rows (T, 13N), each (T, N, 3)."""
-        Y = np.ascontiguousarray(np.asarray(Y).reshape(len(Y), self.tiles.count, STATE))
+        Y = np.ascontiguousarray(np.asarray(Y).reshape(len(Y), self.count, STATE))
         angles = np.empty(Y.shape[:2] + (3,))
         omega = np.empty(Y.shape[:2] + (3,))
         unpack_into(Y, angles, omega)
@@ -211,36 +217,6 @@ class SheetModel:
         """K = ∂a/∂ξ = A_X B: accelerations per generalised displacement ξ = (Δu, Δθ_b) of every tile."""
         J = self.jacobian(0.0, y).tocsr()
         return (J[self.velocity_indices][:, self.position_indices] @ self.kinematics(y)).tocsc()
-
-
-def distance2_colouring(neighbours: list) -> np.ndarray:
-    """Colours (N,) of a graph given by its closed neighbourhoods (sets, each holding its own vertex) such
-    that no two vertices of one colour share a neighbour (a distance-2 colouring: one right-hand side per
-    colour and state component gives every column of the Jacobian).
-
-    Greedy in DSATUR order (Brélaz 1979) on the distance-2 graph: next the uncoloured vertex with the most
-    distinct colours within distance 2 (ties: the most vertices within distance 2, then the lowest index),
-    given the smallest colour free there. A rectangular grid takes 5 colours, the least possible (a tile
-    and its 4 neighbours must all differ); greedy in index order takes 6–7."""
-    N = len(neighbours)
-    reach = [set().union(*(neighbours[j] for j in neighbours[k])) - {k} for k in range(N)]
-    colour = np.full(N, -1)
-    seen = [set() for _ in range(N)]
-    heap = [(0, -len(reach[k]), k) for k in range(N)]
-    heapq.heapify(heap)
-    while heap:
-        _, _, k = heapq.heappop(heap)
-        if colour[k] >= 0:
-            continue
-        c = 0
-        while c in seen[k]:
-            c += 1
-        colour[k] = c
-        for j in reach[k]:
-            if colour[j] < 0 and c not in seen[j]:
-                seen[j].add(c)
-                heapq.heappush(heap, (-len(seen[j]), -len(reach[j]), j))
-    return colour
 
 
 def state_scales(p: SailParameters) -> np.ndarray:
@@ -266,9 +242,8 @@ def state_scales(p: SailParameters) -> np.ndarray:
     return scales.ravel()
 
 
-def run(params: SailParameters, settings: RunSettings, *, progress: bool = False, **options) -> Result:
-    """Integrate one sheet case to t_final or to failure and return its Result (solver "reduced");
-    options: rtol, max_step, perturbation (module docstring)."""
+def _checked_options(options: dict) -> tuple[float, float, float]:
+    """rtol, max_step and perturbation of a run's options (defaults for those not given); one line on a bad one."""
     unknown = sorted(set(options) - set(OPTIONS))
     if unknown:
         raise ParameterError(f"option {unknown[0]!r} is invalid for a sheet: allowed {', '.join(OPTIONS)}")
@@ -278,12 +253,19 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     max_step = float(options.get("max_step") or DEFAULT_MAX_STEP)
     if not (max_step > 0 and math.isfinite(max_step)):
         raise ParameterError(f"max_step={max_step!r} is invalid: allowed a finite value > 0 (s)")
-    perturbation = float(options.get("perturbation") or 0.0)
+    return rtol, max_step, float(options.get("perturbation") or 0.0)
+
+
+def run(params: SailParameters, settings: RunSettings, *, progress: bool = False, **options) -> Result:
+    """Integrate one sheet case to t_final or to failure and return its Result (solver "reduced");
+    options: rtol, max_step, perturbation (module docstring)."""
+    rtol, max_step, perturbation = _checked_options(options)
     start = _time.perf_counter()
     cpu = _time.process_time()
     model = SheetModel(params, perturbation)
     y0 = model.y0()
-    atol = rtol * state_scales(params)
+    scales = state_scales(params).reshape(-1, STATE)
+    atol = rtol * np.vstack([scales, scales[: model.count - model.lit]]).ravel()  # the payload as a tile
     dt = settings.sample_interval
     if max_step >= dt:
         h_max = dt * max(1, int(round(max_step / dt)))
@@ -325,7 +307,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
                 batch.append(solver.y.copy())
             states.extend(batch)
             bar.update(solver.t)
-            centres = model.flat + np.array(batch).reshape(len(batch), -1, STATE)[..., :3]
+            centres = (model.flat + np.array(batch).reshape(len(batch), -1, STATE)[..., :3])[:, : model.lit]
             stop = monitor.first_failure(failure.plane_amplitude(centres))
             if stop is not None:
                 del states[len(states) - len(batch) + stop + 1 :]
@@ -334,8 +316,9 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         bar.close()
     wall = _time.perf_counter() - start
     solver.lus.clear()  # the cached factors (GBs at 100 × 100 tiles) are not needed past the last step
-    samples = len(states)
-    centres, angles, velocities, omega = _unpacked(model, states)
+    samples, rows = len(states), np.array(states)
+    states.clear()  # the sample list is freed before unpack allocates the tile arrays (GBs at 100 × 100 tiles)
+    (centres, angles, velocities, omega), extra = split_bodies(params, model.lit, model.unpack(rows))
     info = {
         "formulation": "tiles in maximal coordinates (quaternions), Radau IIA with a velocity-reduced sparse solve",
         "rtol": rtol,
@@ -351,6 +334,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         "membrane_modulus": model.tiles.membrane_modulus,
         "membrane_damping": model.tiles.membrane_damping,
         "cpu_time": _time.process_time() - cpu,
+        **extra,
     }
     return Result.from_tiles(
         params,
@@ -365,14 +349,6 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         info=info,
         settings=settings,
     )
-
-
-def _unpacked(model: SheetModel, states: list):
-    """model.unpack of the sample rows, the list emptied once they are stacked: its rows are freed before
-    unpack allocates the tile arrays (GBs each at 100 × 100 tiles)."""
-    rows = np.array(states)
-    states.clear()
-    return model.unpack(rows)
 
 
 def _rotate_quaternions(y: np.ndarray, dtheta: np.ndarray) -> None:
@@ -438,7 +414,7 @@ def linearise(p: SailParameters, state: np.ndarray | None = None) -> sp.csc_matr
     deviations about the state before it has moved."""
     model = SheetModel(p)
     y = model.y0() if state is None else np.array(state, float)
-    y.reshape(model.tiles.count, STATE)[:, 7:] = 0.0
+    y.reshape(model.count, STATE)[:, 7:] = 0.0
     J = model.jacobian(0.0, y).tocsr()
     V = model.velocity_indices
     K = J[V][:, model.position_indices] @ model.kinematics(y)

@@ -13,10 +13,9 @@ import math
 import numpy as np
 
 from lightsail_mbs.base.kernels import njit
-from lightsail_mbs.model.terms import tile_forces_into
+from lightsail_mbs.model.terms import beam_factor, tile_forces_into
 from lightsail_mbs.model.terms.bodies import N1, N2, NB, TILE_ROWS, TVX, TWX, TX, TY, TZ
-
-STATE = 13  # u(3) q(4) v(3) ω_b(3) per tile
+from lightsail_mbs.solvers.reduced.sheet_tethers import STATE, add_tethers
 
 
 @njit(cache=True)
@@ -57,11 +56,20 @@ def rhs_kernel(
     fol_force,
     packed,
     time,
+    lit,
+    dead,
+    tether_tile,
+    tether_point,
+    tether_rest,
+    tether_law,
     out,
 ):
-    """dy/dt of the sheet (solvers.reduced.sheet). Per tile: mass, inertia (3, 3) and its inverse, diagonal
+    """dy/dt of the sheet (solvers.reduced.sheet). Per body: mass, inertia (3, 3) and its inverse, diagonal
     (its inertia is diagonal); per connector: frame (3, 3), a support's axes where framed; packed: the
-    sheet's physics terms (model/terms: terms.pack), summed at the time `time` (s)."""
+    sheet's physics terms (model/terms: terms.pack), summed at the time `time` (s) on the first `lit` bodies
+    (the tiles); a body after them (the payload, model.sheet_payload) carries the dead force `dead` along z
+    times the beam's factor, and the tethers (tile, point on it, rest length; law (k, c)) join it to the
+    tiles (sheet_tethers.add_tethers)."""
     N = flat.shape[0]
     R = np.empty((N, 3, 3))
     RmI = np.empty((N, 3, 3))
@@ -171,8 +179,10 @@ def rhs_kernel(
         T[k, 0] += ra[1] * fg[2] - ra[2] * fg[1]
         T[k, 1] += ra[2] * fg[0] - ra[0] * fg[2]
         T[k, 2] += ra[0] * fg[1] - ra[1] * fg[0]
-    bodies = np.zeros((TILE_ROWS, N))  # the tiles as the physics terms read them (model/terms/bodies.py)
-    for k in range(N):
+    if tether_tile.shape[0] > 0:
+        add_tethers(y, flat, R, W, F, T, lit, tether_tile, tether_point, tether_rest, tether_law[0], tether_law[1])
+    bodies = np.zeros((TILE_ROWS, lit))  # the tiles as the physics terms read them (model/terms/bodies.py)
+    for k in range(lit):
         b = STATE * k
         bodies[TX, k] = flat[k, 0] + y[b]
         bodies[TY, k] = flat[k, 1] + y[b + 1]
@@ -183,13 +193,17 @@ def rhs_kernel(
         for i in range(3):
             bodies[TVX + i, k] = y[b + 7 + i]
             bodies[TWX + i, k] = W[k, i]
-    loads = np.empty((3, N))
+    loads = np.empty((3, lit))
     tile_forces_into(packed, bodies, loads, time)
+    factor = beam_factor(packed, time) if N > lit else 1.0
     for k in range(N):
         b = STATE * k
-        F[k, 0] += loads[0, k]
-        F[k, 1] += loads[1, k]
-        F[k, 2] += loads[2, k]
+        if k < lit:
+            F[k, 0] += loads[0, k]
+            F[k, 1] += loads[1, k]
+            F[k, 2] += loads[2, k]
+        else:
+            F[k, 2] += dead * factor
         q0, q1, q2, q3 = y[b + 3], y[b + 4], y[b + 5], y[b + 6]
         w0, w1, w2 = y[b + 10], y[b + 11], y[b + 12]
         out[b] = y[b + 7]
