@@ -1,5 +1,6 @@
-"""Exudyn prints to stdout by default; the commands print JSON there. One switch for every Exudyn call, and
-the one way a run drives Exudyn's solver silently with its failures recorded, not raised."""
+"""Exudyn prints to stdout by default; the commands print JSON there. One switch for every Exudyn call, the
+one way a run drives Exudyn's solver silently with its failures recorded, not raised, and the size of
+system it can take."""
 
 from __future__ import annotations
 
@@ -7,6 +8,13 @@ from collections.abc import Callable
 from contextlib import contextmanager
 
 import numpy as np
+
+from lightsail_mbs.base.validation import ParameterError
+
+# Exudyn 1.13 ends the process with a segmentation fault in SolveSteps, at the first step, on a system of
+# more second-order coordinates than this: measured on the sheet (6 per tile), 7722 tiles (46,332) run and
+# 7728 tiles (46,368) crash, where n² of the n coordinates passes 2³¹ − 1 (a 32-bit index).
+MAX_COORDINATES = 46_340
 
 
 @contextmanager
@@ -51,3 +59,13 @@ def solve_steps(
         bar.update(float(solver.it.currentTime))
         bar.close()
     return error
+
+
+def check_size(coordinates: int, bodies: str, per_body: int) -> None:
+    """One line, before building the system, for a case larger than Exudyn can integrate (MAX_COORDINATES);
+    `bodies` names the case's bodies (e.g. "7744 tiles"), each with `per_body` coordinates."""
+    if coordinates > MAX_COORDINATES:
+        raise ParameterError(
+            f"{bodies} ({coordinates} coordinates) is too large for Exudyn: allowed ≤ {MAX_COORDINATES} coordinates "
+            f"(about {MAX_COORDINATES // per_body} bodies; Exudyn 1.13 crashes beyond); use --solver reduced"
+        )

@@ -49,9 +49,10 @@ from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import failure, sheet, sheet_payload, sheet_pose, sheet_ride, terms
 from lightsail_mbs.model.parameters import SailParameters
+from lightsail_mbs.model.sheet_grid import Tiles
 from lightsail_mbs.model.terms.bodies import VELOCITIES
 from lightsail_mbs.result import Result
-from lightsail_mbs.solvers.exudyn.console import silenced, solve_steps
+from lightsail_mbs.solvers.exudyn.console import check_size, silenced, solve_steps
 from lightsail_mbs.solvers.exudyn.sheet_tethers import add_payload_links
 from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.solvers.skeleton import FailureMonitor
@@ -284,6 +285,8 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     if unknown:
         raise ParameterError(f"option {unknown[0]!r} is invalid for a sheet: allowed {', '.join(OPTIONS)}")
     p = params
+    tiles, payload = Tiles.of(p).count, p.payload_mass > 0
+    check_size(6 * (tiles + payload), f"a sheet of {tiles} tiles" + (" and its payload" if payload else ""), 6)
     dt = settings.sample_interval
     h = options.get("step_size") or default_step_size(p, settings)
     if not (h > 0 and math.isfinite(h)):

@@ -7,6 +7,7 @@ import pytest
 from lightsail_mbs import ParameterError, RunSettings, SailParameters, solve
 from lightsail_mbs.model import plate_theory, sheet
 from lightsail_mbs.solvers.exudyn import sheet as exudyn_sheet
+from lightsail_mbs.solvers.exudyn.console import MAX_COORDINATES, check_size
 from lightsail_mbs.solvers.reduced import sheet as reduced_sheet
 from tests.helpers import plate
 
@@ -174,3 +175,13 @@ def test_samples_lie_on_the_grid_when_newton_shortens_steps():
     assert result.info["steps"] > round(settings.t_final / result.info["step_size"])  # steps were shortened
     np.testing.assert_allclose(result.time, settings.sample_times(), rtol=0, atol=1e-15)
     assert np.all(np.isfinite(result.tile_centres))
+
+
+def test_a_sheet_too_large_for_exudyn_is_one_line_before_any_solving():
+    check_size(MAX_COORDINATES, "a sheet", 6)  # the largest that runs (n² just below 2³¹)
+    assert MAX_COORDINATES**2 < 2**31 - 1 < (MAX_COORDINATES + 1) ** 2
+    p = SailParameters(model="sheet", n=92, ny=84)  # 7728 tiles, 46,368 coordinates: Exudyn 1.13 crashes
+    with pytest.raises(ParameterError) as err:
+        exudyn_sheet.run(p, RunSettings(t_final=0.002), progress=False)
+    message = str(err.value)
+    assert len(message.splitlines()) == 1 and "7728 tiles" in message and "--solver reduced" in message, message
