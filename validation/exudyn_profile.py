@@ -53,8 +53,8 @@ class Instruments:
         originals = (chain.generalized_force, chain._solve, chain.Sampler)
         counters = self
 
-        def generalized_force(p, layout):
-            force = originals[0](p, layout)
+        def generalized_force(p, layout, *beam_factor_of):
+            force = originals[0](p, layout, *beam_factor_of)
 
             def timed(q, q_t=None, t=0.0):
                 counters.force_calls += 1

@@ -49,6 +49,9 @@ import numpy as np  # noqa: E402
 
 from lightsail_mbs import RunSettings, SailParameters, paper_case, paper_settings, solve  # noqa: E402
 
+sys.path.insert(0, str(Path(__file__).parent))
+from sheet_profile import Counts  # noqa: E402  (the solve counter around the sheet's LU)
+
 CHAIN = {  # paper case -> label (validation/benchmark.py's rows)
     "torsion-stable": "torsion E=4.5e13, 6 s (stable)",
     "torsion-soft": "torsion E=4.5e9, to failure",
@@ -135,8 +138,8 @@ def counting_force():
 
     original, calls = chain.generalized_force, [0]
 
-    def generalized_force(p, layout):
-        force = original(p, layout)
+    def generalized_force(p, layout, *beam_factor_of):
+        force = original(p, layout, *beam_factor_of)
 
         def counted(q, q_t=None, t=0.0):
             calls[0] += 1
@@ -170,35 +173,6 @@ def chain_rows(roof: dict, repeats: int) -> list[dict]:
     return rows
 
 
-class SolveCounter:
-    """Counts the in-house sheet's sparse solves (real, complex) and keeps one factor of each kind."""
-
-    def __init__(self):
-        self.solves = {False: 0, True: 0}
-        self.factor = {}
-
-    def install(self):
-        from lightsail_mbs.solvers.reduced import sheet_radau
-
-        original, counter = sheet_radau.ReducedLU, self
-
-        class Counted(original):
-            def __init__(self, system, mu):
-                super().__init__(system, mu)
-                counter.factor.setdefault(bool(np.iscomplexobj(mu)), (self.lu, system))
-
-            def solve(self, f):
-                counter.solves[bool(np.iscomplexobj(self.mu))] += 1
-                return super().solve(f)
-
-        sheet_radau.ReducedLU = Counted
-
-        def undo():
-            sheet_radau.ReducedLU = original
-
-        return undo
-
-
 def factor_work(lu) -> tuple[int, float]:
     """(nnz of L + U, flops of the factorisation from its structure: Σ_k 2 |L_k| |U_k|, real)."""
     lower = np.diff(lu.L.tocsc().indptr) - 1
@@ -214,7 +188,7 @@ def sheet_rows(grids, roof: dict, repeats: int) -> list[dict]:
         label = f"sheet {grid}×{grid}, soft, to failure"
         tiles = grid * grid
         cpu, result = timed(params, "reduced", settings, repeats)
-        counter = SolveCounter()
+        counter = Counts()
         undo = counter.install()
         try:
             solve(params, "reduced", settings, uncertainty=False)

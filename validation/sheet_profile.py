@@ -41,10 +41,12 @@ GROUPS = {  # category -> (parts of built-in functions' names, names of Python f
 
 
 class Counts:
-    """Solves (real, complex), factorisations and the real factor's size, counted around sheet_radau.ReducedLU."""
+    """Solves (real, complex), factorisations, the real factor's size and the first factor of each kind with its
+    system (keyed by complex or not), counted around sheet_radau.ReducedLU (also validation/roofline.py's)."""
 
     def __init__(self):
         self.solves, self.factorisations, self.nnz = {False: 0, True: 0}, 0, 0
+        self.factor = {}
 
     def install(self):
         original, counts = sheet_radau.ReducedLU, self
@@ -53,6 +55,7 @@ class Counts:
             def __init__(self, system, mu):
                 super().__init__(system, mu)
                 counts.factorisations += 1
+                counts.factor.setdefault(bool(np.iscomplexobj(mu)), (self.lu, system))
                 if not np.iscomplexobj(mu):
                     counts.nnz = max(counts.nnz, self.lu.L.nnz + self.lu.U.nnz)
 
