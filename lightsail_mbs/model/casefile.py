@@ -31,7 +31,6 @@ The paper's cases ship as case files in the folder ``cases`` next to this module
 from __future__ import annotations
 
 import dataclasses
-import difflib
 import json
 import math
 import os
@@ -43,7 +42,7 @@ try:
 except ModuleNotFoundError:  # Python 3.10
     import tomli as tomllib
 
-from lightsail_mbs.model.fields import FIELDS, SECTIONS, number
+from lightsail_mbs.model.fields import FIELDS, SECTIONS, close_match, number
 from lightsail_mbs.model.records import LEGACY_NAMES, RUN_FIELDS
 
 FORMAT = "lightsail-mbs case"
@@ -93,7 +92,7 @@ def read(path, fields: Mapping[str, tuple[str, str]]) -> tuple[dict, dict]:
         case["optics"] = str(path.parent / optics)  # a table file's path is relative to the case file's folder
     for key, value in run.items():
         if key not in RUN_FIELDS:
-            hint = _close(key, RUN_FIELDS)
+            hint = close_match(key, RUN_FIELDS)
             raise CaseFileError(
                 f"{path}: unknown key {RUN_TABLE}.{key}{hint}: allowed in [run] {', '.join(RUN_FIELDS)}"
             )
@@ -218,7 +217,7 @@ def _sectioned(path: Path, data: dict, fields):
                 )
             raise CaseFileError(f"{path}: unknown key {table}: allowed format, version and the tables {tables}")
         if table not in SECTIONS:
-            raise CaseFileError(f"{path}: unknown table [{table}]{_close(table, SECTIONS)}: allowed {tables}")
+            raise CaseFileError(f"{path}: unknown table [{table}]{close_match(table, SECTIONS)}: allowed {tables}")
         for key, value in entries.items():
             name = LEGACY_NAMES.get(key, key)
             if key in RUN_FIELDS:
@@ -233,7 +232,7 @@ def _sectioned(path: Path, data: dict, fields):
             if name not in fields:
                 own = [n for n in fields if FIELDS[n].group == table]
                 raise CaseFileError(
-                    f"{path}: unknown key {table}.{key}{_close(key, own)}: allowed in [{table}] {', '.join(own)}"
+                    f"{path}: unknown key {table}.{key}{close_match(key, own)}: allowed in [{table}] {', '.join(own)}"
                 )
             yield f"{table}.", key, value
 
@@ -257,15 +256,10 @@ def _unknown(key: str, value, fields) -> str:
     if isinstance(value, dict):
         tables = ", ".join(f"[{name}]" for name in (*SECTIONS, RUN_TABLE))
         return (
-            f"unknown table [{key}]{_close(key, SECTIONS)}: allowed in a version 1 file the fields at the top and "
+            f"unknown table [{key}]{close_match(key, SECTIONS)}: allowed in a version 1 file the fields at the top and "
             f"[run]; in version 2 {tables}"
         )
-    return f"unknown key {key}{_close(key, fields)}: allowed format, version, {', '.join(fields)}"
-
-
-def _close(key: str, names) -> str:
-    match = difflib.get_close_matches(key, list(names), n=1)
-    return f" (did you mean {match[0]}?)" if match else ""
+    return f"unknown key {key}{close_match(key, fields)}: allowed format, version, {', '.join(fields)}"
 
 
 def _value(value) -> str:

@@ -8,6 +8,7 @@ every field of the class and nothing else). The defaults themselves are the clas
 
 from __future__ import annotations
 
+import difflib
 from typing import NamedTuple
 
 from lightsail_mbs.base.validation import number  # noqa: F401 - re-exported
@@ -53,6 +54,12 @@ class FieldInfo(NamedTuple):
         """The one line allowed for the field under a model that does not use it: its default."""
         which = f"={self.models[0]!r}" if len(self.models) == 1 else f" is one of {', '.join(self.models)}"
         return f"{default} unless model{which}" + (f" ({self.instead})" if self.instead else "")
+
+
+def close_match(key: str, names) -> str:
+    """ " (did you mean NAME?)" for the name nearest a misspelt key, or "" when none is near."""
+    match = difflib.get_close_matches(key, list(names), n=1)
+    return f" (did you mean {match[0]}?)" if match else ""
 
 
 def _choices(values) -> str:

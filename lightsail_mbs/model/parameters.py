@@ -402,6 +402,9 @@ class SailParameters(DerivedQuantities):
         return cls(**known)
 
 
+SailParameters.__init__ = sections.checked_init(SailParameters.__init__)
+
+
 DEFAULTS = {f.name: f.default for f in dataclasses.fields(SailParameters)}
 SECTION_RECORDS = sections.records(SailParameters)  # section name -> its frozen record class
 

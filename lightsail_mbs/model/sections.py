@@ -12,6 +12,7 @@ that join sections. Which models use each field is declared in its FieldInfo (``
 from __future__ import annotations
 
 import dataclasses
+import inspect
 import math
 import numbers
 from collections.abc import Callable
@@ -27,8 +28,10 @@ from lightsail_mbs.model.fields import (
     OPTICS_LAYOUTS,
     SECTIONS,
     SHEET_BOUNDARIES,
+    close_match,
     number,
 )
+from lightsail_mbs.model.records import RUN_FIELDS
 
 CHECKS: dict[str, Callable] = {}  # section name -> its range checks, a function of an object with its fields
 
@@ -277,3 +280,26 @@ def records(case_class) -> dict[str, type]:
         )
         for name, specs in grouped.items()
     }
+
+
+class UnknownFieldError(ParameterError, TypeError):
+    """A keyword the case does not have (a TypeError too, as Python's own for an unexpected keyword)."""
+
+
+def checked_init(init: Callable) -> Callable:
+    """The case's generated __init__, refusing a keyword that is no field with one ParameterError line naming
+    it and the nearest field (the fields: :data:`lightsail_mbs.model.fields.FIELDS`)."""
+
+    def __init__(self, *args, **values):
+        for key in values:
+            if key in RUN_FIELDS:
+                raise UnknownFieldError(f"{key} is a run setting, not a case field: give it to RunSettings")
+            if key not in FIELDS:
+                raise UnknownFieldError(
+                    f"unknown case field {key}{close_match(key, FIELDS)}: allowed the fields of model.fields.FIELDS"
+                )
+        init(self, *args, **values)
+
+    __init__.__doc__ = init.__doc__
+    __init__.__signature__ = inspect.signature(init)
+    return __init__

@@ -249,3 +249,11 @@ def test_any_parameter_set_is_accepted_or_refused_naming_a_field(examples):
             assert SailParameters.from_dict(p.to_dict()) == p
 
     check_property(accepted_or_refused, examples)
+
+
+def test_a_misspelt_field_is_one_line_naming_it_and_the_nearest_field():
+    with pytest.raises(ParameterError, match=r"unknown case field beam_center \(did you mean beam_centre\?\)"):
+        SailParameters(beam_center=0.4)
+    with pytest.raises(ParameterError, match="unknown case field thicknes"):
+        SailParameters().replace(thicknes=1e-6)
+    assert SailParameters(beam_centre=0.4).beam_centre == 0.4
