@@ -26,6 +26,10 @@ tension outweighs the largest trough compression p a₀ W = 2 T_cr,max.
 The extensible membrane (TnT with axial springs) is assessed in its inextensible limit: at rest in the initial
 state its springs carry only the pre-tension, and the trough compression builds up after one axial wave
 crossing (L/√(E/ρ), about 1e-4 s), far faster than any growth; the inextensible chain carries it at once.
+A chain heated inside the run (``heated``) is assessed with the end tension its film has at the start
+(model.heating.cold_equivalent); at a constant absorptance the film cools along a journey and that tension
+rises, so the start is the least stable moment the run passes through (a table's absorptance rising at λ' can
+heat it later, which the check does not see).
 
 Where the case is well posed, the discretisation error of the fastest growth rate, δσ = abs(σ(n) − σ(2n)), gives a
 rough n-error of a failure time that scales as ln(ratio)/σ: δt_f ≈ t_f δσ/σ(2n) (``relative_n_error``). The n-error
@@ -48,7 +52,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from lightsail_mbs.model import theory
+from lightsail_mbs.model import heating, theory
 from lightsail_mbs.model.parameters import SailParameters
 
 MAX_SLICES = 240  # the twin at 2n = 480 costs about 1 s; above, the verdict is not assessed
@@ -168,6 +172,7 @@ def fastest_wave(p: SailParameters) -> FastestWave:
     """The fastest-growing deformation mode of the chain `p` at its initial state (module docstring)."""
     from lightsail_mbs.analysis.linear_stability import growth_modes
 
+    p = heating.cold_equivalent(p)
     rates, angles = growth_modes(p.replace(axial_springs=False) if p.extensible else p)
     for rate, mode in zip(rates, angles.T):
         if rate <= 0:
@@ -195,6 +200,7 @@ def assess(p: SailParameters) -> Resolvedness:
     if reason:
         return Resolvedness(False, None, reason, p.n)
     start = time.process_time()
+    p = heating.cold_equivalent(p)
     coarse, fine = fastest_wave(p), fastest_wave(p.replace(n=2 * p.n))
     sigma, sigma2 = coarse.growth_rate, fine.growth_rate
     common = dict(

@@ -131,6 +131,18 @@ def initial_extension(p) -> np.ndarray:
     return tension(heat, 0, 0.0) / p.axial_stiffness + rest
 
 
+def cold_equivalent(p):
+    """The case without heat whose end tension is the heated film's at the run's start, N(0) = N₀ − E h W α_T
+    ⟨ΔT(0)⟩ (the state a linearisation at the start sees), or p itself when it is not heated. ValueError when
+    the heat leaves the film in compression (N(0) < 0), which no cold case with a tension carries."""
+    if not p.heated:
+        return p
+    start = float(tension(table(p), 0, 0.0))
+    if start < 0:
+        raise ValueError(f"the heated film starts in compression (end tension {start:.4g} N)")
+    return p.replace(heated=False, heat_absorptance=None, tension=start)
+
+
 @njit(cache=True)
 def weights(heat, factor):
     """(j, f): D = factor lies between the table's points j and j + 1, a fraction f of the way in ln D

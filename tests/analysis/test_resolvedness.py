@@ -167,3 +167,21 @@ def test_a_receding_sail_is_judged_at_its_doppler_dimmed_start(capsys):
     assert printed[1]["e_over_e_cr_max"] == pytest.approx(ratio, rel=1e-12)
     assert printed[1]["intensity_at_start"] == pytest.approx(1e8 * 9 / 11, rel=1e-12)
     assert "Doppler" in printed[1]["paper_prediction"] and "initial_beta" not in printed[0]
+
+
+def test_a_heated_chain_is_assessed_at_the_tension_its_film_starts_with():
+    """The heated TnT chain is judged with the end tension N(0) = N₀ − E h W α_T ⟨ΔT(0)⟩ its film has at the
+    start (radiative equilibrium and the frame's relief, evaluated independently by tests/model/test_heating.py);
+    a film the heat leaves in compression is not assessed, with the reason."""
+    from lightsail_mbs.model import relativity
+    from tests.model.test_heating import BETA, heated, independent_tension
+
+    p = heated(tension=60.0)
+    verdict = resolvedness.assess(p)
+    assert verdict.assessed and verdict.well_posed
+    cold = resolvedness.stiffness_ratios(p.replace(heated=False))["T/T_cr,max"]
+    start, _ = independent_tension(p, float(relativity.intensity_factor(BETA)))
+    assert 0 < start < 0.5 * p.tension
+    assert verdict.stiffness_ratios["T/T_cr,max"] / cold == pytest.approx(start / p.tension, rel=1e-6)
+    with pytest.raises(ValueError, match=r"the heated film starts in compression \(end tension -"):
+        resolvedness.assess(heated(tension=10.0))
