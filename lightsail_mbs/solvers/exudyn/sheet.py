@@ -8,11 +8,11 @@ at φ₁ = ±π/2 for a sail that stays nearly flat), one ``ObjectConnectorRigid
 ``LoadForceVector(bodyFixed=True)`` follower loads for the edge tension. The closed loops of the grid
 rule out ``ObjectKinematicTree``.
 
-The load (the physics terms' numpy forms, model.terms.tile_forces: radiation and frame force, net; dead
-pressure): one
+The load (the physics terms' compiled forms, model.terms.tile_forces_into: radiation and frame force, net;
+dead pressure; one compiled pass, solvers.exudyn.sheet_load): one
 ``ObjectGenericODE2`` spanning all tile nodes, whose constant ``forceVector`` (6N entries) is rewritten
 by a ``PreNewtonResidualUserFunction`` before every residual evaluation from the current Newton
-iterate, vectorised over the tiles with numpy. Exudyn calls that function before every residual,
+iterate. Exudyn calls that function before every residual,
 including the one that decides convergence, but not while it differentiates the residual for the
 Jacobian; so the converged state satisfies the equations with the load of that state, and the load's
 own Jacobian is simply absent from the Newton matrix (modified Newton converges in 1.0–1.2 iterations
@@ -53,6 +53,7 @@ from lightsail_mbs.model.sheet_grid import Tiles
 from lightsail_mbs.model.terms.bodies import VELOCITIES
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.exudyn.console import check_size, silenced, solve_steps
+from lightsail_mbs.solvers.exudyn.sheet_load import load_into
 from lightsail_mbs.solvers.exudyn.sheet_tethers import add_payload_links
 from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.solvers.skeleton import FailureMonitor
@@ -217,13 +218,8 @@ class SheetSystem:
         """The load's generalised force (6N) at coordinates q (velocities q_t, read where a physics term
         reads them) and the time t: the terms' tile forces at the centres, no torques."""
         t0 = _time.perf_counter()
-        q = np.asarray(q)[: 6 * self.tiles.count].reshape(-1, 6)
-        rates = (None, None)
-        if q_t is not None:
-            q_t = np.asarray(q_t)[: 6 * self.tiles.count].reshape(-1, 6)
-            rates = (q_t[:, :3], angular_velocity_xyz(q[:, 3:], q_t[:, 3:]))
-        forces = terms.tile_forces(self.p, self.flat + q[:, :3], sheet.normal_xyz(q[:, 3:]), *rates, time=t)
-        self.force.reshape(-1, 6)[: self.tiles.count, :3] = forces
+        rates = np.zeros(0) if q_t is None else np.asarray(q_t, float)
+        load_into(self.packed, self.flat, np.asarray(q, float), rates, self.tiles.count, float(t), self.force)
         if self.payload is not None:  # its own frame force −m_p g₀ ẑ, with the beam's factor
             self.force[-4] = self.payload.frame_force * terms.beam_factor(self.packed, t)
         self.load_calls += 1

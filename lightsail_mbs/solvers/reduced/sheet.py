@@ -147,14 +147,10 @@ class SheetModel:
             if a >= 0:
                 neighbours[a].add(b)
                 neighbours[b].add(a)
-        rows, cols = [], []
-        for ct in range(N):
-            for rt in sorted(neighbours[ct]):
-                r = STATE * rt + np.arange(STATE)
-                for s in range(STATE):
-                    rows.append(r)
-                    cols.append(np.full(STATE, STATE * ct + s))
-        rows, cols = np.concatenate(rows), np.concatenate(cols)
+        pairs = np.array([(ct, rt) for ct in range(N) for rt in neighbours[ct]], dtype=np.int64)
+        block = np.arange(STATE)  # entries (row tile rt, column tile ct): rows along the last axis
+        rows = np.broadcast_to(STATE * pairs[:, 1, None, None] + block, (len(pairs), STATE, STATE)).ravel()
+        cols = np.broadcast_to(STATE * pairs[:, 0, None, None] + block[:, None], (len(pairs), STATE, STATE)).ravel()
         M = sp.csc_matrix((np.ones(rows.size), (rows, cols)), shape=(self.n, self.n))
         M.sort_indices()
         self.indptr, self.indices = M.indptr.astype(np.int64), M.indices.astype(np.int64)
@@ -212,6 +208,11 @@ class SheetModel:
         omega = np.empty(Y.shape[:2] + (3,))
         unpack_into(Y, angles, omega)
         return self.flat + Y[..., 0:3], angles, Y[..., 7:10].copy(), omega
+
+    def unpack_to(self, rows: np.ndarray, arrays: tuple, at: int) -> None:
+        """Writes :meth:`unpack` of state rows (T, 13N) into `arrays` (each (samples, N, 3)) from sample `at` on."""
+        for target, values in zip(arrays, self.unpack(rows)):
+            target[at : at + len(rows)] = values
 
     def stiffness(self, y: np.ndarray) -> sp.csc_matrix:
         """K = ∂a/∂ξ = A_X B: accelerations per generalised displacement ξ = (Δu, Δθ_b) of every tile."""
@@ -287,7 +288,11 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     times = settings.sample_times()
     monitor = FailureMonitor(failure.plane_amplitude(model.start), settings)
     bar = Progress(settings.t_final, progress, label=f"reduced sheet {sheet.tile_count(params)} tiles")
-    states, error, k = [y0], None, 1
+    # the bodies' (centres, angles, velocities, angular velocities) at every sample, unpacked as the samples
+    # come (np.empty: only the pages of the samples written are ever touched; GBs at 100 × 100 tiles)
+    arrays = tuple(np.empty((len(times), model.count, 3)) for _ in range(4))
+    model.unpack_to(y0[None], arrays, 0)
+    error, k = None, 1
     try:
         while solver.status == "running" and k < len(times):
             message = solver.step()
@@ -295,30 +300,25 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
                 error = f"Radau failed: {message}"
                 break
             new = []
-            while k < len(times) and times[k] <= solver.t + 1e-9 * dt:
-                new.append(times[k])
-                k += 1
+            while k + len(new) < len(times) and times[k + len(new)] <= solver.t + 1e-9 * dt:
+                new.append(times[k + len(new)])
             if not new:
                 continue
             exact = abs(new[-1] - solver.t) <= 1e-9 * dt
             between = new[:-1] if exact else new
-            batch = list(solver.sol(np.array(between)).T) if between else []
-            if exact:
-                batch.append(solver.y.copy())
-            states.extend(batch)
+            rows = solver.sol(np.array(between)).T if between else np.empty((0, model.n))
+            model.unpack_to(np.vstack([rows, solver.y]) if exact else rows, arrays, k)
             bar.update(solver.t)
-            centres = (model.flat + np.array(batch).reshape(len(batch), -1, STATE)[..., :3])[:, : model.lit]
-            stop = monitor.first_failure(failure.plane_amplitude(centres))
+            stop = monitor.first_failure(failure.plane_amplitude(arrays[0][k : k + len(new), : model.lit]))
+            k += len(new) if stop is None else stop + 1
             if stop is not None:
-                del states[len(states) - len(batch) + stop + 1 :]
                 break
     finally:
         bar.close()
     wall = _time.perf_counter() - start
     solver.lus.clear()  # the cached factors (GBs at 100 × 100 tiles) are not needed past the last step
-    samples, rows = len(states), np.array(states)
-    states.clear()  # the sample list is freed before unpack allocates the tile arrays (GBs at 100 × 100 tiles)
-    (centres, angles, velocities, omega), extra = split_bodies(params, model.lit, model.unpack(rows))
+    samples = k
+    (centres, angles, velocities, omega), extra = split_bodies(params, model.lit, tuple(a[:samples] for a in arrays))
     info = {
         "formulation": "tiles in maximal coordinates (quaternions), Radau IIA with a velocity-reduced sparse solve",
         "rtol": rtol,

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from lightsail_mbs import ParameterError, RunSettings, SailParameters, solve
-from lightsail_mbs.model import plate_theory, sheet
+from lightsail_mbs.model import plate_theory, sheet, terms
 from lightsail_mbs.solvers.exudyn import sheet as exudyn_sheet
 from lightsail_mbs.solvers.exudyn.console import MAX_COORDINATES, check_size
 from lightsail_mbs.solvers.reduced import sheet as reduced_sheet
@@ -185,3 +185,25 @@ def test_a_sheet_too_large_for_exudyn_is_one_line_before_any_solving():
         exudyn_sheet.run(p, RunSettings(t_final=0.002), progress=False)
     message = str(err.value)
     assert len(message.splitlines()) == 1 and "7728 tiles" in message and "--solver reduced" in message, message
+
+
+BEAM_AND_MOTION = dict(beam_waist=0.6, beam_centre=0.3, edge_tension=1e-4, velocity_terms=True)
+
+
+@pytest.mark.parametrize("extra", [dict(), BEAM_AND_MOTION])
+def test_compiled_load_is_the_terms_numpy_sum_at_any_coordinates(extra):
+    """The force vector Exudyn's load writes (one compiled pass) at random coordinates and rates: the terms'
+    numpy sum on the tiles' centres, normals n = R ẑ of the xyz angles, velocities and angular velocities
+    ω(φ, φ̇), to round-off; no torques."""
+    p = SailParameters(n=5, ny=4, **SOFT, **extra)
+    system = exudyn_sheet.SheetSystem(p)
+    rng = np.random.default_rng(3)
+    q, q_t = rng.normal(0, 0.05, (2, system.force.size)) * [[1], [20]]
+    reads = bool(system.reads_velocities)
+    force = system.force_vector(q, q_t if reads else None, 0.25).reshape(-1, 6)
+    Q, R = q.reshape(-1, 6), q_t.reshape(-1, 6)
+    rates = (R[:, :3], exudyn_sheet.angular_velocity_xyz(Q[:, 3:], R[:, 3:])) if reads else (None, None)
+    expected = terms.tile_forces(p, system.flat + Q[:, :3], sheet.normal_xyz(Q[:, 3:]), *rates, time=0.25)
+    assert reads == bool(extra)
+    np.testing.assert_allclose(force[:, :3], expected, rtol=1e-13, atol=1e-15 * np.abs(expected).max())
+    assert not force[:, 3:].any()
