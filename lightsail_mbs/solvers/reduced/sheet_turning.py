@@ -4,12 +4,12 @@ for a spinning sheet): :class:`TurningFrame`, which solvers.reduced.sheet.SheetM
 Why. In the inertial frame a spinning sail's state turns at Ω: the centres' in-plane displacements and
 velocities, the quaternions and the body rates change by O(1) every turn, and the stiff in-plane connectors
 turn with the tiles. Simplified Newton on Radau's collocation system then stops contracting once the sail
-turns by about 1e-2 rad in a step, also with a Jacobian fresh at the step's start (measured on a 49-tile SiN
-disc at 120 Hz: steps of 8 µs, Newton rates 0.6–0.9; Jacobian refreshed every step or full, unreduced Newton
-matrix, the same), and on a defected or lit disc the error estimate of the tiles' tilt rates, whose
-tolerance is the shape's, holds the steps at about 1 µs (validation/spin_benchmark.md). In a frame that turns
-with the sail the spun equilibrium is steady (exactly, for a load symmetric about the spin axis): the state
-moves only as the shape does, the Jacobian stays valid, and the steps follow the shape's time scales.
+turns by about 1e-2 rad in a step, also with a Jacobian fresh at the step's start or with the full, unreduced
+Newton matrix (measured on the unlit 49-tile Si₃N₄ disc at 120 Hz: 2575 steps, half of them rejected, and
+2562 Jacobians for 6 turns; tests/solvers/test_sheet_turning.py, validation/spin_benchmark.md). In a frame
+that turns with the sail the spun equilibrium is steady (exactly, for a load symmetric about the spin axis):
+the state moves only as the shape does, the Jacobian stays valid, and the steps follow the shape's time
+scales (the same disc: 17 steps, one Jacobian).
 
 The frame turns at the sail's initial angular velocity Ω (constant, global axes) about the point a, the tiles'
 centre of mass at t = 0 (model.sheet_spin, model.sheet_pose: every body starts at v = Ω × (c − a)), by
