@@ -77,8 +77,14 @@ REDUCED_SHEET_CAPABILITIES = {
     "linearise": "linearise",
     "linearise_rotating": "sheet_rotating:linearise_rotating",
 }
+FRAME = Option("frame", one_of("inertial", "turning"), "inertial or turning", None, "integration frame (spin)")
 register(
     Solver(
-        "reduced", "sheet", "reduced.sheet", (RTOL, MAX_STEP, PERTURBATION), REDUCED_SHEET_CAPABILITIES, SHEET_DEFAULTS
+        "reduced",
+        "sheet",
+        "reduced.sheet",
+        (RTOL, MAX_STEP, PERTURBATION, FRAME),
+        REDUCED_SHEET_CAPABILITIES,
+        SHEET_DEFAULTS,
     )
 )

@@ -171,11 +171,12 @@ def chain_defaults(params: SailParameters, settings: RunSettings, **options) -> 
 
 def sheet_defaults(params: SailParameters, settings: RunSettings, **options) -> dict:
     """The options of a reduced sheet run given `options` (contract rule 10; sheet.DEFAULT_RTOL,
-    sheet.DEFAULT_MAX_STEP)."""
+    sheet.DEFAULT_MAX_STEP; the turning frame for a spinning sheet)."""
     from lightsail_mbs.solvers.reduced import sheet
 
     return {
         "rtol": options.get("rtol") or sheet.DEFAULT_RTOL,
         "max_step": options.get("max_step") or sheet.DEFAULT_MAX_STEP,
         "perturbation": options.get("perturbation") or 0.0,
+        "frame": options.get("frame") or ("turning" if params.spin_rate != 0 else "inertial"),
     }

@@ -38,7 +38,9 @@ torques ±A₀m_loc.
 
 Options: rtol (default 1e-7: deflections within 1.4e-7 a₀ of rtol 1e-9 on the cross-check cases),
 max_step (default 10 ms; output samples between steps come from the collocation polynomial, O(h⁴)),
-perturbation (m: seeded tile offsets along z at the start, model.sheet.perturbed).
+perturbation (m: seeded tile offsets along z at the start, model.sheet.perturbed), frame (inertial, or
+turning: the state in the frame that turns with the spin, solvers.reduced.sheet_turning; the default for a
+spinning sheet).
 """
 
 from __future__ import annotations
@@ -58,17 +60,19 @@ from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.solvers.reduced.sheet_kernels import STATE, fill_jacobian, rhs_kernel, unpack_into
 from lightsail_mbs.solvers.reduced.sheet_radau import SheetRadau, distance2_colouring
 from lightsail_mbs.solvers.reduced.sheet_tethers import append_payload, split_bodies
+from lightsail_mbs.solvers.reduced.sheet_turning import TurningFrame
 from lightsail_mbs.solvers.skeleton import FailureMonitor
 
 DEFAULT_RTOL = 1e-7
 DEFAULT_MAX_STEP = 0.01
-OPTIONS = ("rtol", "max_step", "perturbation")
+OPTIONS = ("rtol", "max_step", "perturbation", "frame")
+FRAMES = ("inertial", "turning")
 
 
 class SheetModel:
     """The right-hand side, sparse Jacobian and initial state of one sheet case."""
 
-    def __init__(self, p: SailParameters, perturbation: float = 0.0):
+    def __init__(self, p: SailParameters, perturbation: float = 0.0, frame: str = "inertial"):
         self.p = p
         self.tiles = sheet.Tiles.of(p)
         self.flat = sheet.flat_centres(p)
@@ -97,8 +101,12 @@ class SheetModel:
         self.n = STATE * self.count
         self.calls = 0
         self._pattern()
+        self.turning = TurningFrame(self) if frame == "turning" else None  # the state's frame (sheet_turning)
 
     def y0(self) -> np.ndarray:
+        return self.inertial_y0() if self.turning is None else self.turning.start.copy()
+
+    def inertial_y0(self) -> np.ndarray:
         centres, q, velocities, omega = sheet_pose.initial_motion(self.p, self.start, self.q0, self.payload)
         y = np.zeros((self.count, STATE))
         y[:, 0:3] = centres - self.flat
@@ -108,8 +116,18 @@ class SheetModel:
             y[:, 10:13] = np.einsum("kji,kj->ki", sheet.quaternion_rotation(q), omega)
         return y.ravel()
 
+    def inertial(self, times, rows) -> np.ndarray:
+        """The inertial states of state rows (T, 13N) at the times (T,) (the turning frame's transformed)."""
+        return np.asarray(rows) if self.turning is None else self.turning.inertial(times, rows)
+
     def rhs(self, t, y, out=None):
         out = np.empty(self.n) if out is None else out
+        if self.turning is not None:
+            return self.turning.rates(t, y, self.inertial_rhs, out)
+        return self.inertial_rhs(t, y, out)
+
+    def inertial_rhs(self, t, y, out):
+        """ẏ of the inertial state y into out (the compiled kernel)."""
         self.calls += 1
         rhs_kernel(
             y,
@@ -240,11 +258,14 @@ def state_scales(p: SailParameters) -> np.ndarray:
         rim = 0.5 * max(p.length, p.width)
         scales[:, 0:2] = np.maximum(scales[:, 0:2], rim)
         scales[:, 7:9] = np.maximum(scales[:, 7:9], abs(p.spin_rate) * rim)
+        scales[:, 6] = np.maximum(scales[:, 6], 1.0)
+        scales[:, 12] = np.maximum(scales[:, 12], abs(p.spin_rate))
     return scales.ravel()
 
 
-def _checked_options(options: dict) -> tuple[float, float, float]:
-    """rtol, max_step and perturbation of a run's options (defaults for those not given); one line on a bad one."""
+def _checked_options(options: dict, p: SailParameters) -> tuple[float, float, float, str]:
+    """rtol, max_step, perturbation and frame of a run's options (defaults for those not given: the turning frame
+    for a spinning sheet); one line on a bad one."""
     unknown = sorted(set(options) - set(OPTIONS))
     if unknown:
         raise ParameterError(f"option {unknown[0]!r} is invalid for a sheet: allowed {', '.join(OPTIONS)}")
@@ -254,16 +275,19 @@ def _checked_options(options: dict) -> tuple[float, float, float]:
     max_step = float(options.get("max_step") or DEFAULT_MAX_STEP)
     if not (max_step > 0 and math.isfinite(max_step)):
         raise ParameterError(f"max_step={max_step!r} is invalid: allowed a finite value > 0 (s)")
-    return rtol, max_step, float(options.get("perturbation") or 0.0)
+    frame = options.get("frame") or ("turning" if p.spin_rate != 0 else "inertial")
+    if frame not in FRAMES:
+        raise ParameterError(f"frame={frame!r} is invalid: allowed inertial or turning")
+    return rtol, max_step, float(options.get("perturbation") or 0.0), frame
 
 
 def run(params: SailParameters, settings: RunSettings, *, progress: bool = False, **options) -> Result:
     """Integrate one sheet case to t_final or to failure and return its Result (solver "reduced");
-    options: rtol, max_step, perturbation (module docstring)."""
-    rtol, max_step, perturbation = _checked_options(options)
+    options: rtol, max_step, perturbation, frame (module docstring)."""
+    rtol, max_step, perturbation, frame = _checked_options(options, params)
     start = _time.perf_counter()
     cpu = _time.process_time()
-    model = SheetModel(params, perturbation)
+    model = SheetModel(params, perturbation, frame)
     y0 = model.y0()
     scales = state_scales(params).reshape(-1, STATE)
     atol = rtol * np.vstack([scales, scales[: model.count - model.lit]]).ravel()  # the payload as a tile
@@ -291,7 +315,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     # the bodies' (centres, angles, velocities, angular velocities) at every sample, unpacked as the samples
     # come (np.empty: only the pages of the samples written are ever touched; GBs at 100 × 100 tiles)
     arrays = tuple(np.empty((len(times), model.count, 3)) for _ in range(4))
-    model.unpack_to(y0[None], arrays, 0)
+    model.unpack_to(model.inertial([0.0], y0[None]), arrays, 0)
     error, k = None, 1
     try:
         while solver.status == "running" and k < len(times):
@@ -307,7 +331,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
             exact = abs(new[-1] - solver.t) <= 1e-9 * dt
             between = new[:-1] if exact else new
             rows = solver.sol(np.array(between)).T if between else np.empty((0, model.n))
-            model.unpack_to(np.vstack([rows, solver.y]) if exact else rows, arrays, k)
+            model.unpack_to(model.inertial(new, np.vstack([rows, solver.y]) if exact else rows), arrays, k)
             bar.update(solver.t)
             stop = monitor.first_failure(failure.plane_amplitude(arrays[0][k : k + len(new), : model.lit]))
             k += len(new) if stop is None else stop + 1
@@ -324,6 +348,7 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         "rtol": rtol,
         "max_step": h_max,
         "perturbation": perturbation,
+        "frame": frame,
         "steps": solver.nsteps,
         "rejected_steps": solver.nrejected,
         "nfev": model.calls,
