@@ -1,7 +1,7 @@
 """FlexSailSim's published case (1 m disc, 120 Hz, w = 0.4 D, 10 % offset, −2° tilt, 1 GW/m², 5 s) with bending.
 
 Runs lightsail_mbs.paper.flexsail.write (see its docstring): runs the cases not yet saved, reads back the
-others (--out/data/flexsail), and writes flexsail.md into --out. --run NAME runs (or reads) only that case.
+others (--out/data/flexsail_*.npz), and writes flexsail.md into --out. --run NAME runs (or reads) only that case.
 Usage: python scenarios/flexsail.py [--out DIR] [--quick] [--run NAME ...]
 """
 

@@ -25,7 +25,7 @@ it); 97 tiles over a shorter span (cost and a third mesh); the
 17-tile disc at a tenfold tighter tolerance; Exudyn on the 17-tile disc over a short span against the
 in-house run's samples of the same span, at half its step, and on 49 and 97 tiles over shorter spans.
 Every run is saved (histories and CPU time) as it finishes and is read back rather than rerun
-(``OUT/data/flexsail/NAME.npz``), so a cut-off session loses at most the run in progress.
+(``OUT/data/flexsail_NAME.npz``), so a cut-off session loses at most the run in progress.
 
 **The rigid prediction** (analysis.ride3d_criterion, the rigid billowed disc without payload): a flat disc is
 the limit R_c → ∞ of the cap; its growth rates at R_c = 1e3 and 1e4 m agree to 0.1 %, at rest and at 120 Hz.
@@ -232,7 +232,9 @@ RUNS = {
     "49 tiles, bending off": (9, 12, False, "reduced", 1.0, {"rtol": RTOL}),
     "97 tiles": (13, 16, True, "reduced", 0.5, {"rtol": RTOL}),
     "17 tiles, rtol 1e-5": (5, 8, True, "reduced", T_FINAL, {"rtol": 0.1 * RTOL}),
+    "17 tiles, rtol 1e-3": (5, 8, True, "reduced", T_FINAL, {"rtol": 10 * RTOL}),
     "17 tiles, Exudyn": (5, 8, True, "exudyn", 0.5, {"step_size": STEP}),
+    "17 tiles, Exudyn, 5 s": (5, 8, True, "exudyn", T_FINAL, {"step_size": STEP}),
     "17 tiles, Exudyn, half step": (5, 8, True, "exudyn", 0.1, {"step_size": 0.5 * STEP}),
     "49 tiles, Exudyn": (9, 12, True, "exudyn", 0.1, {"step_size": STEP}),
     "97 tiles, Exudyn": (13, 16, True, "exudyn", 0.05, {"step_size": STEP}),
@@ -242,9 +244,9 @@ HISTORIES = ("time", "lateral", "tilt", "spin_rate", "amplitude", "deformation")
 
 
 def run(name: str, out: Path, spec: tuple | None = None, log=print) -> dict:
-    """One of RUNS (or the given spec): read from out/data/flexsail/NAME.npz if saved, else run and save it. Returns
+    """One of RUNS (or the given spec): read from out/data/flexsail_NAME.npz if saved, else run and save it. Returns
     the histories, the verdict (analysis.ride3d: drifts out at one waist, crumples at 1 cm) and the CPU time."""
-    path = out / "data" / "flexsail" / (name.replace(" ", "_").replace(",", "") + ".npz")
+    path = out / "data" / ("flexsail_" + name.replace(" ", "_").replace(",", "") + ".npz")
     if path.exists():
         with np.load(path) as data:
             return {k: (data[k].item() if data[k].ndim == 0 else data[k]) for k in data.files}
@@ -336,6 +338,8 @@ def convergence_rows(runs: dict) -> list[dict]:
         ("49 tiles", "17 tiles", "mesh: 17 against 49 tiles"),
         ("97 tiles", "49 tiles", "mesh: 49 against 97 tiles"),
         ("17 tiles, rtol 1e-5", "17 tiles", "tolerance: rtol 1e-4 against 1e-5"),
+        ("17 tiles", "17 tiles, rtol 1e-3", "tolerance: rtol 1e-3 against 1e-4"),
+        ("17 tiles, Exudyn, 5 s", "17 tiles", "in-house against Exudyn, 17 tiles, as far as both go"),
         ("17 tiles", "17 tiles, bending off", "bending off against on, 17 tiles"),
         ("49 tiles", "49 tiles, bending off", "bending off against on, 49 tiles"),
         ("17 tiles", "17 tiles, Exudyn", "Exudyn against in-house, 17 tiles"),
@@ -347,7 +351,7 @@ def convergence_rows(runs: dict) -> list[dict]:
     for a, b, what in pairs:
         if a not in runs or b not in runs:
             continue
-        span = min(runs[a]["t_final"], runs[b]["t_final"])
+        span = min(runs[a]["time"][-1], runs[b]["time"][-1])
         c = compare(runs[a], runs[b], span)
         rows.append(
             {
@@ -367,7 +371,7 @@ def write(out, quick: bool = False, names=None) -> Path:
     the equivalent film, the rigid prediction, the runs and their comparisons; quick: 5 ms spans (smoke test)."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    logfile = out / "data" / "flexsail" / "flexsail.log"
+    logfile = out / "data" / "flexsail.log"
     logfile.parent.mkdir(parents=True, exist_ok=True)
 
     def log(line):
@@ -390,7 +394,7 @@ def write(out, quick: bool = False, names=None) -> Path:
         [
             "# FlexSailSim's published case re-posed with bending",
             "Made by `nice -n 10 python scenarios/flexsail.py --out validation` (lightsail_mbs.paper.flexsail; "
-            "runs saved in validation/data/flexsail/ and read back).",
+            "runs saved as validation/data/flexsail_*.npz and read back).",
             "## The published numbers",
             markdown_table(published_rows),
             "## The equivalent film (SI units)",
