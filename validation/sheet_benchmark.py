@@ -69,9 +69,11 @@ def table_row(grid: int, solver: str, records: list[dict], once: bool) -> tuple[
     name = "Exudyn" if solver == "exudyn" else "in-house"
     done = [r for r in records if "crashed" not in r]
     if not done:
-        status = records[0]["crashed"]
-        why = f"signal {-status}" if status < 0 else f"exit status {status}"
-        return f"| {grid}×{grid} | {grid * grid} | {name} | crashed ({why}) | | | | | | {len(records)} | " + (
+        status, last = records[0]["crashed"], records[0]["stderr"].strip().splitlines()[-1:]
+        why = f"crashed (signal {-status})" if status < 0 else f"crashed (exit status {status})"
+        if last and last[0].startswith("lightsail_mbs.base.validation.ParameterError: "):
+            why = "refused: " + last[0].split(": ", 1)[1]
+        return f"| {grid}×{grid} | {grid * grid} | {name} | {why} | | | | | | {len(records)} | " + (
             f"{records[0]['load']:.1f} |"
         ), None
     warm = min(done, key=lambda r: r["warm"]["cpu"])
