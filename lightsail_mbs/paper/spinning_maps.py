@@ -9,7 +9,8 @@ the beam (docs: spinning-beam). ``write(out)`` runs them (python scenarios/spinn
 * **Maps** (studies.ride_maps, one store, resumable): d/d* against R_c (w = 0.5 m, Ω = 0), against the
   beam waist w (R_c = 1 m, Ω = 0) and against the spin rate Ω (R_c = 1 m, w = 0.5 m). Verdict: crumples
   once a tile is 5 cm from the rigidly moved cap, drifts out at a waist from the axis, else rides; each
-  cell also gives the distance's growth rate (1/s). Over each map the rigid criterion's riding region
+  cell also gives the distance's growth rate (1/s); a run the failure rule ended early past 45° of tilt
+  "tips over" (studies.ride_maps). Over each map the rigid criterion's riding region
   (the undamped quartic of analysis.ride3d_criterion, on a 41 × 41 grid) is outlined.
 * **Movie**: the same disc at d = 1.3 d* spinning at 20 rad/s, 5 cm off the axis and tilted by
   (0.02, −0.01) rad, 1.5 s, as a GIF (viz.ride).
@@ -42,8 +43,15 @@ MAPS = {
 SPIN_RATIOS = [0.7, 0.85, 1.0, 1.15, 1.3]
 MOVIE = dict(spin_rate=20.0, initial_tilt=0.02, initial_tilt_y=-0.01)
 MOVIE_RATIO, MOVIE_OFFSET, MOVIE_TIME = 1.3, 0.05, 1.5
-SHORT = {"rides": "R", "drifts out": "D", "crumples": "C"}
-COLOURS = {"rides": "#74c476", "drifts out": "#fd8d3c", "crumples": "#de2d26", None: "#bdbdbd"}
+SHORT = {"rides": "R", "drifts out": "D", "tips over": "T", "crumples": "C", "stopped": "S"}
+COLOURS = {
+    "rides": "#74c476",
+    "drifts out": "#fd8d3c",
+    "tips over": "#9e9ac8",
+    "crumples": "#de2d26",
+    "stopped": "#f0f0f0",
+    None: "#bdbdbd",
+}
 
 
 def d_star(p) -> float:
@@ -107,7 +115,7 @@ def draw(path: Path, maps: dict) -> Path:
     fig.legend(
         handles=handles + [Patch(facecolor="none", edgecolor="k", label="rigid criterion: rides")],
         loc="lower center",
-        ncol=4,
+        ncol=6,
         fontsize=8,
     )
     fig.subplots_adjust(bottom=0.2, wspace=0.3)
@@ -116,7 +124,7 @@ def draw(path: Path, maps: dict) -> Path:
 
 
 def table(name: str, xs, ys, cells) -> list[dict]:
-    """Rows d/d* (top: the largest), one column per x: verdict (R/D/C), decision time, growth."""
+    """Rows d/d* (top: the largest), one column per x: verdict (SHORT), decision time, growth."""
     rows = []
     for v in sorted(ys, reverse=True):
         row = {"d/d*": v}

@@ -14,7 +14,10 @@ tells how far a cell that still rides at the end of its run is from drifting.
 :func:`ride_case` runs the solver once (``engine.run``): the ride does not use the failure time, so a
 run is not repeated at finer output intervals to locate it as ``solve`` does, and no twin runs estimate
 its uncertainty; the run still ends at the first sample where its plane amplitude reaches the settings'
-failure_ratio (a crumpled sail), which the verdict reads as deformation.
+failure_ratio (a crumpled sail), which the verdict reads as deformation. The plane amplitude also jumps
+when a rigid sail tilts past 45° (model.failure.plane_offsets takes for the normal the principal axis
+nearest z, which is then an in-plane one), so a run can end before its t_final with neither threshold
+reached: such a cell is "tips over" when its tilt has passed TIPPED, else "stopped" (no verdict).
 """
 
 from __future__ import annotations
@@ -32,6 +35,7 @@ from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.studies.sweep import Case, run_sweep
 
 RIDE = "ride3d"  # the record's entry of ride histories
+TIPPED = math.pi / 4  # rad: past this tilt the failure rule's plane is another principal axis of the sail
 
 
 def ride_histories(result) -> dict:
@@ -91,12 +95,17 @@ def growth_rate(time, distance) -> float:
 
 
 def cell_of(record: dict, waist: float, crumple: float, drift_factor: float = 1.0) -> RideCell:
-    """The cell of a ride record (ride_case's) under the thresholds of analysis.ride3d.sheet_ride."""
+    """The cell of a ride record (ride_case's) under the thresholds of analysis.ride3d.sheet_ride; a run the
+    failure rule ended early without a verdict: "tips over" or "stopped" (module docstring)."""
     if record.get("status") == "error" or RIDE not in record:
         error = record.get("error") or f"the record holds no {RIDE!r} histories (not made by ride_case)"
         return RideCell(record["key"], None, None, math.nan, math.nan, math.nan, math.nan, "error", error)
     h = {name: np.asarray(values, float) for name, values in record[RIDE].items()}
     verdict, when = classify(h["time"], h["distance"], h["deformation"], drift_factor * waist, crumple)
+    t_final = (record.get("settings") or {}).get("t_final", h["time"][-1])
+    if verdict == "rides" and h["time"][-1] < t_final * (1 - 1e-9):  # ended early by the failure rule
+        tipped = np.flatnonzero(h["tilt"] >= TIPPED)
+        verdict, when = ("tips over", float(h["time"][tipped[0]])) if tipped.size else ("stopped", None)
     return RideCell(
         record["key"],
         verdict,

@@ -98,6 +98,19 @@ def test_growth_rate_of_an_exponential_and_a_record_without_histories():
     assert cell.status == "error" and "ride3d" in cell.error
 
 
+def test_a_run_ended_early_without_a_verdict_tips_over_or_stopped():
+    """A record whose run ended at 0.3 s of 1 s with neither threshold reached: "tips over" at the first
+    sample past 45° of tilt, "stopped" when it never got there; a run to its end rides."""
+    t = [0.0, 0.1, 0.2, 0.3]
+    ride = dict(time=t, distance=[0.1] * 4, deformation=[0.0] * 4, tilt=[0.0, 0.5, 0.8, 0.9], spin_rate=[0.0] * 4)
+    record = {"key": "k", "status": "ok", "settings": {"t_final": 1.0}, "ride3d": ride}
+    assert (cell_of(record, 0.5, 0.05).verdict, cell_of(record, 0.5, 0.05).decided_at) == ("tips over", 0.2)
+    record["ride3d"] = {**ride, "tilt": [0.0] * 4}
+    assert cell_of(record, 0.5, 0.05).verdict == "stopped"
+    record["settings"]["t_final"] = 0.3
+    assert cell_of(record, 0.5, 0.05).verdict == "rides"
+
+
 def test_bad_input_is_one_line_before_solving(tmp_path):
     with pytest.raises(ParameterError, match="crumple"):
         ride_map({}, store_dir=tmp_path, settings=SETTINGS, crumple=0.0)
