@@ -89,7 +89,7 @@ def edges(values) -> np.ndarray:
 
 def draw(path: Path, maps: dict) -> Path:
     """The maps side by side: cells coloured by verdict, labelled with the growth rate (1/s), the rigid
-    criterion's riding region outlined (black)."""
+    criterion's riding region hatched and outlined (black)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
     from matplotlib.patches import Patch
@@ -105,7 +105,10 @@ def draw(path: Path, maps: dict) -> Path:
                 ax.fill_between([ex[i], ex[i + 1]], ey[j], ey[j + 1], color=COLOURS[c.verdict], lw=0)
                 label = "err" if c.verdict is None else f"{c.growth:.1f}"
                 ax.text(u, v, label, ha="center", va="center", fontsize=7)
-        ax.contour(*region, levels=[0.5], colors="k", linewidths=1.5)
+        x, y, stable = region
+        if stable.any():
+            ax.contourf(x, y, stable.astype(float), levels=[0.5, 1.5], colors="none", hatches=["//"])
+            ax.contour(x, y, stable.astype(float), levels=[0.5], colors="k", linewidths=1.2)
         ax.set_xlim(ex[0], ex[-1])
         ax.set_ylim(ey[0], ey[-1])
         ax.set_xlabel(MAPS[name][0])
@@ -113,7 +116,7 @@ def draw(path: Path, maps: dict) -> Path:
         ax.set_title(f"{name}: verdict at {SETTINGS.t_final:g} s, growth (1/s)", fontsize=9)
     handles = [Patch(color=COLOURS[v], label=v) for v in SHORT]
     fig.legend(
-        handles=handles + [Patch(facecolor="none", edgecolor="k", label="rigid criterion: rides")],
+        handles=handles + [Patch(facecolor="none", edgecolor="k", hatch="//", label="rigid criterion rides")],
         loc="lower center",
         ncol=6,
         fontsize=8,
@@ -152,7 +155,7 @@ def run_maps(store, workers=None, quick: bool = False, progress: bool = True) ->
     return maps
 
 
-def movie(out: Path, frames: int = 60, quick: bool = False) -> Path:
+def movie(out: Path, frames: int = 40, quick: bool = False) -> Path:
     """The movie's run (module docstring) rendered as OUT/spinning_ride.gif."""
     from lightsail_mbs.viz.frames import make_movie
     from lightsail_mbs.viz.ride import render_ride_frames
@@ -162,7 +165,7 @@ def movie(out: Path, frames: int = 60, quick: bool = False) -> Path:
     settings = RunSettings(t_final=0.1 if quick else MOVIE_TIME, output_interval=0.02, stop_at_failure=False)
     result = solvers.solve(p, "reduced", settings, uncertainty=False, **OPTIONS)
     paths = render_ride_frames(
-        result, out / "spinning_ride_frames", frames=min(frames, len(result.time)), size=(760, 380)
+        result, out / "spinning_ride_frames", frames=min(frames, len(result.time)), size=(640, 320)
     )
     return make_movie(paths, out / "spinning_ride.gif", fps=12.0)
 
