@@ -75,6 +75,24 @@ def deformation(masses: np.ndarray, centres: np.ndarray) -> np.ndarray:
     return np.max(np.linalg.norm(x - fitted, axis=-1), axis=1)
 
 
+def classify(time, distance, deformation, width: float, crumple: float) -> tuple[str, float | None]:
+    """(verdict, decided_at) of histories (T,): "crumples" at the first sample where the deformation reaches
+    crumple (m), "drifts out" at the first where the distance from the axis reaches width (m; inf: never),
+    whichever comes first (crumples on a tie), else ("rides", None)."""
+    firsts = []
+    crumpled = np.flatnonzero(np.asarray(deformation) >= crumple)
+    if crumpled.size:
+        firsts.append((int(crumpled[0]), "crumples"))
+    if math.isfinite(width):
+        drifted = np.flatnonzero(np.asarray(distance) >= width)
+        if drifted.size:
+            firsts.append((int(drifted[0]), "drifts out"))
+    if not firsts:
+        return "rides", None
+    k, verdict = min(firsts)
+    return verdict, float(time[k])
+
+
 def sheet_ride(result, crumple: float = 0.01, drift_factor: float = 1.0) -> SheetRide:
     """The beam-riding histories and verdict of a sheet run (module docstring)."""
     check("result", "a chain run", result.is_sheet, "a sheet run (model 'sheet')")
@@ -86,17 +104,6 @@ def sheet_ride(result, crumple: float = 0.01, drift_factor: float = 1.0) -> Shee
     tilt = np.column_stack([h["tilt_x"], h["tilt_y"]])
     amplitude = np.asarray(result.amplitude, float)
     delta = deformation(Tiles.of(result.params).masses, np.asarray(result.tile_centres, float))
-    width = drift_factor * result.params.beam_waist
-    firsts = []
-    crumpled = np.flatnonzero(delta >= crumple)
-    if crumpled.size:
-        firsts.append((int(crumpled[0]), "crumples"))
-    if math.isfinite(width):
-        drifted = np.flatnonzero(np.hypot(lateral[:, 0], lateral[:, 1]) >= width)
-        if drifted.size:
-            firsts.append((int(drifted[0]), "drifts out"))
-    verdict, when = "rides", None
-    if firsts:
-        k, verdict = min(firsts)
-        when = float(result.time[k])
+    distance = np.hypot(lateral[:, 0], lateral[:, 1])
+    verdict, when = classify(result.time, distance, delta, drift_factor * result.params.beam_waist, crumple)
     return SheetRide(np.asarray(result.time), lateral, tilt, h["spin_rate"], amplitude, delta, verdict, when)

@@ -118,3 +118,21 @@ def test_sheet_long_horizon_writes_its_table(tmp_path):
     assert "E/E_cr,max" in (tmp_path / "sheet_long_horizon.md").read_text()
     assert (tmp_path / "sheet_long_horizon.csv").read_text().count("\n") == 3
     assert all(r["max_ratio_rtol10"] >= 1.0 for r in rows)  # each case again at rtol/10
+
+
+@pytest.mark.slow
+def test_spinning_maps_quick_writes_its_maps_and_movie(tmp_path):
+    """The maps' pipeline on 2 × 2 maps of 0.1 s runs: its table, figure, CSV and a GIF under 2 MB; a rerun
+    reads every cell back from the store."""
+    from lightsail_mbs.paper import spinning_maps
+
+    path = spinning_maps.write(tmp_path, workers=1, quick=True)
+    text = path.read_text()
+    assert text.count("| 0.85 |") == 3 and "spin rate" in text
+    assert (tmp_path / "spinning_maps.png").stat().st_size > 10_000
+    assert 10_000 < (tmp_path / "spinning_ride.gif").stat().st_size < 2_000_000
+    stored = sorted((tmp_path / "store" / "spinning_maps").glob("*.json"))
+    assert len(stored) == 10  # 3 maps of 4 cells, two shared between the R_c and the spin map
+    before = [p.stat().st_mtime_ns for p in stored]
+    spinning_maps.run_maps(tmp_path / "store" / "spinning_maps", workers=1, quick=True, progress=False)
+    assert [p.stat().st_mtime_ns for p in stored] == before
