@@ -2,7 +2,8 @@
 
 ``code_version`` is the version of everything that decides a run's numbers and its stored record: a
 hash of the source files in :data:`RESULT_SOURCES` (the leaf layer, the case and its physics, the solvers, the
-Result, the failure rule and the energy of its summary, and the function that turns a run into a sweep record)
+Result, the failure rule and the energy of its summary, and the functions that turn a run into a sweep record:
+studies/runners.py's, and studies/ride_maps.py's with the ride histories of analysis/ride3d.py)
 together with the versions of the numerical libraries in :data:`LIBRARIES`. A change to any of them, and
 only that, makes stored results stale (:mod:`lightsail_mbs.studies.store` recomputes them). Python and the
 platform are recorded but not hashed: a numba-compiled loop may round differently on another CPU, which
@@ -24,7 +25,15 @@ from lightsail_mbs.base.constants import VERSION
 PACKAGE = Path(__file__).resolve().parent.parent  # the lightsail_mbs folder
 # what decides the numbers of a run and of its sweep record, relative to the package folder: folders (every
 # .py file below them, at any depth) and single files
-RESULT_SOURCES = ("base", "model", "solvers", "result.py", "studies/runners.py")
+RESULT_SOURCES = (
+    "base",
+    "model",
+    "solvers",
+    "result.py",
+    "studies/runners.py",
+    "studies/ride_maps.py",
+    "analysis/ride3d.py",
+)
 LIBRARIES = ("exudyn", "numpy", "scipy", "numba")  # their versions are part of code_version
 
 
