@@ -3,9 +3,10 @@
     python validation/roofline.py --markdown validation/roofline.md   # chain rows, sheets of 10 and 20 a side
     python validation/roofline.py --grids 10 20 40 --repeats 5 --sheet-repeats 2
 
-The machine: its peak arithmetic rate, a 1024 × 1024 DGEMM on one thread (numpy's BLAS), and its memory
-bandwidth, a 2 × 64 MB → 64 MB vector add (`numpy.add`, 24 bytes a double), the least CPU time of five each. Every
-solver runs on one core, so one core's roofs are the limits (OPENBLAS_NUM_THREADS=1 here).
+The machine: its peak arithmetic rate, a 1024 × 1024 DGEMM on one thread (numpy's BLAS; SGEMM for the work
+done in single precision), and its memory bandwidth, a 2 × 64 MB → 64 MB vector add (`numpy.add`, 24 bytes a
+double), the least CPU time of five each. Every solver runs on one core, so one core's roofs are the limits
+(OPENBLAS_NUM_THREADS=1 here).
 
 A run: its base run (`solve(..., uncertainty=False)`), CPU time of this process (time.process_time, the
 least of the repeats after one untimed run), and the work it did, counted from the run's own statistics
@@ -25,10 +26,11 @@ Operation counts (flops; estimates where marked ≈, from the kernels' arithmeti
   adds a back-substitution (2N²) per evaluation and per Jacobian a dense LU ((2/3)N³) and N evaluations
   (numerical differentiation); DOPRI5 a dense LU and a back-substitution per stage;
 - in-house sheet: ≈ 700 flops per tile per right-hand side (rotation matrices, two edge connectors per
-  tile, the load); the sparse solves counted (2·nnz(L+U) flops real, 8 complex; 12 and 20 bytes of the
-  factors per nonzero streamed from memory when the pair of factors outgrows the last-level cache) and the
-  factorisations from the factors' structure
-  (Σ_k 2·|L_k|·|U_k|, × 4 complex), plus the two sparse products of each solve;
+  tile, the load); the sparse solves counted (2·nnz(L+U) flops real, 8 complex; the bytes of a nonzero and
+  its index streamed from memory when the pair of factors outgrows the last-level cache: 8 and 12 for the
+  single-precision LU, sheet_radau.SINGLE_PRECISION_LU, 12 and 20 in double) and the factorisations from the
+  factors' structure (Σ_k 2·|L_k|·|U_k|, × 4 complex), plus the two sparse products of each solve (double);
+  the factorisations and triangular solves are held to the SGEMM peak when the LU is single;
 - Exudyn sheet: every residual (Newton iterations + steps) ≈ 700 flops per tile as the in-house one, and a
   sparse back-substitution of its 6N coordinates, counted as the in-house factor of the same 6-per-tile
   graph (a proxy: Exudyn's own ordering is not visible); per Jacobian one such factorisation.
@@ -48,6 +50,7 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 
 from lightsail_mbs import RunSettings, SailParameters, paper_case, paper_settings, solve  # noqa: E402
+from lightsail_mbs.solvers.reduced import sheet_radau  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).parent))
 from sheet_profile import Counts  # noqa: E402  (the solve counter around the sheet's LU)
@@ -76,17 +79,19 @@ def last_level_cache() -> float:
 
 
 def machine(repeats: int = 5) -> dict:
-    """Peak flop/s (1024² DGEMM) and bandwidth (bytes/s of a 64 MB vector add) of one core, best of repeats,
-    and the last-level cache (bytes)."""
+    """Peak flop/s of one core (1024² DGEMM; `flops_single`: SGEMM), its bandwidth (bytes/s of a 64 MB vector
+    add), best of repeats, and the last-level cache (bytes)."""
     n = 1024
-    a, b = np.random.rand(n, n), np.random.rand(n, n)
-    a @ b
-    flops = max(2.0 * n**3 / _best(lambda: a @ b, repeats), 1.0)
+    peaks = {}
+    for name, dtype in (("flops", np.float64), ("flops_single", np.float32)):
+        a, b = np.random.rand(n, n).astype(dtype), np.random.rand(n, n).astype(dtype)
+        a @ b
+        peaks[name] = max(2.0 * n**3 / _best(lambda a=a, b=b: a @ b, repeats), 1.0)
     size = 8 * 2**20
     x, y, z = np.random.rand(size), np.random.rand(size), np.random.rand(size)
     np.add(x, y, out=z)
     bandwidth = 24.0 * size / _best(lambda: np.add(x, y, out=z), repeats)
-    return {"flops": flops, "bandwidth": bandwidth, "cache": last_level_cache()}
+    return {**peaks, "bandwidth": bandwidth, "cache": last_level_cache()}
 
 
 def _best(work, repeats: int) -> float:
@@ -197,22 +202,29 @@ def sheet_rows(grids, roof: dict, repeats: int) -> list[dict]:
         (nnz, lu_flops), system = factor_work(counter.factor[False][0]), counter.factor[False][1]
         products = 2.0 * (system.AX.nnz + system.B.nnz)
         info = result.info
-        flops = info["nfev"] * tiles * TILE_RHS + info["nlu"] / 2 * lu_flops * (1 + 4)
-        flops += counter.solves[False] * (2.0 * nnz + products) + counter.solves[True] * (8.0 * nnz + 2 * products)
-        streamed = 20.0 * nnz > roof["cache"]  # the factors stay in the cache when the pair fits in it
-        data = (counter.solves[False] * 12.0 * nnz + counter.solves[True] * 20.0 * nnz) * streamed
-        rows.append(row(label, "in-house", cpu, info, flops, data, roof))
+        single = sheet_radau.SINGLE_PRECISION_LU
+        real_bytes, complex_bytes = (8.0, 12.0) if single else (12.0, 20.0)
+        lu = info["nlu"] / 2 * lu_flops * (1 + 4) + (counter.solves[False] * 2.0 + counter.solves[True] * 8.0) * nnz
+        flops = info["nfev"] * tiles * TILE_RHS + (counter.solves[False] + 2 * counter.solves[True]) * products
+        streamed = (real_bytes + complex_bytes) * nnz > roof["cache"]  # the pair of factors fits in the cache, or not
+        data = (counter.solves[False] * real_bytes + counter.solves[True] * complex_bytes) * nnz * streamed
+        flops += 0.0 if single else lu
+        rows.append(row(label, "in-house", cpu, info, flops, data, roof, single_flops=lu if single else 0.0))
         cpu, result = timed(params, "exudyn", settings, repeats)
         info = result.info
         residuals = info["newton_iterations"] + info["steps"]
         flops = residuals * (tiles * TILE_RHS + 2.0 * nnz) + info["njev"] * lu_flops
+        streamed = 20.0 * nnz > roof["cache"]  # Exudyn's factors in double
         rows.append(row(label, "Exudyn", cpu, info, flops, residuals * 12.0 * nnz * streamed, roof))
     return rows
 
 
-def row(label, solver, cpu, info, flops, data, roof) -> dict:
-    limit = max(flops / roof["flops"], data / roof["bandwidth"])
-    bound = "memory" if data / roof["bandwidth"] > flops / roof["flops"] else "arithmetic"
+def row(label, solver, cpu, info, flops, data, roof, single_flops: float = 0.0) -> dict:
+    """A table row: `flops` in double and `single_flops` in single precision, `data` bytes streamed."""
+    arithmetic = flops / roof["flops"] + single_flops / roof["flops_single"]
+    limit = max(arithmetic, data / roof["bandwidth"])
+    bound = "memory" if data / roof["bandwidth"] > arithmetic else "arithmetic"
+    flops += single_flops
     steps = info.get("steps", "—")
     print(f"{label:36s} {solver:8s} cpu {cpu:8.4f} s  limit {limit:.2e} s  ({cpu / limit:,.0f}x)", flush=True)
     return dict(label=label, solver=solver, cpu=cpu, steps=steps, flops=flops, data=data, limit=limit, bound=bound)
@@ -224,7 +236,8 @@ def markdown(rows: list[dict], roof: dict, command: str, repeats: tuple[int, int
         "",
         f"Generated by `{command}` (validation/roofline.py: the operation counts and what they include are in its "
         "docstring). One core of this machine: peak "
-        f"{roof['flops'] / 1e9:.1f} GFlop/s (1024² DGEMM, one thread), memory bandwidth "
+        f"{roof['flops'] / 1e9:.1f} GFlop/s (1024² DGEMM, one thread; {roof['flops_single'] / 1e9:.1f} SGEMM, the "
+        "single-precision LU's), memory bandwidth "
         f"{roof['bandwidth'] / 1e9:.1f} GB/s (64 MB vector add), last-level cache {roof['cache'] / 2**20:.0f} MB; "
         f"load average {os.getloadavg()[0]:.1f} on "
         f"{os.cpu_count()} cores at the end. CPU: time.process_time of the base run, the least of {repeats[0]} "
