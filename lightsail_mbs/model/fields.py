@@ -267,6 +267,14 @@ FIELDS = {
         models=CHAINS,
         instead="a sheet's tiles: reflectivity, absorptivity",
     ),
+    "grating": FieldInfo(
+        OPTICS,
+        "",
+        "gratings on the tiles: in-plane and normal optical pressures by sectors of the sail, from a layout file "
+        "(TOML; model/sheet_grating.py)",
+        "None or the path of a layout file",
+        models=SHEETS,
+    ),
     "optics_layout": FieldInfo(
         OPTICS,
         "",
