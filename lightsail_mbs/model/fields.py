@@ -267,14 +267,6 @@ FIELDS = {
         models=CHAINS,
         instead="a sheet's tiles: reflectivity, absorptivity",
     ),
-    "grating": FieldInfo(
-        OPTICS,
-        "",
-        "gratings on the tiles: in-plane and normal optical pressures by sectors of the sail, from a layout file "
-        "(TOML; model/sheet_grating.py)",
-        "None or the path of a layout file",
-        models=SHEETS,
-    ),
     "optics_layout": FieldInfo(
         OPTICS,
         "",
@@ -377,6 +369,15 @@ FIELDS = {
         "rad",
         "the initial shape turned about x through the craft's centre of mass (its y axis towards the beam, +z)",
         "|tilt| < π/2",
+        models=SHEETS,
+    ),
+    "grating": FieldInfo(
+        OPTICS,
+        "",
+        "gratings on the tiles: in-plane and normal optical pressures by sectors of the sail, from a layout file "
+        "(TOML; model/sheet_grating.py)",
+        "None or the path of a layout file",
+        follows="none: the film's specular law alone",
         models=SHEETS,
     ),
 }
