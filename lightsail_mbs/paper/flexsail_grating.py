@@ -22,10 +22,11 @@ Si₃N₄ of n = 2 + 2e-6i (n_Si3N4, k_Si3N4 in their setupMaterialProperties_v1
 under 0.4 µm bars facing the laser, w₁ = 0.6 and w₂ = 0.2 µm in 1.6 µm (TE), 0.52 and 0.2 µm in 1.35 µm (TM), the
 gap between the bars (which their files do not give) ``GAPS``, chosen as the one of a 0.02 µm scan that reproduces
 their (0°, 0°) row, TE light in the TE table and TM in the TM table — reproduces their (0°, 0°) rows to 6e-4 and
-2e-3 and their cuts across ±3° to 7e-3 (TE, the tabulated angle as our θ) and 2e-3 (TM, as −θ) (:func:`rcwa_rows`;
-the other reading is off by 0.16 and 0.08), where θ > 0 tilts the beam towards the in-plane pressure
-(model/rcwa.py: beam cos θ n̂ + sin θ t̂, the pressure along +t̂). So ``TILT_SIGN``: u₁ = sin(pitch) in the TE table,
-−sin(roll) in the TM table; in both, the in-plane pressure grows as the light leans towards its direction. The
+2e-3, and their tables' fit across ±3° to 0.012 when the tabulated angle is read as our θ (TE) and as −θ (TM)
+(:func:`rcwa_rows`; read the other way, off by up to 0.16 and 0.08), where θ > 0 tilts the beam towards the
+in-plane pressure (model/rcwa.py: beam cos θ n̂ + sin θ t̂, the pressure along +t̂). So ``TILT_SIGN``: u₁ =
+sin(pitch) in the TE table, −sin(roll) in the TM table; in both, the in-plane pressure grows as the light leans
+towards its direction. The
 layouts are written for that reading (``"tables"``), for the values at normal incidence alone (``"flat"``: what the
 angle dependence does) and for the slopes reversed (``"reversed"``). The in-plane pressures point outward on every
 sector (the metagrating's restoring design: the brighter sector, nearer the beam's axis, pushes the sail back).
@@ -104,8 +105,9 @@ def sector_laws(variant: str, mean_normal: float) -> dict:
 
 
 def rcwa_rows(angles=(-3, -2, -1, 0, 1, 2, 3)) -> list[dict]:
-    """Our RCWA of their bars (docstring) against their tables' fit, across the transverse tilt θ (u₁ = sin θ):
-    in-plane and normal pressure per unit lit area, c_t/cos θ and c_n/cos θ; at 0° also their published row."""
+    """Our RCWA of their bars (docstring) against their tables (COEFFICIENTS, their fit; at 0° their published
+    row), across the transverse tilt θ (u₁ = sin θ): in-plane and normal pressure per unit lit area, c_t/cos θ and
+    c_n/cos θ."""
     from lightsail_mbs.model.rcwa import Bar, Grating, Layer, force_coefficients, orders
 
     index = complex(2.0, 2e-6)
@@ -126,8 +128,8 @@ def rcwa_rows(angles=(-3, -2, -1, 0, 1, 2, 3)) -> list[dict]:
                 {
                     "region": region,
                     "θ (°)": degrees,
-                    "in-plane: ours / theirs (I/c)": f"{c_t / math.cos(theta):.4f} / {theirs[0]:.4f}",
-                    "normal: ours / theirs (I/c)": f"{c_n / math.cos(theta):.4f} / {theirs[1]:.4f}",
+                    "in-plane: our RCWA / their tables (I/c)": f"{c_t / math.cos(theta):.4f} / {theirs[0]:.4f}",
+                    "normal: our RCWA / their tables (I/c)": f"{c_n / math.cos(theta):.4f} / {theirs[1]:.4f}",
                 }
             )
     return rows
@@ -160,12 +162,14 @@ RUNS = {
     "17 tiles, grating, bending off": (5, 8, False, "reduced", 5.0, {"rtol": 1e-4}, "tables"),
     "49 tiles, grating": (9, 12, True, "reduced", 1.0, {"rtol": 1e-4}, "tables"),
     "49 tiles, grating, bending off": (9, 12, False, "reduced", 1.0, {"rtol": 1e-4}, "tables"),
+    "49 tiles, grating, 5 s": (9, 12, True, "reduced", 5.0, {"rtol": 1e-4}, "tables"),
     "97 tiles, grating": (13, 16, True, "reduced", 0.5, {"rtol": 1e-4}, "tables"),
     "17 tiles, grating, rtol 1e-5": (5, 8, True, "reduced", 5.0, {"rtol": 1e-5}, "tables"),
     "17 tiles, grating, Exudyn": (5, 8, True, "exudyn", 1.0, {"step_size": 2.5e-5}, "tables"),
     "17 tiles, grating, Exudyn, 5 s": (5, 8, True, "exudyn", 5.0, {"step_size": 2.5e-5}, "tables"),
     "17 tiles, grating, Exudyn, half step": (5, 8, True, "exudyn", 0.2, {"step_size": 1.25e-5}, "tables"),
     "49 tiles, grating, Exudyn": (9, 12, True, "exudyn", 1.0, {"step_size": 2.5e-5}, "tables"),
+    "49 tiles, grating, Exudyn, 5 s": (9, 12, True, "exudyn", 5.0, {"step_size": 2.5e-5}, "tables"),
     "17 tiles, grating at normal incidence only": (5, 8, True, "reduced", 5.0, {"rtol": 1e-4}, "flat"),
     "17 tiles, grating slopes reversed": (5, 8, True, "reduced", 1.0, {"rtol": 1e-4}, "reversed"),
 }
@@ -179,6 +183,36 @@ PAIRS = [
     ("17 tiles, grating", "17 tiles, grating, Exudyn", "Exudyn against in-house, 17 tiles"),
     ("17 tiles, grating", "17 tiles, grating, Exudyn, 5 s", "Exudyn against in-house, 17 tiles, 5 s"),
     ("17 tiles, grating, Exudyn", "17 tiles, grating, Exudyn, half step", "Exudyn: step 2.5e-5 s against 1.25e-5 s"),
+    ("17 tiles, grating", "17 tiles, grating, Exudyn", "Exudyn against in-house, 17 tiles, 0.2 s", 0.2),
+    ("17 tiles, grating", "17 tiles, grating, Exudyn, half step", "Exudyn at half its step against in-house, 0.2 s"),
     ("49 tiles, grating", "49 tiles, grating, Exudyn", "Exudyn against in-house, 49 tiles"),
+    ("49 tiles, grating, 5 s", "49 tiles, grating, Exudyn, 5 s", "Exudyn against in-house, 49 tiles, 5 s"),
+    ("49 tiles, grating, 5 s", "17 tiles, grating", "mesh: 17 against 49 tiles, 5 s"),
     ("17 tiles, grating", "17 tiles, grating at normal incidence only", "the angle dependence: without it, 17 tiles"),
 ]
+
+
+def ride_rows(runs: dict) -> list[dict]:
+    """One row per grating run: the verdict, and whether the ride stays bounded — the largest distance from the
+    axis and tilt over the first and over the last 0.5 s of the run — with the spin, the shape and the CPU time."""
+    rows = []
+    for name, r in runs.items():
+        t, end = r["time"], r["time"][-1]
+        distance = np.hypot(r["lateral"][:, 0], r["lateral"][:, 1])
+        tilt = np.degrees(np.hypot(r["tilt"][:, 0], r["tilt"][:, 1]))
+        first, last = t <= min(0.5, end), t >= end - min(0.5, end)
+        when = r["decided_at"]
+        rows.append(
+            {
+                "run": name,
+                "span (s)": f"{end:g}" + ("" if end >= r["t_final"] - 1e-9 else f" of {r['t_final']:g}"),
+                "verdict": r["verdict"] + ("" if np.isnan(when) else f" at {when:.3f} s"),
+                "largest distance from the axis, first / last 0.5 s (m)": f"{distance[first].max():.4f} / "
+                f"{distance[last].max():.4f}",
+                "largest tilt, first / last 0.5 s (°)": f"{tilt[first].max():.2f} / {tilt[last].max():.2f}",
+                "spin at end (Hz)": f"{r['spin_rate'][-1] / (2 * math.pi):.4g}",
+                "largest shape amplitude (mm)": f"{1e3 * r['amplitude'].max():.3g}",
+                "CPU (s) per simulated s": f"{r['cpu']:.0f} / {r['cpu'] / end:.0f}",
+            }
+        )
+    return rows

@@ -29,9 +29,13 @@ def test_our_rcwa_of_their_bars_reproduces_their_pressures_and_the_tilts_sign():
     rows = flexsail_grating.rcwa_rows(angles=(-2, 0, 2))
     laws = flexsail_grating.region_laws()
     for row in rows:
-        ours = [float(row[k].split(" / ")[0]) for k in ("in-plane: ours / theirs (I/c)", "normal: ours / theirs (I/c)")]
+        ours = [
+            float(row[k].split(" / ")[0])
+            for k in ("in-plane: our RCWA / their tables (I/c)", "normal: our RCWA / their tables (I/c)")
+        ]
         theirs = [
-            float(row[k].split(" / ")[1]) for k in ("in-plane: ours / theirs (I/c)", "normal: ours / theirs (I/c)")
+            float(row[k].split(" / ")[1])
+            for k in ("in-plane: our RCWA / their tables (I/c)", "normal: our RCWA / their tables (I/c)")
         ]
         if row["θ (°)"] == 0:
             assert np.allclose(ours, theirs, atol=2e-3)
