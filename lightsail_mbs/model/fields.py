@@ -371,4 +371,13 @@ FIELDS = {
         "|tilt| < π/2",
         models=SHEETS,
     ),
+    "grating": FieldInfo(
+        OPTICS,
+        "",
+        "gratings on the tiles: in-plane and normal optical pressures by sectors of the sail, from a layout file "
+        "(TOML; model/sheet_grating.py)",
+        "None or the path of a layout file",
+        follows="none: the film's specular law alone",
+        models=SHEETS,
+    ),
 }

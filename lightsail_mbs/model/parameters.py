@@ -126,6 +126,7 @@ class SailParameters(DerivedQuantities):
     payload_tethers: int = 0  # sheet: tethers from the rim to the payload (model/sheet_payload.py); 0: the stem
     tether_stiffness: float = 0.0  # k, N/m: axial stiffness of each tether (slack in compression)
     initial_tilt_y: float = 0.0  # rad, sheet: the initial shape turned about x, its y axis towards the beam
+    grating: str | None = None  # sheet: a grating layout file (model/sheet_grating.py): in-plane optical pressures
 
     def __post_init__(self):
         sections.check_sections(self)
@@ -183,6 +184,8 @@ class SailParameters(DerivedQuantities):
             not self.integrated_trajectory or self.boundary == "free",
             "off unless boundary='free' (the trajectory is a free sail's)",
         )
+        why = f"False with a grating ({OPTICS_REASONS['velocity_terms']})"
+        check("velocity_terms", self.velocity_terms, not (self.velocity_terms and self.grating), why)
         if self.optics is not None:
             for name, default in OPTICS_DEFAULTS.items():
                 if name in IN_RUN_WITH_SPECTRUM and self._spectrum_in_run():

@@ -60,6 +60,7 @@ LATER_DEFAULTS = {
     "payload_tethers": 0,
     "tether_stiffness": 0.0,
     "initial_tilt_y": 0.0,
+    "grating": None,
 }
 # Names under which saved runs and store records written before the current field names hold them.
 LEGACY_NAMES = {

@@ -18,7 +18,7 @@ import numbers
 from collections.abc import Callable
 
 from lightsail_mbs.base.validation import ParameterError, check, finite
-from lightsail_mbs.model import film, materials, planforms
+from lightsail_mbs.model import film, materials, planforms, sheet_grating
 from lightsail_mbs.model.fields import (
     BENDING_REFERENCES,
     BOUNDARIES,
@@ -145,6 +145,9 @@ def _beam(s) -> None:
 @_section("optics")
 def _optics(s) -> None:
     check("optics_layout", s.optics_layout, s.optics_layout in OPTICS_LAYOUTS, " or ".join(OPTICS_LAYOUTS))
+    if s.grating is not None:
+        check("grating", s.grating, isinstance(s.grating, str) and s.grating != "", "None or a layout file's path")
+        sheet_grating.read(s.grating)  # reads the file now: a bad one is refused before any solving
     if s.optics is None:
         check("optics_layout", s.optics_layout, s.optics_layout == "uniform", "'uniform' without optics")
         return

@@ -14,9 +14,10 @@ Van Gelder's triangle springs, have ν = 0, as the sheet's). The optics of the m
 tables over the two incidence angles; at normal incidence they give the normal pressure c_n I/c with
 c_n = 0.719 (TE) and 0.235 (TM), and in-plane pressures of 0.15 I/c that point in opposite directions on
 opposite sectors (the metagrating's restoring force). The sheet has the specular facet law
-(I/c) cos θ [2R cos θ n + α ẑ] only, so it carries the area mean c̄_n = 2R + α (R = (c̄_n − α)/2, α the
-film's absorptance 1 − exp(−4πκt/λ)): the same thrust, none of the in-plane forces, and a specular angle law.
-This is the one part of the case re-posed rather than reproduced.
+(I/c) cos θ [2R cos θ n + α ẑ], so the film carries the area mean c̄_n = 2R + α (R = (c̄_n − α)/2, α the
+film's absorptance 1 − exp(−4πκt/λ)): the same thrust, a specular angle law. Their optics — each sector's
+normal and in-plane pressures and their angle dependence — are the grating term's sectors on top of that film
+(paper.flexsail_grating: their tables' fit, checked by our RCWA of their bars; the runs named "grating").
 
 **The runs** (``RUNS``): the disc in polar tiles (model.sheet_planforms.disc) at 17 and 49 tiles, bending on
 (D = E h³/12 of the equivalent film) and nearly off (E × 1e-6 in the bending springs, E_m unchanged: D ×
@@ -45,6 +46,7 @@ from lightsail_mbs.analysis.ride3d import sheet_ride
 from lightsail_mbs.analysis.ride3d_criterion import cap_criterion
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.model.parameters import SailParameters
+from lightsail_mbs.paper import flexsail_grating
 from lightsail_mbs.solvers import contract
 from lightsail_mbs.studies.tables import markdown_table
 
@@ -74,7 +76,7 @@ PUBLISHED = [
     ("TE share of the disc", 1.0 / 3.0, "", f"pizza_angles 0/30/150/210/330°, TE-TM-TE-TM-TE, {MESH}", False),
     ("normal pressure, TE region", 0.71935, "I/c", TABLES, False),
     ("normal pressure, TM region", 0.23503, "I/c", TABLES, False),
-    ("in-plane pressure, TE / TM region", 0.1521, "I/c", TABLES + " (TM: 0.1423); not in the sheet", False),
+    ("in-plane pressure, TE / TM region", 0.1521, "I/c", TABLES + " (TM: 0.1423); the grating term", False),
     ("Si₃N₄ extinction κ at λ = 1064 nm", 2e-6, "", f"k_Si3N4 and Iabs_Si3N4 in {MATERIALS}", False),
     ("payload", 0.0, "kg", f"usetether = 0 in {MESH}", False),
     ("damping", 0.0, "", f"none in {AUX}core_simulate_v1.m; the sheet damps its membrane springs", True),
@@ -122,8 +124,9 @@ def film() -> dict:
     )
 
 
-def case(n: int = 5, ny: int = 8, bending: bool = True) -> SailParameters:
-    """The published case on the disc of n tiles across and ny sectors; bending off: D × BENDING_OFF.
+def case(n: int = 5, ny: int = 8, bending: bool = True, grating: str | None = None) -> SailParameters:
+    """The published case on the disc of n tiles across and ny sectors; bending off: D × BENDING_OFF; `grating`:
+    a layout file of their metagrating's pressures (paper.flexsail_grating), else the specular film alone.
 
     Poses: the sail sits 0.1 R off the beam axis in +x and +y (so the beam is at L/2 − 0.1 R); FlexSailSim
     turns its nodes by R_y(θ)R_x(φ) with θ = φ = −2° (direction cosine matrix 1-2-3, right-handed, the beam
@@ -154,6 +157,7 @@ def case(n: int = 5, ny: int = 8, bending: bool = True) -> SailParameters:
         initial_tilt=-tilt,
         initial_tilt_y=tilt,
         spin_rate=2 * math.pi * published("spin"),
+        grating=grating,
     )
 
 
@@ -240,6 +244,7 @@ RUNS = {
     "49 tiles, Exudyn": (9, 12, True, "exudyn", 0.1, {"step_size": STEP}),
     "97 tiles, Exudyn": (13, 16, True, "exudyn", 0.05, {"step_size": STEP}),
 }
+RUNS.update(flexsail_grating.RUNS)  # with their metagrating's pressures (the grating term's sectors)
 RIGID_COMPARED = ("17 tiles", "49 tiles", "97 tiles")  # the runs the report sets beside the rigid motion
 HISTORIES = ("time", "lateral", "tilt", "spin_rate", "amplitude", "deformation")
 
@@ -251,8 +256,9 @@ def run(name: str, out: Path, spec: tuple | None = None, log=print) -> dict:
     if path.exists():
         with np.load(path) as data:
             return {k: (data[k].item() if data[k].ndim == 0 else data[k]) for k in data.files}
-    n, ny, bending, solver, t_final, options = spec or RUNS[name]
-    p = case(n, ny, bending)
+    n, ny, bending, solver, t_final, options, *variant = spec or RUNS[name]
+    layout = flexsail_grating.layout(out / "data", variant[0], film()["normal_pressure"]) if variant else None
+    p = case(n, ny, bending, layout)
     log(f"{time.strftime('%H:%M:%S')} {name}: {solver}, {n} × {ny}, bending {bending}, {t_final} s, {options}")
     settings = RunSettings(t_final=t_final, output_interval=OUTPUT_INTERVAL, stop_at_failure=False)
     start = time.process_time()
@@ -333,9 +339,9 @@ def compare(a: dict, b: dict, span: float) -> dict:
     return out
 
 
-def convergence_rows(runs: dict) -> list[dict]:
+def convergence_rows(runs: dict, pairs=None) -> list[dict]:
     """The pairs that test the answer: mesh (17 against 49 tiles, 49 against 97), tolerance, bending, Exudyn."""
-    pairs = [
+    pairs = pairs or [
         ("49 tiles", "17 tiles", "mesh: 17 against 49 tiles"),
         ("97 tiles", "49 tiles", "mesh: 49 against 97 tiles"),
         ("17 tiles, rtol 1e-5", "17 tiles", "tolerance: rtol 1e-4 against 1e-5"),
@@ -349,10 +355,10 @@ def convergence_rows(runs: dict) -> list[dict]:
         ("97 tiles", "97 tiles, Exudyn", "Exudyn against in-house, 97 tiles"),
     ]
     rows = []
-    for a, b, what in pairs:
+    for a, b, what, *upto in pairs:  # a pair may give the span it is compared over
         if a not in runs or b not in runs:
             continue
-        span = min(runs[a]["time"][-1], runs[b]["time"][-1])
+        span = min(runs[a]["time"][-1], runs[b]["time"][-1], *upto)
         c = compare(runs[a], runs[b], span)
         rows.append(
             {
@@ -382,8 +388,8 @@ def write(out, quick: bool = False, names=None) -> Path:
 
     runs = {}
     for name in names or RUNS:
-        n, ny, bending, solver, t_final, options = RUNS[name]
-        spec = (n, ny, bending, solver, min(t_final, 0.005), options) if quick else None
+        n, ny, bending, solver, t_final, *rest = RUNS[name]
+        spec = (n, ny, bending, solver, min(t_final, 0.005), *rest) if quick else None
         runs[name] = run(name, out / "quick" if quick else out, spec, log)
     f = film()
     film_rows = [{"quantity": k.replace("_", " "), "value": f"{v:.5g}"} for k, v in f.items()]
@@ -405,9 +411,15 @@ def write(out, quick: bool = False, names=None) -> Path:
             "## The runs against the rigid linear motion from the same start",
             markdown_table(rigid_rows(runs)),
             "## The runs",
-            markdown_table(run_rows(runs)),
+            markdown_table(run_rows({k: v for k, v in runs.items() if k not in flexsail_grating.RUNS})),
             "## Convergence, bending and the two solvers (largest differences over the common samples)",
             markdown_table(convergence_rows(runs)),
+            "## Their metagrating's pressures: our RCWA of their bars against their tables (paper.flexsail_grating)",
+            markdown_table(flexsail_grating.rcwa_rows()),
+            "## The runs with their metagrating's pressures (the grating term's sectors)",
+            markdown_table(flexsail_grating.ride_rows({k: v for k, v in runs.items() if k in flexsail_grating.RUNS})),
+            "## Their pressures: convergence, bending, the two solvers and the angle dependence",
+            markdown_table(convergence_rows(runs, flexsail_grating.PAIRS)),
         ]
     )
     path = out / ("flexsail_quick.md" if quick else "flexsail.md")

@@ -94,7 +94,9 @@ def tile_geometry(result: Result, frame: str = "inertial") -> tuple[np.ndarray, 
     rotations = sheet.rotation_xyz(shown.tile_angles)
     points = shown.tile_centres[:, owner] + np.einsum("tpij,pj->tpi", rotations[:, owner], offsets)
     Q, _ = frame_rotation(result, frame)
-    load = terms.tile_forces(result.params, result.tile_centres, sheet.normal_xyz(result.tile_angles), time=result.time)
+    axes = sheet.rotation_xyz(result.tile_angles)[..., 0]  # R x̂ of each tile, read by a grating
+    normals = sheet.normal_xyz(result.tile_angles)
+    load = terms.tile_forces(result.params, result.tile_centres, normals, time=result.time, axes=axes)
     fields = {
         "deflection": result.deflection(),
         "z": shown.tile_centres[..., 2],

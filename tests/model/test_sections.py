@@ -11,6 +11,7 @@ from lightsail_mbs.base.validation import shown
 from lightsail_mbs.model.fields import FIELDS, MODELS, SECTIONS
 from lightsail_mbs.model.parameters import DEFAULTS, SECTION_RECORDS
 from lightsail_mbs.model.sections import shown_default
+from tests.model.grating_layouts import PIZZA, write
 
 SHEET = SailParameters(model="sheet", n=4, ny=3, edge_tension=1e-3, beam_waist=0.6, beam_centre_y=0.4)
 TNT = SailParameters(model="tnt", tension=1e-3, youngs_modulus=1e11, payload_mass=0.0, torsional_damping=1e-9)
@@ -109,6 +110,7 @@ UNUSED = {
     "heated": True,
     "heat_absorptance": 1e-5,
     "carried_mass": 1e-3,
+    "grating": write("pizza", PIZZA),
 }
 REFUSED_BY_THEIR_SECTION = {"optics_layout", "payload_tethers", "tether_stiffness", "spin_tilt"}
 COMPANIONS = {

@@ -11,6 +11,7 @@ from lightsail_mbs.solvers.exudyn.tree import ChainLayout, _slices_into
 from lightsail_mbs.solvers.reduced.chain_constants import N_CONSTANTS, WORK_ROWS, constants
 from lightsail_mbs.solvers.reduced.dynamics import slice_states_into
 from lightsail_mbs.solvers.reduced.kinematics import ChainModel, centre_velocities, centres
+from tests.model.grating_layouts import PIZZA, write
 
 rng = np.random.default_rng(11)
 
@@ -35,6 +36,7 @@ SHEETS = {
     "gaussian-moving": UNIFORM_SHEET.replace(beam_waist=0.6, reflectivity=0.8, absorptivity=0.15, velocity_terms=True),
     "doppler-pressure": UNIFORM_SHEET.replace(pressure=0.2, velocity_terms=True, initial_beta=0.3),
     "payload-gaussian": UNIFORM_SHEET.replace(payload_mass=1e-4, payload_stem=0.2, beam_waist=0.8),
+    "grating-gaussian": UNIFORM_SHEET.replace(grating=write("pizza", PIZZA), beam_waist=0.7, reflectivity=0.2),
 }
 TIME = 0.6  # s: the run's time at which the sums are compared (read by the Doppler term)
 
@@ -86,9 +88,12 @@ def test_compiled_sheet_terms_equal_their_numpy_forms(name):
     normals = rng.normal(0, 0.2, (count, 3)) + [0, 0, 1]
     normals /= np.linalg.norm(normals, axis=1, keepdims=True)
     velocities, spins = rng.normal(0, 1, (2, count, 3))  # read by the velocity term
-    expected = terms.tile_forces(p, centres_, normals, velocities, spins, time=TIME)
+    axes = np.cross(normals, rng.normal(0, 1, (count, 3)))  # in-plane axes, read by the grating term
+    axes /= np.linalg.norm(axes, axis=1, keepdims=True)
+    expected = terms.tile_forces(p, centres_, normals, velocities, spins, time=TIME, axes=axes)
     forces = np.empty((3, count))
-    terms.tile_forces_into(terms.pack(p, "sheet"), rows.tile_bodies(centres_, normals, velocities, spins), forces, TIME)
+    bodies = rows.tile_bodies(centres_, normals, velocities, spins, axes)
+    terms.tile_forces_into(terms.pack(p, "sheet"), bodies, forces, TIME)
     scale = 2 * p.intensity * sheet.Tiles.of(p).area / 299_792_458.0
     np.testing.assert_allclose(forces.T, expected, rtol=1e-13, atol=1e-15 * scale)
 

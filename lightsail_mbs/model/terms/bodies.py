@@ -17,9 +17,9 @@ CHAIN_ROWS = 8
 X, Y, THETA, COS, SIN, VX, VY, OMEGA = range(CHAIN_ROWS)
 
 # ---- the sheet's tiles: centre, unit normal R ẑ (its x, y components computed without cancellation, from the
-# small entries of R − I), centre velocity, angular velocity (global axes)
-TILE_ROWS = 12
-TX, TY, TZ, N1, N2, NB, TVX, TVY, TVZ, TWX, TWY, TWZ = range(TILE_ROWS)
+# small entries of R − I), centre velocity, angular velocity, the tile's in-plane axis R x̂ (global axes)
+TILE_ROWS = 15
+TX, TY, TZ, N1, N2, NB, TVX, TVY, TVZ, TWX, TWY, TWZ, E1X, E1Y, E1Z = range(TILE_ROWS)
 
 # ---- the packed constants: [count, reads, then per active term: its ID, its block's size, its block]
 COUNT, READS = 0, 1
@@ -44,8 +44,9 @@ def chain_bodies(x, theta, y=None, vx=None, vy=None, omega=None) -> np.ndarray:
     return bodies
 
 
-def tile_bodies(centres, normals, velocities=None, angular_velocities=None) -> np.ndarray:
-    """The (TILE_ROWS, …, N) bodies array of tile states given as (…, N, 3) arrays (numpy forms)."""
+def tile_bodies(centres, normals, velocities=None, angular_velocities=None, axes=None) -> np.ndarray:
+    """The (TILE_ROWS, …, N) bodies array of tile states given as (…, N, 3) arrays (numpy forms); `axes` are the
+    tiles' in-plane x axes R x̂ (rows left 0 when not given: only a term that reads them needs them)."""
     centres = np.asarray(centres, float)
     bodies = np.zeros((TILE_ROWS, *centres.shape[:-1]))
     bodies[TX : TZ + 1] = np.moveaxis(centres, -1, 0)
@@ -54,4 +55,6 @@ def tile_bodies(centres, normals, velocities=None, angular_velocities=None) -> n
         bodies[TVX : TVZ + 1] = np.moveaxis(np.asarray(velocities, float), -1, 0)
     if angular_velocities is not None:
         bodies[TWX : TWZ + 1] = np.moveaxis(np.asarray(angular_velocities, float), -1, 0)
+    if axes is not None:
+        bodies[E1X : E1Z + 1] = np.moveaxis(np.asarray(axes, float), -1, 0)
     return bodies

@@ -10,12 +10,12 @@ from __future__ import annotations
 import numpy as np
 
 from lightsail_mbs.base.kernels import njit
-from lightsail_mbs.model.terms import body_force, doppler, frame, pressure, radiation, velocity
+from lightsail_mbs.model.terms import body_force, doppler, frame, grating, pressure, radiation, velocity
 from lightsail_mbs.model.terms.bodies import COUNT, ENTRY, HEADER, READS, chain_bodies, tile_bodies
 
 # the order of summation: the forces of every body are added in this order (rule 4); the beam's loads come
 # first, so that the Doppler term scales exactly them (model/terms/doppler.py), then the loads of other origin
-TERMS = (radiation, frame, velocity, doppler, pressure, body_force)
+TERMS = (radiation, grating, frame, velocity, doppler, pressure, body_force)
 
 
 def active_terms(p, family: str) -> tuple:
@@ -56,10 +56,11 @@ def chain_forces(p, x, theta, y=None, vx=None, vy=None, omega=None, time=0.0) ->
     return forces[0], forces[1]
 
 
-def tile_forces(p, centres, normals, velocities=None, angular_velocities=None, time=0.0) -> np.ndarray:
+def tile_forces(p, centres, normals, velocities=None, angular_velocities=None, time=0.0, axes=None) -> np.ndarray:
     """(…, N, 3): the sum of the active terms' numpy forms on tiles at `centres` with unit `normals` (their
-    x, y components without cancellation) and velocities where a term reads them, at the run's time τ, N."""
-    bodies = tile_bodies(centres, normals, velocities, angular_velocities)
+    x, y components without cancellation), velocities and in-plane axes R x̂ (`axes`) where a term reads them,
+    at the run's time τ, N."""
+    bodies = tile_bodies(centres, normals, velocities, angular_velocities, axes)
     forces = np.full((3, *bodies.shape[1:]), -0.0)
     for term in active_terms(p, "sheet"):
         term.tiles(p, bodies, forces, *_timed(term, time))
@@ -75,6 +76,8 @@ def _add_term(term, block, bodies, forces, tiles, time):
         radiation.tiles_into(block, bodies, forces)
     elif term == frame.ID:
         frame.into(block, bodies, forces, tiles)
+    elif term == grating.ID and tiles:
+        grating.tiles_into(block, bodies, forces)
     elif term == pressure.ID and tiles:
         pressure.tiles_into(block, bodies, forces)
     elif term == body_force.ID:

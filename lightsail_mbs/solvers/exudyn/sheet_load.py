@@ -3,7 +3,8 @@
 From the ODE2 coordinates of each tile (centre displacement u from its flat grid point, Tait–Bryan xyz
 angles φ) and, where a physics term reads them, their rates: the rows the terms read (model/terms/bodies.py)
 — the centre p = flat + u, the unit normal n = R ẑ = (sin φ₁, −sin φ₀ cos φ₁, cos φ₀ cos φ₁)
-(model.sheet_grid.normal_xyz), the centre velocity u̇ and the global angular velocity
+(model.sheet_grid.normal_xyz), the in-plane axis R x̂ = (cos φ₁ cos φ₂, cos φ₀ sin φ₂ + sin φ₀ sin φ₁ cos φ₂,
+sin φ₀ sin φ₂ − cos φ₀ sin φ₁ cos φ₂), the centre velocity u̇ and the global angular velocity
 ω = φ̇₀ x̂ + R_x φ̇₁ ŷ + R_x R_y φ̇₂ ẑ (solvers.exudyn.sheet.angular_velocity_xyz) — then the terms' compiled sum
 (terms.tile_forces_into, held to the numpy forms by tests/model/test_terms.py), written into the translational
 entries of the generalised force vector. Exudyn calls the load before every Newton residual; the numpy forms
@@ -18,7 +19,24 @@ import numpy as np
 
 from lightsail_mbs.base.kernels import njit
 from lightsail_mbs.model.terms import tile_forces_into
-from lightsail_mbs.model.terms.bodies import N1, N2, NB, TILE_ROWS, TVX, TVY, TVZ, TWX, TWY, TWZ, TX, TY, TZ
+from lightsail_mbs.model.terms.bodies import (
+    E1X,
+    E1Y,
+    E1Z,
+    N1,
+    N2,
+    NB,
+    TILE_ROWS,
+    TVX,
+    TVY,
+    TVZ,
+    TWX,
+    TWY,
+    TWZ,
+    TX,
+    TY,
+    TZ,
+)
 
 COORDINATES = 6  # per body: u (3), xyz angles (3)
 
@@ -40,6 +58,10 @@ def load_into(packed, flat, q, q_t, tiles, time, force):
         bodies[N1, k] = s1
         bodies[N2, k] = -s0 * c1
         bodies[NB, k] = c0 * c1
+        c2, s2 = math.cos(q[b + 5]), math.sin(q[b + 5])  # R x̂ of R = R_x(φ₀) R_y(φ₁) R_z(φ₂)
+        bodies[E1X, k] = c1 * c2
+        bodies[E1Y, k] = c0 * s2 + s0 * s1 * c2
+        bodies[E1Z, k] = s0 * s2 - c0 * s1 * c2
         if rates:
             bodies[TVX, k] = q_t[b]
             bodies[TVY, k] = q_t[b + 1]

@@ -14,7 +14,7 @@ import numpy as np
 
 from lightsail_mbs.base.kernels import njit
 from lightsail_mbs.model.terms import beam_factor, tile_forces_into
-from lightsail_mbs.model.terms.bodies import N1, N2, NB, TILE_ROWS, TVX, TWX, TX, TY, TZ
+from lightsail_mbs.model.terms.bodies import E1X, N1, N2, NB, TILE_ROWS, TVX, TWX, TX, TY, TZ
 from lightsail_mbs.solvers.reduced.sheet_tethers import STATE, add_tethers
 
 
@@ -193,6 +193,7 @@ def rhs_kernel(
         for i in range(3):
             bodies[TVX + i, k] = y[b + 7 + i]
             bodies[TWX + i, k] = W[k, i]
+            bodies[E1X + i, k] = R[k, i, 0]  # the in-plane axis R x̂
     loads = np.empty((3, lit))
     tile_forces_into(packed, bodies, loads, time)
     factor = beam_factor(packed, time) if N > lit else 1.0

@@ -10,6 +10,7 @@ from lightsail_mbs.solvers.exudyn import sheet as exudyn_sheet
 from lightsail_mbs.solvers.exudyn.console import MAX_COORDINATES, check_size
 from lightsail_mbs.solvers.reduced import sheet as reduced_sheet
 from tests.helpers import plate
+from tests.model.grating_layouts import PIZZA, write
 
 SOFT = dict(model="sheet", youngs_modulus=4.5e9)
 
@@ -190,7 +191,7 @@ def test_a_sheet_too_large_for_exudyn_is_one_line_before_any_solving():
 BEAM_AND_MOTION = dict(beam_waist=0.6, beam_centre=0.3, edge_tension=1e-4, velocity_terms=True)
 
 
-@pytest.mark.parametrize("extra", [dict(), BEAM_AND_MOTION])
+@pytest.mark.parametrize("extra", [dict(), BEAM_AND_MOTION, dict(grating=write("pizza", PIZZA), beam_waist=0.6)])
 def test_compiled_load_is_the_terms_numpy_sum_at_any_coordinates(extra):
     """The force vector Exudyn's load writes (one compiled pass) at random coordinates and rates: the terms'
     numpy sum on the tiles' centres, normals n = R ẑ of the xyz angles, velocities and angular velocities
@@ -203,7 +204,9 @@ def test_compiled_load_is_the_terms_numpy_sum_at_any_coordinates(extra):
     force = system.force_vector(q, q_t if reads else None, 0.25).reshape(-1, 6)
     Q, R = q.reshape(-1, 6), q_t.reshape(-1, 6)
     rates = (R[:, :3], exudyn_sheet.angular_velocity_xyz(Q[:, 3:], R[:, 3:])) if reads else (None, None)
-    expected = terms.tile_forces(p, system.flat + Q[:, :3], sheet.normal_xyz(Q[:, 3:]), *rates, time=0.25)
-    assert reads == bool(extra)
+    axes = sheet.rotation_xyz(Q[:, 3:])[..., 0]  # R x̂, read by the grating term
+    centres = system.flat + Q[:, :3]
+    expected = terms.tile_forces(p, centres, sheet.normal_xyz(Q[:, 3:]), *rates, time=0.25, axes=axes)
+    assert reads == bool(extra.get("velocity_terms"))
     np.testing.assert_allclose(force[:, :3], expected, rtol=1e-13, atol=1e-15 * np.abs(expected).max())
     assert not force[:, 3:].any()
