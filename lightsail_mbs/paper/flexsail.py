@@ -339,21 +339,35 @@ def compare(a: dict, b: dict, span: float) -> dict:
     return out
 
 
+SPECULAR_PAIRS = [  # the pairs that test the answer: (a, b, what), b compared against a
+    ("49 tiles", "17 tiles", "mesh: 17 against 49 tiles"),
+    ("97 tiles", "49 tiles", "mesh: 49 against 97 tiles"),
+    ("17 tiles, rtol 1e-5", "17 tiles", "tolerance: rtol 1e-4 against 1e-5"),
+    ("17 tiles", "17 tiles, rtol 1e-3", "tolerance: rtol 1e-3 against 1e-4"),
+    ("17 tiles, Exudyn, 5 s", "17 tiles", "in-house against Exudyn, 17 tiles, as far as both go"),
+    ("17 tiles", "17 tiles, bending off", "bending off against on, 17 tiles"),
+    ("49 tiles", "49 tiles, bending off", "bending off against on, 49 tiles"),
+    ("17 tiles", "17 tiles, Exudyn", "Exudyn against in-house, 17 tiles"),
+    ("17 tiles, Exudyn", "17 tiles, Exudyn, half step", "Exudyn: step 2.5e-5 s against 1.25e-5 s"),
+    ("49 tiles", "49 tiles, Exudyn", "Exudyn against in-house, 49 tiles"),
+    ("97 tiles", "97 tiles, Exudyn", "Exudyn against in-house, 97 tiles"),
+]
+
+
+def grating_pairs() -> list[tuple]:
+    """The grating runs' pairs: those of the specular film's that flexsail_grating.SHARED_PAIRS names, on the
+    grating runs of the same mesh and options, then flexsail_grating.EXTRA_PAIRS."""
+
+    def grated(name: str) -> str:
+        return name.replace(" tiles", " tiles, grating", 1)
+
+    shared = [(grated(a), grated(b), what) for a, b, what in SPECULAR_PAIRS if what in flexsail_grating.SHARED_PAIRS]
+    return shared + flexsail_grating.EXTRA_PAIRS
+
+
 def convergence_rows(runs: dict, pairs=None) -> list[dict]:
-    """The pairs that test the answer: mesh (17 against 49 tiles, 49 against 97), tolerance, bending, Exudyn."""
-    pairs = pairs or [
-        ("49 tiles", "17 tiles", "mesh: 17 against 49 tiles"),
-        ("97 tiles", "49 tiles", "mesh: 49 against 97 tiles"),
-        ("17 tiles, rtol 1e-5", "17 tiles", "tolerance: rtol 1e-4 against 1e-5"),
-        ("17 tiles", "17 tiles, rtol 1e-3", "tolerance: rtol 1e-3 against 1e-4"),
-        ("17 tiles, Exudyn, 5 s", "17 tiles", "in-house against Exudyn, 17 tiles, as far as both go"),
-        ("17 tiles", "17 tiles, bending off", "bending off against on, 17 tiles"),
-        ("49 tiles", "49 tiles, bending off", "bending off against on, 49 tiles"),
-        ("17 tiles", "17 tiles, Exudyn", "Exudyn against in-house, 17 tiles"),
-        ("17 tiles, Exudyn", "17 tiles, Exudyn, half step", "Exudyn: step 2.5e-5 s against 1.25e-5 s"),
-        ("49 tiles", "49 tiles, Exudyn", "Exudyn against in-house, 49 tiles"),
-        ("97 tiles", "97 tiles, Exudyn", "Exudyn against in-house, 97 tiles"),
-    ]
+    """The pairs that test the answer (SPECULAR_PAIRS unless `pairs` is given): mesh, tolerance, bending, Exudyn."""
+    pairs = pairs or SPECULAR_PAIRS
     rows = []
     for a, b, what, *upto in pairs:  # a pair may give the span it is compared over
         if a not in runs or b not in runs:
@@ -419,7 +433,7 @@ def write(out, quick: bool = False, names=None) -> Path:
             "## The runs with their metagrating's pressures (the grating term's sectors)",
             markdown_table(flexsail_grating.ride_rows({k: v for k, v in runs.items() if k in flexsail_grating.RUNS})),
             "## Their pressures: convergence, bending, the two solvers and the angle dependence",
-            markdown_table(convergence_rows(runs, flexsail_grating.PAIRS)),
+            markdown_table(convergence_rows(runs, grating_pairs())),
         ]
     )
     path = out / ("flexsail_quick.md" if quick else "flexsail.md")
