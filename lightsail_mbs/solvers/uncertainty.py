@@ -71,10 +71,10 @@ tight, and the tightest run reported.
 
 Cost (validation/uncertainty_cost.md, CPU time): the loose and film twins 0.4–0.7 of a base run each, the probe
 one, the n-twins 0.1–0.5: 2.2–4.8 base runs. On two cores or more they run in worker processes, started while the
-base run runs (`speculation`, :mod:`~lightsail_mbs.solvers.twin_workers`); a run under CONCURRENT_AFTER there
-keeps them in process. Coverage: validation/accuracy.md (96 seeded cases of every model). On for single runs
-(``solve``'s default, ``lightsail-mbs simulate``); sweeps run the base run alone and say so. ``Result.uncertainty``
-records each run (options, answer, wall and CPU time: a worker's its own); ``Result.wall_time`` sums every run's.
+base run runs (`speculation`, :mod:`~lightsail_mbs.solvers.twin_workers`; a run under its CONCURRENT_AFTER keeps
+them in process). Coverage: validation/accuracy.md. On for single runs (``solve``, ``lightsail-mbs simulate``);
+sweeps run the base run alone. ``Result.uncertainty`` records each run (options, answer, wall and CPU time: a
+worker's its own) and ``elapsed``, the default run's wall time (s); ``Result.wall_time`` sums every run's.
 """
 
 from __future__ import annotations

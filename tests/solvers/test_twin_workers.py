@@ -15,7 +15,7 @@ from lightsail_mbs.solvers import twin_workers
 
 pytestmark = pytest.mark.skipif(not twin_workers.usable(), reason="no fork, or one core: twins run in process")
 
-TIMES = ("wall_time", "cpu_time")
+TIMES = ("wall_time", "cpu_time", "elapsed")
 
 
 def values(record):
