@@ -90,6 +90,7 @@ def solve(
             twins.speculation = estimate.speculation(engine, params, options, progress)
         base = twins.watching(engine) if uncertainty else engine
         result, sampled = events.located_run(base, params, settings, options, progress=progress)
+        twins.base_ended()
         if uncertainty:
             base_cpu = time.process_time() - start  # the base run's, its reruns that locate a failure included
             result = estimate.assess(engine, params, sampled, options, result, progress=progress, base_cpu=base_cpu)

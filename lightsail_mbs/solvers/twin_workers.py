@@ -5,11 +5,13 @@ are independent runs, each a deterministic function of its case, settings and op
 opens around a default run and runs them, on a machine of more than one core, in forked worker processes (one
 per twin) concurrently with each other and, where their inputs are known before the base run ends, with it:
 
-- **When it pays.** The twins go to workers once the base run has taken CONCURRENT_AFTER of wall time (checked
-  at each progress update of the base run, in the main thread, through ``progress.watcher``; or when the twins
-  are asked for). A base run quicker than that has its twins run in this process after it, one after the other,
-  as before: starting and collecting a worker (a fork, and its Result pickled back) costs 10–30 ms, more than a
-  twin of such a run. So a run of 0.01 s is not made slower, and a run of seconds overlaps its twins.
+- **When it pays.** The twins go to workers when the base run takes CONCURRENT_AFTER of wall time or more
+  (the session's clock starts with the default run; checked at each progress update of the base run, in the
+  main thread, through ``progress.watcher``, and when it ends, :meth:`Session.base_ended`). A quicker base run
+  keeps its twins in this process, one after the other, as before: a worker costs 10–30 ms to start and collect
+  (a fork, its pages copied as they are written, its Result pickled back), while the twins of a base run B cost
+  about 2.3 B of CPU and two cores save at most about 1.6 B of wall time with them; so workers pay from a B of a
+  few tens of ms, and 0.1 s leaves a margin for a loaded machine. A run of 0.01 s is not made slower.
 - **Speculation.** At that moment the session starts the twins whose inputs do not depend on how the base run
   ends (``Session.speculation``, given the settings of the base run's current pass: the loose, probe and film
   twins, with the options the solver declares it will use, contract rule 10, standing for the base run's
@@ -133,7 +135,7 @@ class Session:
     def __init__(self, enabled: bool = True):
         self.start = time.perf_counter()
         self.enabled = enabled and usable()
-        self.concurrent = False
+        self.concurrent = self.decided = False
         self.workers: dict[bytes, tuple[Job, Worker]] = {}
         self.speculation: Callable | None = None  # settings of the base pass -> (jobs, the loose twin's options)
         self.extra: list[Callable] = []  # the loose twin's options -> jobs (the n-twins)
@@ -141,10 +143,16 @@ class Session:
         self.speculated = self.extra_speculated = False
 
     def due(self) -> bool:
-        """Whether twins go to workers now (the base run has taken CONCURRENT_AFTER; decided once)."""
-        if self.enabled and not self.concurrent and time.perf_counter() - self.start >= CONCURRENT_AFTER:
-            self.concurrent = True
+        """Whether twins go to workers: once the base run has taken CONCURRENT_AFTER (decided for good then, or
+        when it ends: :meth:`base_ended`)."""
+        if self.enabled and not self.decided and time.perf_counter() - self.start >= CONCURRENT_AFTER:
+            self.concurrent = self.decided = True
         return self.concurrent
+
+    def base_ended(self) -> None:
+        """The base run has ended: whether its twins go to workers is decided by the time it took."""
+        self.due()
+        self.decided = True
 
     def submit(self, work: Job) -> None:
         """Start `work` in a worker if twins go to workers now and no worker runs it already."""

@@ -94,7 +94,7 @@ def alive(pid) -> bool:
 
 def test_a_worker_returns_its_value_and_cpu_time_and_the_session_stops_what_was_not_taken():
     with twin_workers.session() as workers:
-        workers.concurrent = True
+        workers.concurrent = workers.decided = True
         quick = twin_workers.job(("quick",), sleeper, 0.0)
         slow = twin_workers.job(("slow",), sleeper, 60.0)
         workers.submit(quick)
@@ -111,7 +111,7 @@ def test_ctrl_c_in_the_run_leaves_no_worker():
     SIGINT) ends the session with every worker terminated."""
     pids = []
     with pytest.raises(KeyboardInterrupt), twin_workers.session() as workers:
-        workers.concurrent = True
+        workers.concurrent = workers.decided = True
         for seconds in (60.0, 61.0):
             work = twin_workers.job(("sleep", seconds), sleeper, seconds)
             workers.submit(work)
@@ -130,7 +130,7 @@ def dies():
 
 def test_a_workers_exception_is_raised_and_its_death_is_a_runtime_error():
     with twin_workers.session() as workers:
-        workers.concurrent = True
+        workers.concurrent = workers.decided = True
         with pytest.raises(ValueError, match="inside the worker"):
             workers.take(twin_workers.job(("raises",), raises))
         with pytest.raises(RuntimeError, match="exit code 3"):
