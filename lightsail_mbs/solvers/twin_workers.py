@@ -29,7 +29,7 @@ per twin) concurrently with each other and, where their inputs are known before 
 - **Progress.** A worker's runs draw their bars on the shared stderr.
 
 Workers are forked (no re-import, the compiled kernels inherited); where the OS has no fork, in a daemonic
-process (a sweep's pool worker) or on one core, every twin runs in this process.
+process (a sweep's pool worker), outside the main thread or on one core, every twin runs in this process.
 """
 
 from __future__ import annotations
@@ -39,6 +39,7 @@ import multiprocessing
 import os
 import pickle
 import signal
+import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -46,7 +47,7 @@ from dataclasses import dataclass, field
 from lightsail_mbs.solvers import progress as progress_module
 
 CONCURRENT_AFTER = 0.1  # s of the base run's wall time after which its twins go to worker processes
-_active: list[Session] = []  # the open session (one per default run; nested solves share it)
+_local = threading.local()  # .sessions: this thread's open sessions (one per default run; nested solves share it)
 
 
 @dataclass
@@ -67,13 +68,15 @@ def job(identity: tuple, fn: Callable, *args, **kwargs) -> Job:
 
 
 def usable() -> bool:
-    """Whether twins can go to forked workers here: fork exists, this is not a daemonic process, ≥ 2 cores."""
+    """Whether twins can go to forked workers here: fork exists, ≥ 2 cores, the main thread of a process that is
+    not daemonic (a sweep's pool worker)."""
     try:
         cores = len(os.sched_getaffinity(0))
     except AttributeError:
         cores = os.cpu_count() or 1
     forks = "fork" in multiprocessing.get_all_start_methods()
-    return cores >= 2 and forks and not multiprocessing.current_process().daemon
+    main = threading.current_thread() is threading.main_thread()  # progress.watcher is one per process
+    return cores >= 2 and forks and main and not multiprocessing.current_process().daemon
 
 
 class Worker:
@@ -117,7 +120,7 @@ def _work(sender, work: Job) -> None:
         import ctypes
 
         ctypes.CDLL(None).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
-    _active.clear()
+    _local.sessions = []
     progress_module.watcher = None
     start = time.process_time()
     try:
@@ -203,7 +206,7 @@ class Session:
     def watching(self, engine):
         """`engine` with its runs watched: each is a base pass (:meth:`base_pass`) with :meth:`tick` on its
         progress updates."""
-        return _Watched(engine, self)
+        return _Watched(engine, self) if self.enabled else engine
 
     def close(self) -> None:
         """Terminate and join every worker still running (speculation not taken, or an interrupted run)."""
@@ -227,19 +230,27 @@ class _Watched:
 
 @contextlib.contextmanager
 def session(enabled: bool = True):
-    """The open Session, or a new one (closed, its workers stopped, on leaving) when none is open."""
-    if _active:
-        yield _active[-1]
+    """This thread's open Session, or a new one (closed, its workers stopped, on leaving) when none is open."""
+    sessions = _sessions()
+    if sessions:
+        yield sessions[-1]
         return
     opened = Session(enabled)
-    _active.append(opened)
+    sessions.append(opened)
     try:
         yield opened
     finally:
-        _active.remove(opened)
+        sessions.remove(opened)
         opened.close()
 
 
 def current() -> Session:
-    """The open Session; a disabled one (every twin in this process) when none is open."""
-    return _active[-1] if _active else Session(enabled=False)
+    """This thread's open Session; a disabled one (every twin in this process) when none is open."""
+    sessions = _sessions()
+    return sessions[-1] if sessions else Session(enabled=False)
+
+
+def _sessions() -> list:
+    if not hasattr(_local, "sessions"):
+        _local.sessions = []
+    return _local.sessions

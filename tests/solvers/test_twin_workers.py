@@ -142,3 +142,19 @@ def test_jobs_are_keyed_by_their_inputs_not_the_order_of_options():
     b = twin_workers.job(("twin", {"perturbation": 0.0, "rtol": 1e-7}), sleeper, 0.0)
     c = twin_workers.job(("twin", {"perturbation": 0.0, "rtol": 1.0000000000000002e-7}), sleeper, 0.0)
     assert a.key == b.key != c.key
+
+
+def test_a_run_outside_the_main_thread_keeps_its_twins_in_process(monkeypatch):
+    """The progress hook is one per process: a default run in another thread (a threaded scheduler's) starts no
+    worker, and gives the record it gives in the main thread."""
+    import threading
+
+    p, settings = paper_case("torsion-soft"), paper_settings("torsion-soft")
+    monkeypatch.setattr(twin_workers, "CONCURRENT_AFTER", 0.0)
+    in_main = lightsail_mbs.solve(p, "reduced", settings)
+    started, results = Started(monkeypatch), []
+    thread = threading.Thread(target=lambda: results.append(lightsail_mbs.solve(p, "reduced", settings)))
+    thread.start()
+    thread.join()
+    assert started.jobs == [] and started.taken == [False] * len(started.taken)
+    assert pickle.dumps(values(results[0].uncertainty)) == pickle.dumps(values(in_main.uncertainty))
