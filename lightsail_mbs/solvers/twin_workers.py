@@ -28,8 +28,9 @@ per twin) concurrently with each other and, where their inputs are known before 
   is a RuntimeError.
 - **Progress.** A worker's runs draw their bars on the shared stderr.
 
-Workers are forked (no re-import, the compiled kernels inherited); where the OS has no fork, in a daemonic
-process (a sweep's pool worker), outside the main thread or on one core, every twin runs in this process.
+Workers are forked (no re-import, the compiled kernels inherited). Where the OS has no fork, in a process that
+multiprocessing started (a sweep's pool worker), outside the main thread or on one core, every twin runs in this
+process.
 """
 
 from __future__ import annotations
@@ -68,15 +69,15 @@ def job(identity: tuple, fn: Callable, *args, **kwargs) -> Job:
 
 
 def usable() -> bool:
-    """Whether twins can go to forked workers here: fork exists, ≥ 2 cores, the main thread of a process that is
-    not daemonic (a sweep's pool worker)."""
+    """Whether twins can go to forked workers here: fork exists, ≥ 2 cores, the main thread of a process that
+    multiprocessing did not start (a sweep's pool worker has the cores in use already)."""
     try:
         cores = len(os.sched_getaffinity(0))
     except AttributeError:
         cores = os.cpu_count() or 1
     forks = "fork" in multiprocessing.get_all_start_methods()
     main = threading.current_thread() is threading.main_thread()  # progress.watcher is one per process
-    return cores >= 2 and forks and main and not multiprocessing.current_process().daemon
+    return cores >= 2 and forks and main and multiprocessing.parent_process() is None
 
 
 class Worker:
