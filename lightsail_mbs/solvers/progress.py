@@ -6,6 +6,7 @@ import sys
 
 # called (no arguments) at every update while a base run's twins may start beside it (solvers.twin_workers)
 watcher = None
+prefix = ""  # before every bar's label: "twin " in a twin's worker process
 
 
 class Progress:
@@ -20,7 +21,7 @@ class Progress:
             tqdm.monitor_interval = 0  # no monitor thread: twins' workers are forked while bars are open
             self._bar = tqdm(
                 total=round(t_final, 9),
-                desc=label,
+                desc=prefix + label,
                 unit="s(sim)",
                 file=sys.stderr,
                 bar_format="{desc}: {percentage:3.0f}%|{bar}| t={n:.3g}/{total:.3g} s [{elapsed}<{remaining}]",

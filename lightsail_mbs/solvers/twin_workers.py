@@ -26,7 +26,7 @@ per twin) concurrently with each other and, where their inputs are known before 
   ends, normally or by an exception, KeyboardInterrupt included, so no process outlives it. A twin that ends with
   a solver error is a Result as in process; an exception in a worker is raised again here; a worker that dies
   is a RuntimeError.
-- **Progress.** A worker's runs draw their bars on the shared stderr.
+- **Progress.** A worker's runs draw their bars on the shared stderr, labelled 'twin'.
 
 Workers are forked (no re-import, the compiled kernels inherited). Where the OS has no fork, in a process that
 multiprocessing started (a sweep's pool worker), outside the main thread or on one core, every twin runs in this
@@ -114,7 +114,8 @@ class Worker:
 
 
 def _work(sender, work: Job) -> None:
-    """A worker's body: Ctrl-C ignored, no session or watcher of the parent's, the job timed by its CPU time."""
+    """A worker's body: Ctrl-C ignored, no session or watcher of the parent's, its bars labelled "twin", the job
+    timed by its CPU time."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
     with contextlib.suppress(Exception):  # Linux: die with the parent (SIGKILL leaves no orphan running)
@@ -122,7 +123,7 @@ def _work(sender, work: Job) -> None:
 
         ctypes.CDLL(None).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
     _local.sessions = []
-    progress_module.watcher = None
+    progress_module.watcher, progress_module.prefix = None, "twin "
     start = time.process_time()
     try:
         value = work.fn(*work.args, **work.kwargs)

@@ -158,3 +158,13 @@ def test_a_run_outside_the_main_thread_keeps_its_twins_in_process(monkeypatch):
     thread.join()
     assert started.jobs == [] and started.taken == [False] * len(started.taken)
     assert pickle.dumps(values(results[0].uncertainty)) == pickle.dumps(values(in_main.uncertainty))
+
+
+def test_every_run_draws_its_bar_the_workers_labelled_twin(monkeypatch, capfd):
+    p, settings = paper_case("torsion-soft"), paper_settings("torsion-soft")
+    monkeypatch.setattr(twin_workers, "CONCURRENT_AFTER", 0.0)
+    result = lightsail_mbs.solve(p, "reduced", settings, progress=True)
+    bars = capfd.readouterr().err.replace("\r", "\n")
+    runs = 1 + sum(name in result.uncertainty for name in ("loose", "probe", "film"))
+    runs += len(result.uncertainty["n_error"]["twins"])
+    assert bars.count("twin reduced:") >= runs - 1 and "\nreduced:" in "\n" + bars
