@@ -63,7 +63,7 @@ survives where the run fails, or the reverse), E_n is infinite: the verdict itse
 n/4 with the other verdict is too coarse to carry the answer and is left out.
 
 Cost: the base run at n/2 and at n/4, about half and a quarter of a base run or less (a solver's cost grows
-at least in proportion to n), on top of the 2–4 runs of the uncertainty estimate. They run where its twins run
+at least in proportion to n), on top of the 3–4 twin runs of the uncertainty estimate. They run where those run
 (:mod:`lightsail_mbs.solvers.twin_workers`): in worker processes, started beside a long base run with the loose
 twin's options as the solver declares them (`jobs`), or in this process after a short one.
 """
