@@ -36,7 +36,6 @@ process.
 from __future__ import annotations
 
 import contextlib
-import multiprocessing
 import os
 import pickle
 import signal
@@ -71,6 +70,8 @@ def job(identity: tuple, fn: Callable, *args, **kwargs) -> Job:
 def usable() -> bool:
     """Whether twins can go to forked workers here: fork exists, ≥ 2 cores, the main thread of a process that
     multiprocessing did not start (a sweep's pool worker has the cores in use already)."""
+    import multiprocessing  # here, not at import: 20–30 ms that runs without twins do not need
+
     try:
         cores = len(os.sched_getaffinity(0))
     except AttributeError:
@@ -84,6 +85,8 @@ class Worker:
     """A forked process running one Job; its outcome comes back over a pipe: ("ok", value, cpu s) or ("error", …)."""
 
     def __init__(self, work: Job):
+        import multiprocessing
+
         context = multiprocessing.get_context("fork")
         self.receiver, sender = context.Pipe(duplex=False)
         self.process = context.Process(target=_work, args=(sender, work), daemon=True)
@@ -139,7 +142,7 @@ class Session:
 
     def __init__(self, enabled: bool = True):
         self.start = time.perf_counter()
-        self.enabled = enabled and usable()
+        self.enabled = enabled and threading.current_thread() is threading.main_thread()  # usable() once due
         self.concurrent = self.decided = False
         self.workers: dict[bytes, tuple[Job, Worker]] = {}
         self.speculation: Callable | None = None  # settings of the base pass -> (jobs, the loose twin's options)
@@ -151,7 +154,7 @@ class Session:
         """Whether twins go to workers: once the base run has taken CONCURRENT_AFTER (decided for good then, or
         when it ends: :meth:`base_ended`)."""
         if self.enabled and not self.decided and time.perf_counter() - self.start >= CONCURRENT_AFTER:
-            self.concurrent = self.decided = True
+            self.concurrent, self.decided = usable(), True
         return self.concurrent
 
     def base_ended(self) -> None:
