@@ -7,11 +7,13 @@ per twin) concurrently with each other and, where their inputs are known before 
 
 - **When it pays.** The twins go to workers when the base run takes CONCURRENT_AFTER of wall time or more
   (the session's clock starts with the default run; checked at each progress update of the base run, in the
-  main thread, through ``progress.watcher``, and when it ends, :meth:`Session.base_ended`). A quicker base run
-  keeps its twins in this process, one after the other, as before: a worker costs 10–30 ms to start and collect
-  (a fork, its pages copied as they are written, its Result pickled back), while the twins of a base run B cost
-  about 2.3 B of CPU and two cores save at most about 1.6 B of wall time with them; so workers pay from a B of a
-  few tens of ms, and 0.1 s leaves a margin for a loaded machine. A run of 0.01 s is not made slower.
+  main thread, through ``progress.watcher``, and when it ends, :meth:`Session.base_ended`) and the machine had
+  MIN_IDLE_CORES idle meanwhile (Linux's /proc/stat; the base run itself keeps one core busy). A quicker base run
+  keeps its twins in this process, one after the other, as before: a worker costs 10–50 ms of CPU to start and
+  collect (a fork, its pages copied as they are written, its Result pickled back), while the twins of a base
+  run B cost about 2.3 B of CPU and two cores save at most about 1.6 B of wall time with them; so workers pay
+  from a B of a few tens of ms, and 0.1 s leaves a margin. On a machine with no idle core they only add that
+  cost (every core busy, the twins' CPU time is the wait either way). A run of 0.01 s is not made slower.
 - **Speculation.** At that moment the session starts the twins whose inputs do not depend on how the base run
   ends (``Session.speculation``, given the settings of the base run's current pass: the loose, probe and film
   twins, with the options the solver declares it will use, contract rule 10, standing for the base run's
@@ -36,6 +38,7 @@ process.
 from __future__ import annotations
 
 import contextlib
+import math
 import os
 import pickle
 import signal
@@ -46,7 +49,8 @@ from dataclasses import dataclass, field
 
 from lightsail_mbs.solvers import progress as progress_module
 
-CONCURRENT_AFTER = 0.1  # s of the base run's wall time after which its twins go to worker processes
+CONCURRENT_AFTER = 0.1  # s of the base run's wall time after which its twins go to worker processes ...
+MIN_IDLE_CORES = 0.5  # ... if the machine had this many cores idle on average meanwhile
 _local = threading.local()  # .sessions: this thread's open sessions (one per default run; nested solves share it)
 
 
@@ -79,6 +83,25 @@ def usable() -> bool:
     forks = "fork" in multiprocessing.get_all_start_methods()
     main = threading.current_thread() is threading.main_thread()  # progress.watcher is one per process
     return cores >= 2 and forks and main and multiprocessing.parent_process() is None
+
+
+def machine_times() -> tuple[float, float] | None:
+    """(idle, total) CPU time of the whole machine so far, in clock ticks (Linux: /proc/stat's first line, idle
+    and I/O wait against all), or None where it cannot be read."""
+    try:
+        with open("/proc/stat") as stat:
+            ticks = [float(value) for value in stat.readline().split()[1:]]
+    except (OSError, ValueError):
+        return None
+    return ticks[3] + ticks[4], sum(ticks[:8])
+
+
+def idle_cores(since: tuple[float, float] | None) -> float:
+    """How many cores stood idle on average since `since` (machine_times); inf when it cannot be told."""
+    now = machine_times()
+    if since is None or now is None or now[1] <= since[1]:
+        return math.inf
+    return (now[0] - since[0]) / (now[1] - since[1]) * (os.cpu_count() or 1)
 
 
 class Worker:
@@ -141,7 +164,7 @@ class Session:
     """The twins of one default run (module docstring): where they run, and which are running."""
 
     def __init__(self, enabled: bool = True):
-        self.start = time.perf_counter()
+        self.start, self.cpu_start = time.perf_counter(), machine_times()
         self.enabled = enabled and threading.current_thread() is threading.main_thread()  # usable() once due
         self.concurrent = self.decided = False
         self.workers: dict[bytes, tuple[Job, Worker]] = {}
@@ -154,7 +177,7 @@ class Session:
         """Whether twins go to workers: once the base run has taken CONCURRENT_AFTER (decided for good then, or
         when it ends: :meth:`base_ended`)."""
         if self.enabled and not self.decided and time.perf_counter() - self.start >= CONCURRENT_AFTER:
-            self.concurrent, self.decided = usable(), True
+            self.concurrent, self.decided = usable() and idle_cores(self.cpu_start) >= MIN_IDLE_CORES, True
         return self.concurrent
 
     def base_ended(self) -> None:

@@ -55,6 +55,7 @@ def test_concurrent_default_run_gives_the_sequential_record_bit_for_bit(solver, 
     sequential = lightsail_mbs.solve(p, solver, settings)
     started = Started(monkeypatch)
     monkeypatch.setattr(twin_workers, "CONCURRENT_AFTER", 0.0)
+    monkeypatch.setattr(twin_workers, "MIN_IDLE_CORES", 0.0)
     concurrent = lightsail_mbs.solve(p, solver, settings)
     assert sequential.uncertainty["estimated"] and sequential.uncertainty["n_error"]["estimated"]
     assert pickle.dumps(values(concurrent.uncertainty)) == pickle.dumps(values(sequential.uncertainty))
@@ -151,6 +152,7 @@ def test_a_run_outside_the_main_thread_keeps_its_twins_in_process(monkeypatch):
 
     p, settings = paper_case("torsion-soft"), paper_settings("torsion-soft")
     monkeypatch.setattr(twin_workers, "CONCURRENT_AFTER", 0.0)
+    monkeypatch.setattr(twin_workers, "MIN_IDLE_CORES", 0.0)
     in_main = lightsail_mbs.solve(p, "reduced", settings)
     started, results = Started(monkeypatch), []
     thread = threading.Thread(target=lambda: results.append(lightsail_mbs.solve(p, "reduced", settings)))
@@ -163,8 +165,24 @@ def test_a_run_outside_the_main_thread_keeps_its_twins_in_process(monkeypatch):
 def test_every_run_draws_its_bar_the_workers_labelled_twin(monkeypatch, capfd):
     p, settings = paper_case("torsion-soft"), paper_settings("torsion-soft")
     monkeypatch.setattr(twin_workers, "CONCURRENT_AFTER", 0.0)
+    monkeypatch.setattr(twin_workers, "MIN_IDLE_CORES", 0.0)
     result = lightsail_mbs.solve(p, "reduced", settings, progress=True)
     bars = capfd.readouterr().err.replace("\r", "\n")
     runs = 1 + sum(name in result.uncertainty for name in ("loose", "probe", "film"))
     runs += len(result.uncertainty["n_error"]["twins"])
     assert bars.count("twin reduced:") >= runs - 1 and "\nreduced:" in "\n" + bars
+
+
+def test_workers_only_where_a_core_stood_idle(monkeypatch):
+    """A machine whose cores were all busy during the base run keeps the twins in process; the idle cores
+    measured over a sleep lie between 0 and the machine's cores."""
+    since = twin_workers.machine_times()
+    time.sleep(0.05)
+    if since is not None:
+        assert 0.0 <= twin_workers.idle_cores(since) <= os.cpu_count()
+    p, settings = paper_case("torsion-soft"), paper_settings("torsion-soft")
+    monkeypatch.setattr(twin_workers, "CONCURRENT_AFTER", 0.0)
+    monkeypatch.setattr(twin_workers, "idle_cores", lambda since: 0.0)
+    started = Started(monkeypatch)
+    result = lightsail_mbs.solve(p, "reduced", settings)
+    assert started.jobs == [] and result.uncertainty["estimated"]
