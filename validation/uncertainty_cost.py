@@ -1,10 +1,12 @@
-"""What a default run's uncertainty costs: the CPU time of each twin run against the base run, per benchmark row.
+"""What a default run's uncertainty costs: the CPU time of each twin run against the base run, per benchmark row,
+and the wall time of the default run with its twins in worker processes.
 
 For each row of validation/benchmark.py (both solvers) the base run (``solve(..., uncertainty=False)``) and
 the default run (``lightsail_mbs.solve``: the uncertainty's twins, the film twin and the n-twins) are timed
-by the process's CPU time (time.process_time: the machine is shared, and CPU time is what a run costs
-whatever else runs beside it), the minimum over repeats after one warm-up run. Each solver run inside the
-default run is timed too and named by what it changes against the base run:
+by CPU time (time.process_time, with the worker processes' own: the machine is shared, and CPU time is what a
+run costs whatever else runs beside it), the minimum over repeats after one warm-up run. The breakdown runs
+every twin in this process (twin_workers.CONCURRENT_AFTER = inf), each solver run timed and named by what it
+changes against the base run:
 
 - ``base``: the base run's options (with its reruns that locate a failure between samples);
 - ``loose`` / ``half`` / ``tight``: tolerances looser or tighter than the base run's (``half``: the first of
@@ -12,6 +14,12 @@ default run is timed too and named by what it changes against the base run:
 - ``probe``: a start perturbed by the seeded round-off roughness; ``film``: the case with a film;
 - ``n/2``, ``n/4``: the twins of the n-error (lightsail_mbs.analysis.n_error);
 - ``rest``: what is not a solver run (the resolvedness spectrum, bookkeeping).
+
+The default run as it runs for a user (its twins in worker processes beside the base run where the base run
+is long enough: lightsail_mbs.solvers.twin_workers) is timed by wall clock (time.perf_counter, minimum over
+repeats) against the base run's, with its CPU time (this process and its workers). ``bound`` is the wall-time
+ratio two idle cores allow at best, max(base, default CPU / 2) / base of the CPU times: no schedule of the same
+runs on two cores can do better.
 
     nice -n 10 python validation/uncertainty_cost.py --markdown validation/uncertainty_cost.md
     python validation/uncertainty_cost.py --solvers reduced --cases torsion-soft --repeats 1
@@ -22,6 +30,9 @@ The script names the runs from their options alone, so it measures any version o
 from __future__ import annotations
 
 import argparse
+import math
+import os
+import resource
 import sys
 import time
 from pathlib import Path
@@ -29,7 +40,7 @@ from pathlib import Path
 import lightsail_mbs
 from lightsail_mbs import paper_case, paper_settings
 from lightsail_mbs.result import with_uncertainty
-from lightsail_mbs.solvers import SOLVERS, contract
+from lightsail_mbs.solvers import SOLVERS, contract, twin_workers
 
 CASES = {  # label -> paper case (validation/benchmark.py's rows)
     "torsion E=4.5e13, 6 s (stable)": "torsion-stable",
@@ -96,41 +107,68 @@ def default_breakdown(calls) -> dict:
 
 
 def measure(case: str, solver: str, repeats: int) -> dict:
-    """The row's base and default CPU times (minimum over repeats) and the default run's breakdown (of its
-    fastest repeat)."""
+    """The row's base and default CPU times (minimum over repeats), the default run's breakdown (of its fastest
+    repeat, every twin in this process), and the wall times of the base run and of the default run with its
+    twins in workers (minimum over repeats) with that run's CPU time."""
     params, settings = paper_case(case), paper_settings(case)
     lightsail_mbs.solve(params, solver, settings, uncertainty=False)  # warm-up: compiled kernels, caches
-    base = min(timed(params, solver, settings, False)[0] for _ in range(repeats))
-    best = None
-    for _ in range(repeats):
-        with Recorder() as recorder:
-            cpu, result = timed(params, solver, settings, True)
-        if best is None or cpu < best[0]:
-            best = (cpu, recorder.calls, result)
+    bases = [timed(params, solver, settings, False) for _ in range(repeats)]
+    best, after = None, twin_workers.CONCURRENT_AFTER
+    twin_workers.CONCURRENT_AFTER = math.inf  # the breakdown: every twin in this process
+    try:
+        for _ in range(repeats):
+            with Recorder() as recorder:
+                cpu, _, result = timed(params, solver, settings, True)
+            if best is None or cpu < best[0]:
+                best = (cpu, recorder.calls, result)
+    finally:
+        twin_workers.CONCURRENT_AFTER = after
+    concurrent = min((timed(params, solver, settings, True)[:2] for _ in range(repeats)), key=lambda run: run[1])
     cpu, calls, result = best
     parts = default_breakdown(calls)
     parts["rest"] = max(0.0, cpu - sum(parts.values()))
     u = result.uncertainty or {}
     what = "t_f" if u.get("quantity") == "failure_time" else "max ratio"
     text = f"{what} {with_uncertainty(u['value'], u['uncertainty'])}" if u.get("estimated") else "not estimated"
-    return {"base": base, "default": cpu, "parts": parts, "answer": text}
+    return {
+        "base": min(b[0] for b in bases),
+        "default": cpu,
+        "parts": parts,
+        "answer": text,
+        "base_wall": min(b[1] for b in bases),
+        "concurrent_cpu": concurrent[0],
+        "concurrent_wall": concurrent[1],
+    }
+
+
+def cpu_seconds() -> float:
+    """CPU seconds of this process and of its children that have ended (the twins' workers)."""
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return time.process_time() + children.ru_utime + children.ru_stime
 
 
 def timed(params, solver, settings, uncertainty: bool):
-    start = time.process_time()
+    """(CPU s, wall s, Result) of one solve."""
+    start, start_wall = cpu_seconds(), time.perf_counter()
     result = lightsail_mbs.solve(params, solver, settings, uncertainty=uncertainty)
-    return time.process_time() - start, result
+    return cpu_seconds() - start, time.perf_counter() - start_wall, result
 
 
 def markdown(rows) -> str:
-    head = "| case | solver | base CPU (s) | default CPU (s) | default / base | " + " | ".join(KINDS) + " | answer |"
-    lines = [head, "|" + "---|" * 2 + "---:|" * (3 + len(KINDS)) + "---|"]
+    head = (
+        "| case | solver | base CPU (s) | default CPU (s) | default / base | "
+        + " | ".join(KINDS)
+        + " | answer | base wall (s) | default wall, twins in workers (s) | its CPU (s) | wall default / base | "
+        "bound (2 cores) |"
+    )
+    lines = [head, "|" + "---|" * 2 + "---:|" * (3 + len(KINDS)) + "---|" + "---:|" * 5]
     for r in rows:
         parts = " | ".join(f"{r['parts'][k]:.3f}" if r["parts"][k] else "—" for k in KINDS)
-        ratio = r["default"] / r["base"]
+        bound = max(r["base"], r["default"] / 2) / r["base"]
         lines.append(
-            f"| {r['case']} | {r['solver']} | {r['base']:.3f} | {r['default']:.3f} | {ratio:.2f} | {parts} | "
-            f"{r['answer']} |"
+            f"| {r['case']} | {r['solver']} | {r['base']:.3f} | {r['default']:.3f} | {r['default'] / r['base']:.2f} | "
+            f"{parts} | {r['answer']} | {r['base_wall']:.3f} | {r['concurrent_wall']:.3f} | "
+            f"{r['concurrent_cpu']:.3f} | {r['concurrent_wall'] / r['base_wall']:.2f} | {bound:.2f} |"
         )
     return "\n".join(lines) + "\n"
 
@@ -145,14 +183,15 @@ def main(argv=None) -> int:
     if args.repeats < 1:
         ap.error("--repeats must be ≥ 1")
     labels = {name: label for label, name in CASES.items()}
-    rows = []
+    rows, load = [], os.getloadavg()
     for solver in args.solvers:
         for case in args.cases:
             row = {"case": labels[case], "solver": solver, **measure(case, solver, args.repeats)}
             rows.append(row)
             print(
                 f"{case:15s} {solver:8s} base {row['base']:.3f} s  default {row['default']:.3f} s  "
-                f"({row['default'] / row['base']:.2f}×)  {row['answer']}",
+                f"({row['default'] / row['base']:.2f}×)  {row['answer']}  wall: base {row['base_wall']:.3f} s, "
+                f"default {row['concurrent_wall']:.3f} s ({row['concurrent_wall'] / row['base_wall']:.2f}×)",
                 flush=True,
             )
     table = markdown(rows)
@@ -161,11 +200,15 @@ def main(argv=None) -> int:
     if args.markdown:
         command = "nice -n 10 python validation/uncertainty_cost.py " + " ".join(argv or sys.argv[1:])
         args.markdown.write_text(
-            "# What the uncertainty costs: CPU time per twin run\n\nGenerated by `"
-            + command.strip()
-            + f"`: CPU time (time.process_time) of the process, minimum of {args.repeats} repeats after a warm-up, "
-            "on a shared 2-core machine. Columns after the ratio: the default run's CPU time per run it made "
-            "(module docstring of validation/uncertainty_cost.py); `rest` is what is not a solver run.\n\n" + table
+            "# What the uncertainty costs: CPU time per twin run, and wall time with the twins in workers\n\n"
+            f"Generated by `{command.strip()}`: CPU time of the process and its worker processes, minimum of "
+            f"{args.repeats} repeats after a warm-up, on a shared 2-core machine (load average {load[0]:.1f} when it "
+            f"started, {os.getloadavg()[0]:.1f} at the end: with other processes running, the wall times are upper "
+            "bounds). Columns after the ratio: the default run's CPU time per run it made, every twin in this process "
+            "(module docstring of validation/uncertainty_cost.py); `rest` is what is not a solver run. The last "
+            "five: the base run's wall time; the default run's, its twins in worker processes beside the base run "
+            "(lightsail_mbs.solvers.twin_workers), and its CPU time; their ratio; and the ratio two idle cores allow "
+            "at best, max(base, default CPU / 2) / base.\n\n" + table
         )
     return 0
 

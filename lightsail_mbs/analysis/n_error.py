@@ -63,18 +63,21 @@ survives where the run fails, or the reverse), E_n is infinite: the verdict itse
 n/4 with the other verdict is too coarse to carry the answer and is left out.
 
 Cost: the base run at n/2 and at n/4, about half and a quarter of a base run or less (a solver's cost grows
-at least in proportion to n), on top of the 3–8 runs of the uncertainty estimate.
+at least in proportion to n), on top of the 3–4 twin runs of the uncertainty estimate. They run where those run
+(:mod:`lightsail_mbs.solvers.twin_workers`): in worker processes, started beside a long base run with the loose
+twin's options as the solver declares them (`jobs`), or in this process after a short one.
 """
 
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 
 from lightsail_mbs import solvers
+from lightsail_mbs.analysis import resolvedness
 from lightsail_mbs.model import shapes
+from lightsail_mbs.solvers import twin_workers
 
 SAFETY = 2.0  # E_n = SAFETY · (the change the twins show), as U's numerical part
 MIN_COARSE = 4  # a twin of fewer slices is not run
@@ -159,6 +162,27 @@ def why_not(params, result) -> str | None:
     return None
 
 
+def job(params, size: int, solver: str, settings, options: dict, progress: bool) -> twin_workers.Job:
+    """The twin at `size` slices: the base run's solver, settings and `options` (the reference run's), alone."""
+    twin = params.replace(n=size)
+    identity = ("n-twin", twin, solver, settings, progress, options)
+    return twin_workers.job(
+        identity, solvers.solve, twin, solver, settings, progress=progress, uncertainty=False, **options
+    )
+
+
+def jobs(params, solver: str, settings, options: dict, progress: bool) -> list[twin_workers.Job]:
+    """The n-twins `fold` will ask for when the run has an uncertainty estimate and `options` are its reference
+    run's (for twin_workers.Session.extra: started beside the base run); none where `why_not` holds for any run."""
+    try:
+        verdict = resolvedness.assess(params)
+    except Exception:  # noqa: BLE001 - not assessed: fold says why; nothing to start
+        return []
+    if not verdict.well_posed:
+        return []
+    return [job(params, size, solver, settings, options, progress) for size in twin_sizes(params)]
+
+
 def fold(params, solver: str, settings, options: dict, result, progress: bool = False) -> None:
     """Estimate the n-error of `result` (a run of `solver` with `options`, its uncertainty estimated and its
     resolvedness verdict recorded) from its twins at n/2 and n/4, record it in ``result.uncertainty["n_error"]``
@@ -173,12 +197,14 @@ def fold(params, solver: str, settings, options: dict, result, progress: bool = 
         record["n_error"] = {"estimated": False, "reason": reason}
         return
     reference = record[record.get("reference", "base")]
-    twins, histories, wall, start = {}, {}, 0.0, time.process_time()
-    for size in twin_sizes(params):
-        twin = solvers.solve(
-            params.replace(n=size), solver, settings, progress=progress, uncertainty=False, **reference["options"]
-        )
-        wall += twin.wall_time
+    twins, histories, wall, cpu = {}, {}, 0.0, 0.0
+    workers = twin_workers.current()
+    jobs = {size: job(params, size, solver, settings, reference["options"], progress) for size in twin_sizes(params)}
+    for work in jobs.values():
+        workers.submit(work)
+    for size, work in jobs.items():
+        twin, twin_cpu = workers.take(work)
+        wall, cpu = wall + twin.wall_time, cpu + twin_cpu
         if twin.error is not None:
             record["n_error"] = {"estimated": False, "reason": f"the twin at n = {size} ended with {twin.error}"}
             result.wall_time += wall
@@ -207,7 +233,7 @@ def fold(params, solver: str, settings, options: dict, result, progress: bool = 
         "recurrence_rise": rise,
         "twins": {str(size): {"value": value, "failed": failed} for size, (value, failed) in twins.items()},
         "wall_time": wall,
-        "cpu_time": time.process_time() - start,
+        "cpu_time": cpu,
     }
     record["uncertainty_numerics"] = record["uncertainty"]
     record["uncertainty"] = record["uncertainty"] + error

@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model.parameters import SailParameters
-from lightsail_mbs.solvers import contract, events, registry  # noqa: F401 - registry: the declarations
+from lightsail_mbs.solvers import contract, events, registry, twin_workers  # noqa: F401 - registry: the declarations
 from lightsail_mbs.solvers.settings import paper_settings
 from lightsail_mbs.solvers.skeleton import interrupts_propagate
 
@@ -69,7 +69,9 @@ def solve(
         Estimate the answer's uncertainty and conditioning from twin runs (tolerances loosened; start
         perturbed at round-off level; a film), stored in ``Result.uncertainty``; the Result returned is the
         base run (a tightened twin where the loose twin finds the base run inaccurate:
-        :mod:`lightsail_mbs.solvers.uncertainty`). Costs about 1.5–3 base runs more. Sweeps turn it off.
+        :mod:`lightsail_mbs.solvers.uncertainty`). Its twins cost 2–4 base runs of CPU; on more than one core
+        they run in worker processes beside the base run (:mod:`lightsail_mbs.solvers.twin_workers`). Sweeps
+        turn it off.
     **options
         The solver's own numerical options (its schema in :mod:`lightsail_mbs.solvers.registry`); an
         unknown option or a value outside its range raises ParameterError before anything is solved.
@@ -80,13 +82,18 @@ def solve(
     if not isinstance(settings, RunSettings):
         raise ParameterError(f"settings={settings!r} is invalid: allowed a RunSettings")
     engine.check_options(options)
-    with interrupts_propagate():
-        start = time.process_time()
-        result, sampled = events.located_run(engine, params, settings, options, progress=progress)
+    with interrupts_propagate(), twin_workers.session(enabled=uncertainty) as twins:
+        start, start_wall = time.process_time(), time.perf_counter()
         if uncertainty:
             from lightsail_mbs.solvers import uncertainty as estimate
 
+            twins.speculation = estimate.speculation(engine, params, options, progress)
+        base = twins.watching(engine) if uncertainty else engine
+        result, sampled = events.located_run(base, params, settings, options, progress=progress)
+        twins.base_ended()
+        if uncertainty:
             base_cpu = time.process_time() - start  # the base run's, its reruns that locate a failure included
             result = estimate.assess(engine, params, sampled, options, result, progress=progress, base_cpu=base_cpu)
+            result.uncertainty["elapsed"] = time.perf_counter() - start_wall  # the twins' sum is wall_time
     result.settings = settings  # the run control asked for; info["sampling"] says how it was sampled
     return result

@@ -69,27 +69,22 @@ DOP853; generalized-α: two, the step / 2 and / 4 with tolerances / HALF_TIGHTEN
 probe and film twins at the base run's options, E_int = Σ |q_(k+1) − q_k| over the sequence base, (h/2,)
 tight, and the tightest run reported.
 
-Cost (validation/uncertainty_cost.md, CPU time of each run): the loose and film twins are about 0.4–0.7 of a
-base run each (not less: output sampling and set-up do not shrink with the step count), the probe twin one
-base run, the n-twins at the loose options 0.1–0.5 together: the whole default run 2.2–4.8 base runs
-(Exudyn; the reduced solver 2.7–4.5, its runs' fixed cost larger against its steps), against 3.3–9 with the
-tightened sequence this rule replaces (whose quarter-step generalized-α twin alone cost 3.5–4 base runs).
-Measured (validation/accuracy.md, 96 seeded random cases of every model): the coverage and agreement figures
-that report states. The estimate is on for single runs (``solve(..., uncertainty=True)``, the default, and
-``lightsail-mbs simulate``); sweeps run the base run alone and say so in their outputs.
-``Result.uncertainty`` records each run (options, answer, wall and CPU time); the Result's ``wall_time`` is
-the sum of every run's.
+Cost (validation/uncertainty_cost.md, CPU time): the loose and film twins 0.4–0.7 of a base run each, the probe
+one, the n-twins 0.1–0.5: 2.2–4.8 base runs. On two cores or more they run in worker processes, started while the
+base run runs (`speculation`, :mod:`~lightsail_mbs.solvers.twin_workers`; a run under its CONCURRENT_AFTER keeps
+them in process). Coverage: validation/accuracy.md. On for single runs (``solve``, ``lightsail-mbs simulate``);
+sweeps run the base run alone. ``Result.uncertainty`` records each run (options, answer, wall and CPU time: a
+worker's its own) and ``elapsed``, the default run's wall time (s); ``Result.wall_time`` sums every run's.
 """
 
 from __future__ import annotations
 
 import math
-import time
 
 from lightsail_mbs.base.settings import RunSettings
-from lightsail_mbs.model import film
 from lightsail_mbs.model.parameters import SailParameters
-from lightsail_mbs.solvers import contract, events
+from lightsail_mbs.solvers import contract, events, twin_workers
+from lightsail_mbs.solvers.film_twin import FILM_TOL, film_sensitivity, film_twin  # noqa: F401 - FILM_TOL: the rule's
 
 LOOSEN = 10.0  # the loose twin's tolerances are the base run's × LOOSEN (adaptive methods)
 DOP853_LOOSEN = 3.0  # the reduced solver's DOP853: rtol × 3
@@ -101,7 +96,6 @@ STEP_TIGHTEN = 16.0  # the fallback, generalized-α: the tight twin, tolerances 
 PROBE_LEVEL = 1e-12  # the probe twin's roughness amplitude, in units of the defect amplitude a₀
 SAFETY = 2.0  # U = SAFETY · (E_int + S)
 CONDITION_TOL = 1e-4  # well-conditioned: S ≤ CONDITION_TOL · |q|
-FILM_TOL = 1e-3  # defect-dominated: the film twin moves q by ≤ FILM_TOL · |q|
 ACCURACY = 1e-3  # the base run is reported when the loose twin's answer is within ACCURACY · |q| of it
 RULE = (
     f"reported: the base run (the run at tolerances/F, F = {TIGHTEN:g}, DOP853 {WIDE_TIGHTEN:g}, generalized-α the "
@@ -232,43 +226,91 @@ def why_not(solver, params: SailParameters, result) -> str | None:
     """Why no estimate can be made for `result`, or None."""
     if result.error is not None:
         return f"not estimated: the run ended with a solver error ({result.error})"
+    if params.boundary == "free" and not params.tip_load and not result.amplitude[0] > 0:
+        return "not estimated: the sail starts flat (no amplitude ratio to measure)"
+    return why_not_case(solver, params)
+
+
+def why_not_case(solver, params: SailParameters) -> str | None:
+    """Why no estimate can be made for any run of `params` by `solver`, or None."""
     if params.boundary != "free" or params.tip_load:
         return "not estimated: supports and tip loads are validations, not sails"
-    if not result.amplitude[0] > 0:
-        return "not estimated: the sail starts flat (no amplitude ratio to measure)"
     if hasattr(solver, "roles") and not solver.roles()["perturbation"]:
         return "not estimated: the solver has no perturbation option for the probe twin (contract rule 8)"
     return None
+
+
+def planned(solver, params, settings, options: dict, info: dict, roles: dict, progress: bool) -> tuple[dict, dict]:
+    """(twins, loose options): the twins every estimate starts with, by name, as (case, options, Job): the loose
+    twin, the probe at the base run's options and the film twin at the loose twin's; `info`: the base run's, or
+    the options the solver declares it will use (contract rule 10) when the twins start before it ends."""
+    loose = loosened(options, info, roles)
+    twins = {"loose": (params, loose)}
+    for name in roles["perturbation"][:1]:
+        twins["probe"] = (params, {**options, name: PROBE_LEVEL * params.displacement_scale})
+    film_case, _ = film_twin(params)
+    if film_case is not None:
+        twins["film"] = (film_case, loose)
+    return {name: (*twin, twin_job(solver, *twin, settings, progress)) for name, twin in twins.items()}, loose
+
+
+def twin_job(solver, case, options: dict, settings, progress: bool) -> twin_workers.Job:
+    """The Job of one twin: `solver`'s run of `case` with `options`, keyed by all it depends on."""
+    identity = ("twin", getattr(solver, "label", id(solver)), case, settings, progress, options)
+    return twin_workers.job(identity, solver.run, case, settings, progress=progress, **options)
+
+
+def speculation(solver, params, options: dict, progress: bool):
+    """For twin_workers.Session.speculation: the settings of a base pass -> (the Jobs of `planned` with the options
+    the solver declares it will use standing for its info, the loose options); None when no estimate is made."""
+    if why_not_case(solver, params) is not None or not hasattr(solver, "default_options"):
+        return None
+
+    def speculate(settings):
+        declared = solver.default_options(params, settings, **options)
+        info = {name: value for name, value in declared.items() if value is not None}
+        twins, loose = planned(solver, params, settings, options, info, solver.roles(), progress)
+        return [twin[2] for twin in twins.values()], loose
+
+    return speculate
 
 
 def twin_runs(solver, params, settings, options, result, roles, progress, base_cpu) -> tuple[dict, dict, list[str]]:
     """(runs, records, order): the base run's twins (module docstring) by name, and the runs of the integration
     sequence from the loosest to the reported one — ["loose", "base"], or the fallback's ["base", (half,) tight]
     when the loose twin ends with a solver error or did not run looser (`looser`). The probe twin runs at the
-    base run's options, the film twin at those of order[0]."""
+    base run's options, the film twin at those of order[0]. The twins run where twin_workers's open session
+    puts them (worker processes, started before the base run ended where their inputs were known; else here)."""
     runs, records = {"base": result}, {"base": record_of(result, options, base_cpu)}
+    workers = twin_workers.current()
+    twins, loose = planned(solver, params, settings, options, result.info, roles, progress)
+    for _, _, work in twins.values():
+        workers.submit(work)
 
-    def run(name, case, twin_options):
-        start = time.process_time()
-        runs[name] = solver.run(case, settings, progress=progress, **twin_options)
-        records[name] = record_of(runs[name], twin_options, time.process_time() - start)
+    def run(name, case, twin_options, work=None):
+        runs[name], cpu = workers.take(work or twin_job(solver, case, twin_options, settings, progress))
+        records[name] = record_of(runs[name], twin_options, cpu)
 
-    run("loose", params, loosened(options, result.info, roles))
-    order, reference = ["loose", "base"], records["loose"]["options"]
+    run("loose", *twins["loose"])
+    order, reference = ["loose", "base"], loose
     if runs["loose"].error is not None or not looser(runs["loose"].info, result.info):
         order, reference = ["base"], options
-        for name, factor in sequence(result.info):
-            run(name, params, tightened(options, result.info, factor, roles))
+        tighter = [(name, tightened(options, result.info, factor, roles)) for name, factor in sequence(result.info)]
+        for _, twin_options in tighter:
+            workers.submit(twin_job(solver, params, twin_options, settings, progress))
+        for name, twin_options in tighter:
+            run(name, params, twin_options)
             order.append(name)
     elif not accurate(records["loose"], records["base"]):
         name, factor = sequence(result.info)[0]
         run(name, params, tightened(options, result.info, factor, roles))
         order.append(name)
-    for name in roles["perturbation"][:1]:
-        run("probe", params, {**options, name: PROBE_LEVEL * params.displacement_scale})
-    film_case, _ = film_twin(params)
-    if film_case is not None:
-        run("film", film_case, reference)
+    if "probe" in twins:
+        run("probe", *twins["probe"])
+    if "film" in twins:
+        if reference is not loose:
+            workers.discard(twins["film"][2])
+        run("film", twins["film"][0], reference)
     return runs, records, order
 
 
@@ -345,45 +387,6 @@ def assess(
     }
     reported.wall_time = total_wall
     return reported
-
-
-def film_twin(params: SailParameters) -> tuple[SailParameters | None, str]:
-    """(the film twin's case, what it is): the case with the reference film (model.film.REFERENCE_FILM) when
-    it has none, with its own film at the next seed when it has one (a chain's line scan, a sheet's surface)."""
-    if params.film_rms == 0:
-        ref = film.REFERENCE_FILM
-        twin = params.replace(film_rms=ref.rms, film_correlation_length=ref.correlation_length, film_hurst=ref.hurst)
-        return twin, f"the reference film ({ref.describe()})"
-    return params.replace(film_seed=params.film_seed + 1), f"the same film at seed {params.film_seed + 1}"
-
-
-def film_sensitivity(records: dict, text: str, quantity: str, reference: str = "base") -> dict:
-    """What the film twin says (module docstring, item 4): its answer (at the options of `reference`), the shift
-    from the answer of `reference` (the run of the same options: "loose", or "base" in the fallback), and the
-    verdict "defect-dominated" (shift ≤ FILM_TOL · |q|) or "roughness-dominated", with, for a case without a
-    film, the RMS below which the ideal-defect answer holds, estimated as linear in the film's RMS."""
-    if "film" not in records:
-        return {"assessed": False, "film": text}
-    twin, base = records["film"], records[reference]
-    if twin["error"] is not None:
-        return {"assessed": False, "film": text, "error": twin["error"]}
-    shift = abs(twin["value"] - base["value"]) if twin["failed"] == base["failed"] else math.inf
-    relative = shift / abs(base["value"]) if base["value"] else math.inf
-    verdict = "defect-dominated" if relative <= FILM_TOL else "roughness-dominated"
-    holds_below = None
-    if verdict == "roughness-dominated" and text.startswith("the reference film") and math.isfinite(relative):
-        holds_below = film.REFERENCE_FILM.rms * FILM_TOL / relative
-    return {
-        "assessed": True,
-        "film": text,
-        "quantity": quantity,
-        "value": twin["value"],
-        "failed": twin["failed"],
-        "shift": shift,
-        "relative_shift": relative,
-        "verdict": verdict,
-        "holds_below": holds_below,
-    }
 
 
 def sampling_error(run, settings: RunSettings, failed: bool) -> float:

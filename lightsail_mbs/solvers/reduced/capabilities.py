@@ -149,10 +149,12 @@ def chain_defaults(params: SailParameters, settings: RunSettings, **options) -> 
     """The options of a reduced chain run given `options` (contract rule 10): the method "auto" resolves to
     (solver.choose_method), its rtol (solver.DEFAULT_RTOL; supports.DEFAULT_RTOL with supports or a tip
     load), atol = rtol × the state scales; max_step and first_step are left to the integrator (None)."""
-    from lightsail_mbs.solvers.reduced import solver, supports
+    from lightsail_mbs.solvers.reduced import solver
 
     method = options.get("method")
     if params.boundary != "free" or params.tip_load != 0.0:
+        from lightsail_mbs.solvers.reduced import supports  # scipy's stiff integrators: imported where used
+
         method, rtol, waves = method or "Radau", supports.DEFAULT_RTOL, 1.0
     else:
         method = solver.choose_method(params)[0] if method in (None, "auto") else method
