@@ -4,6 +4,7 @@
     python validation/benchmark.py --solvers exudyn --repeats 5 --markdown bench.md
     python validation/benchmark.py --convergence        # Exudyn step/tolerance study (soft cases)
     python validation/benchmark.py --no-default         # the base runs alone
+    python validation/benchmark.py --roofline           # and each row's roofline (validation/roofline.py)
 
 Each row is the base run (``solve(..., uncertainty=False)``: what sweeps run) and, beside it, the default
 run (``solve(...)``: the base run with its uncertainty estimate, the answer with its ±, its twins in worker
@@ -172,6 +173,23 @@ def convergence_markdown(rows) -> str:
     return "\n".join(lines) + "\n"
 
 
+def roofline_section(repeats: int) -> str:
+    """The roofline of the chain rows (validation/roofline.py, its sheet rows in validation/roofline.md) as a
+    Markdown section: the work each base run does against what one core allows."""
+    sys.path.insert(0, str(Path(__file__).parent))
+    import roofline
+
+    roof = roofline.machine()
+    table = roofline.markdown(roofline.chain_rows(roof, repeats), roof, "", (repeats, 0)).split("\n\n", 2)[2]
+    return (
+        "\n## Roofline\n\n"
+        "Each row's base run against one core of this machine (validation/roofline.py; its docstring counts the "
+        "work): "
+        f"peak {roof['flops'] / 1e9:.1f} GFlop/s (1024² DGEMM), bandwidth {roof['bandwidth'] / 1e9:.1f} GB/s; CPU the "
+        f"least of {repeats} runs; the sheets' rows are in roofline.md.\n\n" + table
+    )
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--solvers", nargs="+", default=list(SOLVERS), choices=list(SOLVERS))
@@ -179,6 +197,11 @@ def main(argv=None) -> int:
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--markdown", type=Path, help="also write the table(s) as Markdown to this file")
     ap.add_argument("--no-default", action="store_true", help="time the base runs alone (no default-run columns)")
+    ap.add_argument(
+        "--roofline",
+        action="store_true",
+        help="append the chain rows' roofline (validation/roofline.py: each base run's work against one core's limit)",
+    )
     ap.add_argument(
         "--convergence",
         action="store_true",
@@ -191,6 +214,8 @@ def main(argv=None) -> int:
         text = convergence_markdown(convergence())
     else:
         text = markdown(benchmark(args.solvers, args.cases, args.repeats, default=not args.no_default))
+        if args.roofline:
+            text += roofline_section(args.repeats)
     print()
     print(text)
     if args.markdown:
