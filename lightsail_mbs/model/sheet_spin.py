@@ -1,5 +1,5 @@
 """The spinning sheet (model "sheet", case fields ``spin_rate`` Ω and ``spin_tilt`` β): its initial velocities,
-the centrifugal loads of its spun equilibrium, and the closed forms its validations compare with.
+the centrifugal loads of its spun state, and the closed forms its validations compare with.
 
 Initial velocities
 ------------------

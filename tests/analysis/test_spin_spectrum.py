@@ -93,3 +93,26 @@ def test_a_curved_spinning_sheet_in_the_flat_sheets_stress_has_no_tilt_instabili
             assert least < 0.0 and spectrum.growth_rate > p.spin_rate and spectrum.tilt_share > 0.5
         else:
             assert least > 0.0 and spectrum.growth_rate < 1e-6 * p.spin_rate
+
+
+def test_the_critical_spin_brackets_the_last_crossing_of_the_threshold(monkeypatch):
+    """A growth rate that falls below the threshold at 0.5 rad/s, rises above it again between 1.0 and
+    1.3 rad/s and stays below after: the bracket holds 1.3 rad/s, at most `width` wide; a rate stable from
+    the lowest spin gives (0, low), one unstable at the highest (high, inf)."""
+    threshold = np.log(2.0) / spin_spectrum.RUN_LENGTH
+    bumps = {"rate": lambda w: threshold * (2.0 - 2.0 * w if w < 1.0 else (1.5 if w < 1.3 else 0.5))}
+
+    class Fake:
+        def __init__(self, spin):
+            self.growth_rate = bumps["rate"](spin)
+
+    monkeypatch.setattr(spin_spectrum, "rotating_spectrum", lambda q: Fake(q.spin_rate))
+    p = SailParameters(**SOFT)
+    below, above = spin_spectrum.critical_spin(p, (0.1, 10.0), steps=20, width=1.01)
+    assert below < 1.3 <= above and above / below <= 1.01
+    bumps["rate"] = lambda w: 0.5 * threshold
+    assert spin_spectrum.critical_spin(p, (0.1, 10.0)) == (0.0, 0.1)
+    bumps["rate"] = lambda w: threshold
+    assert spin_spectrum.critical_spin(p, (0.1, 10.0)) == (10.0, np.inf)
+    with pytest.raises(ParameterError, match="spins"):
+        spin_spectrum.critical_spin(p, (1.0, 0.5))
