@@ -28,16 +28,16 @@ the spun state differ from the initial ones by the strain ρΩ²R²/E (~1e-9 for
 *The exact spun equilibrium of a curved shape* (initial_equilibrium with spin): the residual of static_loads
 plus the centrifugal loads C_k = (m Ω_z² ρ_k, −ω × J ω) in the initial shape is cleared by the same elastic
 correction, so that the initial shape rests in the turning frame. On a doubly curved soft sheet this is not
-a state to start from. Holding the shape needs σ_ij w_,ij = 0 everywhere, either from bending moments (of
-order σ a₀, rest angles σ/(D k²) times the defect's slopes: ~3e5 for the paper's sail at 10 rad/s) or
-from a redistributed membrane stress; once a₀ exceeds a few film thicknesses (the moments' complementary
-energy grows as a₀², the redistribution's does not depend on a₀) the least-energy correction is the
-redistribution, and where the Gaussian curvature is positive (w_,xx w_,yy > w_,xy²) σ_ij w_,ij = 0 needs
-an indefinite σ: those tiles are compressed (to ~1.5 times the centre's centrifugal stress, 8 × 8 tiles,
-a₀ = 10 µm). Rigid tiles joined at their edge midpoints under a compression P per unit length buckle at
-the tile scale: a zig-zag of tilts ±θ shortens each tile's span by aθ²/2 and costs only the soft bending
-springs, so its rate is λ² ≈ 3(P − 4D/a²)/(ρh a²) ∝ Ω² R²/a², a mode of the tiles' tilts that grows as Ω
-and faster with refinement, with no continuum limit (analysis.spin_spectrum; validation/spin_spectrum.md).
+a state to start from. Holding the shape needs the transverse resultant σ_ij w_,ij balanced, either by
+bending moments (of order σ a₀: rest angles σ/(D k²) ≈ 3e5 times the defect's slopes for the paper's sail at
+10 rad/s) or by a redistributed membrane stress; once a₀ exceeds a few film thicknesses (the moments'
+complementary energy grows as a₀², the redistribution's does not depend on a₀) the least-energy
+correction is the redistribution, and it compresses tiles (to 1.5 times the centre's centrifugal stress on
+8 × 8 tiles, a₀ = 10 µm). Rigid tiles joined at their edge midpoints under a compression P per unit length
+buckle at the tile scale: a zig-zag of tilts ±θ (tile centres still) shortens each tile's span by aθ²/2
+and strains only the soft bending springs (2θ at each joint), so J θ̈ = (P a b − 4 D b/a) θ with
+J = ρh a b · a²/12: a rate up to √(12 (P − 4D/a²)/(ρh a²)) ∝ Ω R/a, a mode of the tiles' tilts that grows
+as Ω and faster with refinement, with no continuum limit (validation/spin_spectrum.md, part D).
 
 The in-plane stress of a spinning free disc (plane stress, Poisson ratio ν_p; Timoshenko & Goodier §32)::
 
