@@ -19,10 +19,17 @@ closed form they are compared with (Lamb & Southwell).
 **Deformation spectrum** (:func:`rotating_spectrum`): L restricted, as analysis.sheet_spectrum restricts
 ``linearise``, to the kinetic-metric complement of the six rigid-body motions; the fastest Re λ is the
 growth rate of the shape.
+
+**Critical spin rate** (:func:`critical_spin`): the spin from which the fastest deformation grows slower than
+a threshold, by default ln 2/(6 s): a shape that grows no faster does not double within the paper's 6 s
+run, the rule behind the critical edge tension (paper.sheet_physics). The spectrum is scanned on a
+geometric grid of spins and the last crossing below the threshold is bisected (in log space), so the
+bracket is the smallest spin from which every scanned faster spin is stable.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -39,6 +46,7 @@ PAIR_TOLERANCE = 1e-3  # relative: two frequencies of one pair; |Re λ|/|Im λ| 
 ZERO = 1e-3  # Im λ below this × the band's top: the translation along ẑ (its Jordan pair split by round-off)
 DENSE = 2000  # transverse blocks up to this size by a dense eigensolver, larger ones by shift-invert Arnoldi
 SPARSE_MODES = 120
+RUN_LENGTH = 6.0  # s: the paper's run, in which a stable shape must not double
 
 
 def rotating_linearisation(p: SailParameters, state: np.ndarray | None = None, solver: str = "reduced"):
@@ -154,3 +162,36 @@ def rotating_spectrum(p: SailParameters, solver: str = "reduced") -> RotatingSpe
     )
     shares = energy[:, 3:].sum(axis=(0, 1)) / energy.sum(axis=(0, 1))
     return RotatingSpectrum(modes.eigenvalues, shares)
+
+
+def critical_spin(
+    p: SailParameters,
+    spins: tuple[float, float],
+    steps: int = 28,
+    width: float = 1.05,
+    threshold: float = math.log(2.0) / RUN_LENGTH,
+) -> tuple[float, float]:
+    """(Ω₋, Ω₊) (rad/s): the bracket, at most `width` wide, of the smallest spin in spins = (low, high) from
+    which the fastest deformation of p spun at Ω (rotating_spectrum) grows slower than threshold (1/s) at
+    every scanned faster spin (module docstring); (0, low) if it is already stable at low, (high, inf) if
+    not at high."""
+    low, high = spins
+    if not 0.0 < low < high or width <= 1.0 or steps < 1:
+        raise ParameterError(
+            f"spins={spins!r}, width={width!r}, steps={steps!r} are invalid: 0 < low < high, width > 1"
+        )
+    grid = low * (high / low) ** (np.arange(steps + 1) / steps)
+    grows = [rotating_spectrum(p.replace(spin_rate=float(w))).growth_rate >= threshold for w in grid]
+    if not any(grows):
+        return 0.0, low
+    last = int(np.nonzero(grows)[0][-1])
+    if last == steps:
+        return high, math.inf
+    below, above = float(grid[last]), float(grid[last + 1])
+    while above / below > width:
+        middle = math.sqrt(below * above)
+        if rotating_spectrum(p.replace(spin_rate=middle)).growth_rate >= threshold:
+            below = middle
+        else:
+            above = middle
+    return below, above

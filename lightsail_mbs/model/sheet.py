@@ -8,7 +8,8 @@ Where it is written
 -------------------
 * :mod:`~lightsail_mbs.model.sheet_mesh`: the tiles and their connections as arrays, whatever the planform
   (:mod:`~lightsail_mbs.model.planforms` names the mesh generators);
-* :mod:`~lightsail_mbs.model.sheet_grid`: the tiles' masses and inertias and the rotations of a tile;
+* :mod:`~lightsail_mbs.model.sheet_grid`: the tiles' masses and inertias, the rotations of a tile and the
+  connectors' strain measure;
 * :mod:`~lightsail_mbs.model.sheet_shapes`: defects and the initial state;
 * :mod:`~lightsail_mbs.model.sheet_connectors`: the edge connections, their stiffnesses, the reference
   state and pre-stress, the edge tension;
@@ -43,7 +44,6 @@ from lightsail_mbs.model.sheet_connectors import (
     edge_followers,
     edge_stiffness,
     equilibrium_offsets,
-    relative_displacement,
     static_loads,
 )
 from lightsail_mbs.model.sheet_grid import (
@@ -52,6 +52,7 @@ from lightsail_mbs.model.sheet_grid import (
     flat_centres,
     normal_xyz,
     quaternion_rotation,
+    relative_displacement,
     require_sheet,
     rotation_minus_identity,
     rotation_xyz,

@@ -77,7 +77,9 @@ initial springs are at rest to ~1e-21 m.
 An edge tension T (N per metre of edge) pre-stretches every connector so that the flat sheet carries
 the isotropic membrane force T (an exact equilibrium), and on a free boundary acts as a follower force
 T·e at each boundary tile's outer edge midpoint along the tile's own outward in-plane axis (the
-chain's TnT end tension, one dimension up). On a supported boundary the ground connectors carry it.
+chain's TnT end tension, one dimension up). On a supported boundary the ground connectors carry it. A
+spinning sheet's connectors carry the flat sheet's centrifugal stress the same way (spun_prestrain,
+model.sheet_spin).
 
 Membrane damping
 ----------------
@@ -103,6 +105,7 @@ from lightsail_mbs.model.sheet_grid import (
     angles_xyz,
     flat_centres,
     quaternion_rotation,
+    relative_displacement,
     rotation_minus_identity,
 )
 from lightsail_mbs.model.sheet_shapes import initial_quaternions, rest_quaternions
@@ -253,14 +256,24 @@ def connectors(
     damping = p.stiffness_damping * K
     damping[:, [0, 1, 2, 5]] += t.membrane_damping * K[:, [0, 1, 2, 5]]
     out = Connectors(ta, tb, la, lb, K, damping, offset, kind, gap, frame)
-    if p.initial_equilibrium or p.spin_rate != 0:
-        load = None
-        if p.spin_rate != 0:  # the spun equilibrium (model.sheet_spin): the initial residual kept, if any
-            load = sheet_spin.centrifugal_loads(p, centres, quaternions)
-            if not p.initial_equilibrium:
-                load = load - static_loads(p, out, centres, quaternions)
+    if p.spin_rate != 0:  # the flat sheet's centrifugal stress (model.sheet_spin)
+        out.offset = out.offset + spun_prestrain(p, out)
+    if p.initial_equilibrium:  # spinning: the exact spun equilibrium of the initial shape (model.sheet_spin)
+        load = sheet_spin.centrifugal_loads(p, centres, quaternions) if p.spin_rate != 0 else None
         out.offset = equilibrium_offsets(p, out, centres, quaternions, load=load)
     return out
+
+
+def spun_prestrain(p: SailParameters, conn: Connectors) -> np.ndarray:
+    """(C, 6): the rest offsets that load the flat sheet with its centrifugal membrane stress in steady spin
+    (model.sheet_spin), in the connectors' local axes: equilibrium_offsets of the in-plane problem on the
+    flat grid, with conn's springs and markers and no other load."""
+    flat = flat_centres(p)
+    level = np.tile([1.0, 0.0, 0.0, 0.0], (len(flat), 1))
+    bare = Connectors(**{**conn.__dict__, "local_b": conn.local_b - conn.gap, "gap": 0.0 * conn.gap})
+    bare.offset = np.zeros_like(conn.offset)
+    load = sheet_spin.centrifugal_loads(p, flat, level)
+    return equilibrium_offsets(p.replace(edge_tension=0.0), bare, flat, level, load=load, plane=True)
 
 
 def _identity(frame: np.ndarray) -> np.ndarray:
@@ -364,6 +377,7 @@ def equilibrium_offsets(
     quaternions: np.ndarray,
     iterations: int = 4,
     load: np.ndarray | None = None,
+    plane: bool = False,
 ) -> np.ndarray:
     """The connectors' rest offsets (C, 6) corrected so that the unlit sheet, edge tension included, is at
     rest in the given state (initial_equilibrium), or, with a load (N, 6, static_loads' layout), in
@@ -378,13 +392,17 @@ def equilibrium_offsets(
     followers on a tilted edge have a net transverse force, of order T·W times the edge's slope; that
     remainder moves the sheet as a rigid body, which the plane fit of the failure rule removes). The few
     connector laws that are not linear in the state (the rotation's xyz angles, the lever arms) are met
-    by repeating the step with the new residual."""
+    by repeating the step with the new residual. plane: a flat sheet (identity rotations) under in-plane
+    loads, whose in-plane and transverse problems decouple: only its in-plane motions (x, y, about z) are
+    solved for (the transverse part is singular without bending springs)."""
     from scipy.sparse.linalg import splu
 
     offset = np.array(conn.offset, float)
     G = _load_map(p, conn, centres, quaternions)
     S = (G @ G.T.multiply(conn.stiffness.ravel()[:, None]).tocsc()).tocsc()
     keep = np.arange(S.shape[0])
+    if plane:  # a flat sheet under in-plane loads: its in-plane motion alone (the tilts decouple)
+        keep = keep[np.isin(keep % 6, (0, 1, 5))]
     free = not np.any(conn.tile_a < 0)
     if free:
         held = int(np.argmin(np.linalg.norm(centres[:, :2] - centres[:, :2].mean(axis=0), axis=1)))
@@ -407,27 +425,6 @@ def equilibrium_offsets(
         lam[keep] = lu.solve(-r[keep])
         offset = offset - (G.T @ lam).reshape(-1, 6) * (conn.stiffness > 0)
     return offset
-
-
-def relative_displacement(ta, tb, la, lb, centres, quaternions, flat, gap=None, frame=None) -> np.ndarray:
-    """A₀ᵀ(p_b − p_a) of every connector in a given state (its translational strain measure), (C, 3).
-
-    Evaluated from small quantities only: on the flat grid the markers of every connector coincide up to
-    the small known gap = (X_b + l_b) − (X_a + l_a) (Connectors.gap), so
-    p_b − p_a = gap + (u_b − u_a) + (R_b − I) l_b − (R_a − I) l_a with u = centre − flat grid point; no
-    ~1 m coordinates are differenced, and R − I comes from the quaternions' small components (round-off
-    ~1e-21 m, not 1e-16 m). frame: the supports' frames (Connectors.frame; default the global axes)."""
-    u = np.asarray(centres) - flat
-    RmI = rotation_minus_identity(quaternions)
-    rotations = np.eye(3) + RmI
-    ground = ta < 0
-    a = np.maximum(ta, 0)
-    d = u[tb] + np.einsum("kij,kj->ki", RmI[tb], lb)
-    if gap is not None:
-        d = d + gap
-    d -= np.where(ground[:, None], 0.0, u[a] + np.einsum("kij,kj->ki", RmI[a], la))
-    Ra = np.where(ground[:, None, None], np.eye(3) if frame is None else frame, rotations[a])
-    return np.einsum("kji,kj->ki", Ra, d)
 
 
 def edge_followers(p: SailParameters):

@@ -204,3 +204,24 @@ def tilt_quaternion(normal: np.ndarray) -> np.ndarray:
     n = np.asarray(normal, float)
     q = np.stack([np.linalg.norm(n, axis=-1) + n[..., 2], -n[..., 1], n[..., 0], np.zeros_like(n[..., 0])], axis=-1)
     return q / np.linalg.norm(q, axis=-1, keepdims=True)
+
+
+def relative_displacement(ta, tb, la, lb, centres, quaternions, flat, gap=None, frame=None) -> np.ndarray:
+    """A₀ᵀ(p_b − p_a) of every connector in a given state (its translational strain measure), (C, 3).
+
+    Evaluated from small quantities only: on the flat grid the markers of every connector coincide up to
+    the small known gap = (X_b + l_b) − (X_a + l_a) (Connectors.gap), so
+    p_b − p_a = gap + (u_b − u_a) + (R_b − I) l_b − (R_a − I) l_a with u = centre − flat grid point; no
+    ~1 m coordinates are differenced, and R − I comes from the quaternions' small components (round-off
+    ~1e-21 m, not 1e-16 m). frame: the supports' frames (Connectors.frame; default the global axes)."""
+    u = np.asarray(centres) - flat
+    RmI = rotation_minus_identity(quaternions)
+    rotations = np.eye(3) + RmI
+    ground = ta < 0
+    a = np.maximum(ta, 0)
+    d = u[tb] + np.einsum("kij,kj->ki", RmI[tb], lb)
+    if gap is not None:
+        d = d + gap
+    d -= np.where(ground[:, None], 0.0, u[a] + np.einsum("kij,kj->ki", RmI[a], la))
+    Ra = np.where(ground[:, None, None], np.eye(3) if frame is None else frame, rotations[a])
+    return np.einsum("kji,kj->ki", Ra, d)

@@ -1,5 +1,5 @@
 """The spinning sheet (model "sheet", case fields ``spin_rate`` Ω and ``spin_tilt`` β): its initial velocities,
-the centrifugal loads of its spun equilibrium, and the closed forms its validations compare with.
+the centrifugal loads of its spun state, and the closed forms its validations compare with.
 
 Initial velocities
 ------------------
@@ -7,21 +7,37 @@ The sail starts in rigid rotation at ω = Ω (sin β, 0, cos β) about its centr
 about the sail's normal ẑ): tile k's centre moves at v_k = ω × (c_k − c_m) and every tile turns at ω. With
 β ≠ 0 the angular velocity is off the sail's symmetry axis and the sail nutates (free_top_rates).
 
-The spun equilibrium
---------------------
+The spun state
+--------------
 In steady rotation at Ω_z = Ω cos β about ẑ every tile's centre moves on a circle, so its connectors must
-supply the centripetal force −m Ω_z² ρ_k (ρ_k = the in-plane part of c_k − c_m) and the torque
-Ω_z ẑ × J_k Ω_z ẑ (zero for a flat tile, whose ẑ is a principal axis). The connectors' rest state is
-corrected so that they do, in the initial shape: the residual of static_loads plus the centrifugal loads
-C_k = (m Ω_z² ρ_k, −ω × J ω) is cleared by the elastic correction of the rest offsets (model.sheet_connectors.
-equilibrium_offsets: of all corrections that clear it, the one of least complementary energy, i.e. the
-compatible elastic stress state), added to whatever residual the initial shape already had (a defect held
-by the bending springs keeps its own). The sail therefore starts at its initial positions carrying the
-centrifugal stress of its spun state: rigid rotation is then an exact solution of the unlit sheet (the
-connectors' strains and forces are invariant under the rotation, and the markers of each connector
-coincide, so the relative velocity its damping sees is zero). The stretched positions of that state
-differ from the initial ones by the strain ρΩ²R²/E (~1e-9 for the paper's film at 100 rad/s); they are not
-used (the rest lengths absorb them instead), which keeps the initial shape the case's.
+supply the centripetal force −m Ω_z² ρ_k (ρ_k = the in-plane part of c_k − c_m). The connectors carry the
+centrifugal membrane stress of the *flat* sheet (model.sheet_connectors.spun_prestrain): the rest offsets
+that the in-plane problem of the flat grid needs against the loads m Ω_z² ρ_k (model.sheet_connectors.
+equilibrium_offsets: of all corrections that balance them, the one of least complementary energy, i.e. the
+compatible elastic stress state), added to the case's rest state, in the connectors' own axes, as the edge
+tension's pre-stretch is. A flat sail therefore starts in equilibrium: rigid rotation is an exact solution
+of the unlit flat sheet (the connectors' strains and forces are invariant under the rotation, and the
+markers of each connector coincide, so the relative velocity its damping sees is zero). A defected sail
+keeps the residual its shape had unspun, plus the pull of that stress towards flat: on a curved membrane
+the stress has the transverse resultant σ_ij w_,ij per area (σ_ij = the membrane force), which no
+centrifugal load (it lies in the plane) balances, so the defect is released into the Lamb & Southwell
+oscillation below, as a defect under edge tension is (the paper's convention). The stretched positions of
+the spun state differ from the initial ones by the strain ρΩ²R²/E (~1e-9 for the paper's film at
+100 rad/s); they are not used (the rest lengths absorb them), which keeps the initial shape the case's.
+
+*The exact spun equilibrium of a curved shape* (initial_equilibrium with spin): the residual of static_loads
+plus the centrifugal loads C_k = (m Ω_z² ρ_k, −ω × J ω) in the initial shape is cleared by the same elastic
+correction, so that the initial shape rests in the turning frame. On a doubly curved soft sheet this is not
+a state to start from. Holding the shape needs the transverse resultant σ_ij w_,ij balanced, either by
+bending moments (of order σ a₀: rest angles σ/(D k²) ≈ 3e5 times the defect's slopes for the paper's sail at
+10 rad/s) or by a redistributed membrane stress; once a₀ exceeds a few film thicknesses (the moments'
+complementary energy grows as a₀², the redistribution's does not depend on a₀) the least-energy
+correction is the redistribution, and it compresses tiles (to 1.5 times the centre's centrifugal stress on
+8 × 8 tiles, a₀ = 10 µm). Rigid tiles joined at their edge midpoints under a compression P per unit length
+buckle at the tile scale: a zig-zag of tilts ±θ (tile centres still) shortens each tile's span by aθ²/2
+and strains only the soft bending springs (2θ at each joint), so J θ̈ = (P a b − 4 D b/a) θ with
+J = ρh a b · a²/12: a rate up to √(12 (P − 4D/a²)/(ρh a²)) ∝ Ω R/a, a mode of the tiles' tilts that grows
+as Ω and faster with refinement, with no continuum limit (validation/spin_spectrum.md, part D).
 
 The in-plane stress of a spinning free disc (plane stress, Poisson ratio ν_p; Timoshenko & Goodier §32)::
 
@@ -65,7 +81,7 @@ import numpy as np
 
 from lightsail_mbs.model import planforms
 from lightsail_mbs.model.parameters import SailParameters
-from lightsail_mbs.model.sheet_grid import Tiles, quaternion_rotation
+from lightsail_mbs.model.sheet_grid import Tiles, flat_centres, quaternion_rotation, relative_displacement
 
 
 def spin_vector(p: SailParameters) -> np.ndarray:
@@ -148,6 +164,26 @@ def edge_stresses(p: SailParameters, offset: np.ndarray, stiffness: np.ndarray):
     count = len(m.pairs)
     force = (stiffness[:count, :2] * offset[:count, :2] * m.direction).sum(axis=1)
     return m.centres[m.pairs[:, 0]] + m.marker_a, m.direction, -force / (m.edge_length * p.thickness)
+
+
+def tile_membrane_forces(p: SailParameters, conn, centres: np.ndarray, quaternions: np.ndarray) -> np.ndarray:
+    """(N, 2): the principal membrane forces (N/m, tension positive, ascending) of every tile at rest in a
+    state (centres, quaternions) with connectors conn (model.sheet_connectors.Connectors): the in-plane part
+    of the virial (1/A) Σ_e r_e ⊗ f_e of the shared edges' spring forces f_e on the tile at its markers r_e
+    (from its centre), symmetrised; A the tile's area (its mass over ρh)."""
+    inner = conn.tile_a >= 0  # the shared edges (a support's force is left out)
+    ta, tb = conn.tile_a[inner], conn.tile_b[inner]
+    rotations = quaternion_rotation(quaternions)
+    strain = relative_displacement(
+        ta, tb, conn.local_a[inner], conn.local_b[inner], centres, quaternions, flat_centres(p), conn.gap[inner]
+    )
+    on_a = np.einsum("kij,kj->ki", rotations[ta], conn.stiffness[inner, :3] * (strain - conn.offset[inner, :3]))
+    virial = np.zeros((len(centres), 3, 3))
+    np.add.at(virial, ta, np.einsum("ki,kj->kij", np.einsum("kij,kj->ki", rotations[ta], conn.local_a[inner]), on_a))
+    np.add.at(virial, tb, np.einsum("ki,kj->kij", np.einsum("kij,kj->ki", rotations[tb], conn.local_b[inner]), -on_a))
+    area = Tiles.of(p).masses / (p.density * p.thickness)
+    plane = virial[:, :2, :2] / area[:, None, None]
+    return np.linalg.eigvalsh(0.5 * (plane + np.swapaxes(plane, 1, 2)))
 
 
 def disc_stress_errors(p: SailParameters, offset: np.ndarray, stiffness: np.ndarray) -> tuple[int, float, float]:

@@ -8,7 +8,7 @@ import pytest
 from lightsail_mbs import RunSettings, SailParameters, solve
 from lightsail_mbs.analysis import sheet_spectrum, spin_spectrum
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import failure, sheet_spin
+from lightsail_mbs.model import failure, sheet, sheet_spin
 
 SOFT = dict(model="sheet", planform="rectangle", n=6, ny=6, youngs_modulus=4.5e9, defect_mode_y=1.5)
 
@@ -62,10 +62,11 @@ def test_a_spinning_membrane_disc_has_lamb_and_southwells_frequencies():
 @pytest.mark.slow
 @pytest.mark.parametrize("solver, options", [("reduced", {}), ("exudyn", {"step_size": 1e-3})])
 def test_the_spectrum_gives_the_growth_rate_of_a_spinning_curved_sheet(solver, options):
-    """The paper's soft sail (6 × 6 tiles, a₀ = 10 µm) spun at 10 rad/s, unlit: the fastest Re λ of the
-    turning-frame spectrum (a mode mostly of the tiles' tilts) is the growth rate of each solver's amplitude
-    departure within 2 %; without spin the same sail does not grow."""
-    p = SailParameters(**SOFT, intensity=0.0).replace(spin_rate=10.0)
+    """The paper's soft sail (6 × 6 tiles, a₀ = 10 µm) spun at 10 rad/s, unlit, in the exact spun equilibrium of
+    its curved shape (initial_equilibrium: some tiles compressed): the fastest Re λ of the turning-frame
+    spectrum (a mode mostly of the tiles' tilts) is the growth rate of each solver's amplitude departure
+    within 2 %; without spin the same sail does not grow."""
+    p = SailParameters(**SOFT, intensity=0.0, initial_equilibrium=True).replace(spin_rate=10.0)
     spectrum = spin_spectrum.rotating_spectrum(p)
     run = solve(p, solver, RunSettings(t_final=1.0, output_interval=0.02), uncertainty=False, **options)
     departure = np.abs(failure.plane_amplitude(run.tile_centres) - failure.plane_amplitude(run.tile_centres[0]))
@@ -76,12 +77,42 @@ def test_the_spectrum_gives_the_growth_rate_of_a_spinning_curved_sheet(solver, o
     assert spin_spectrum.rotating_spectrum(p.replace(spin_rate=0.0)).growth_rate < 1e-6
 
 
-@pytest.mark.parametrize("amplitude", [0.0, 3e-6])
-def test_a_flat_or_nearly_flat_spinning_sheet_has_no_tilt_instability(amplitude):
-    """The soft sail (6 × 6 tiles, h = 1 µm) spun at 10 rad/s, unlit: flat or with a₀ = 3 µm no deformation
-    grows (faster than 1e-6 /s); with a₀ = 10 µm a mode of the tiles' tilts grows at over Ω (the slow test
-    above checks it against runs)."""
-    p = SailParameters(**SOFT, intensity=0.0).replace(spin_rate=10.0)
-    assert spin_spectrum.rotating_spectrum(p.replace(defect_amplitude=amplitude)).growth_rate < 1e-6
-    curved = spin_spectrum.rotating_spectrum(p)
-    assert curved.growth_rate > 10.0 and curved.tilt_share > 0.5
+@pytest.mark.parametrize("n", [5, 6, 8])
+def test_a_curved_spinning_sheet_in_the_flat_sheets_stress_has_no_tilt_instability(n):
+    """The soft sail (a₀ = 10 µm, doubly sinusoidal) spun at 10 rad/s, unlit: with the flat sheet's centrifugal
+    stress (the default) every tile is in tension and no deformation grows (faster than 1e-6 Ω); in the
+    exact spun equilibrium of its curved shape (initial_equilibrium) the stress is redistributed so that
+    some tiles are compressed, and a mode of the tiles' tilts grows at over Ω (model.sheet_spin)."""
+    p = SailParameters(**dict(SOFT, n=n, ny=n), intensity=0.0).replace(spin_rate=10.0)
+    centres, quaternions = sheet.initial_quaternions(p)
+    for exact in (False, True):
+        q = p.replace(initial_equilibrium=exact)
+        least = sheet_spin.tile_membrane_forces(q, sheet.connectors(q), centres, quaternions)[:, 0].min()
+        spectrum = spin_spectrum.rotating_spectrum(q)
+        if exact:
+            assert least < 0.0 and spectrum.growth_rate > p.spin_rate and spectrum.tilt_share > 0.5
+        else:
+            assert least > 0.0 and spectrum.growth_rate < 1e-6 * p.spin_rate
+
+
+def test_the_critical_spin_brackets_the_last_crossing_of_the_threshold(monkeypatch):
+    """A growth rate that falls below the threshold at 0.5 rad/s, rises above it again between 1.0 and
+    1.3 rad/s and stays below after: the bracket holds 1.3 rad/s, at most `width` wide; a rate stable from
+    the lowest spin gives (0, low), one unstable at the highest (high, inf)."""
+    threshold = np.log(2.0) / spin_spectrum.RUN_LENGTH
+    bumps = {"rate": lambda w: threshold * (2.0 - 2.0 * w if w < 1.0 else (1.5 if w < 1.3 else 0.5))}
+
+    class Fake:
+        def __init__(self, spin):
+            self.growth_rate = bumps["rate"](spin)
+
+    monkeypatch.setattr(spin_spectrum, "rotating_spectrum", lambda q: Fake(q.spin_rate))
+    p = SailParameters(**SOFT)
+    below, above = spin_spectrum.critical_spin(p, (0.1, 10.0), steps=20, width=1.01)
+    assert below < 1.3 <= above and above / below <= 1.01
+    bumps["rate"] = lambda w: 0.5 * threshold
+    assert spin_spectrum.critical_spin(p, (0.1, 10.0)) == (0.0, 0.1)
+    bumps["rate"] = lambda w: threshold
+    assert spin_spectrum.critical_spin(p, (0.1, 10.0)) == (10.0, np.inf)
+    with pytest.raises(ParameterError, match="spins"):
+        spin_spectrum.critical_spin(p, (1.0, 0.5))

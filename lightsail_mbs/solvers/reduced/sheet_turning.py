@@ -5,8 +5,9 @@ Why. In the inertial frame a spinning sail's state turns at Ω: the centres' in-
 velocities, the quaternions and the body rates change by O(1) every turn, and the stiff in-plane connectors
 turn with the tiles. Simplified Newton on Radau's collocation system then stops contracting once the sail
 turns by about 1e-2 rad in a step, also with a Jacobian fresh at the step's start or with the full, unreduced
-Newton matrix (measured on the unlit 49-tile Si₃N₄ disc at 120 Hz: 2575 steps, half of them rejected, and
-2562 Jacobians for 6 turns; tests/solvers/test_sheet_turning.py, validation/spin_benchmark.md). In a frame
+Newton matrix (measured on the unlit 49-tile Si₃N₄ disc at 120 Hz: 1294 steps and 1267 Jacobians for 6 turns,
+or 2575 and 2562 with a pre-stress different in its round-off only; tests/solvers/test_sheet_turning.py,
+validation/spin_benchmark.md). In a frame
 that turns with the sail the spun equilibrium is steady (exactly, for a load symmetric about the spin axis):
 the state moves only as the shape does, the Jacobian stays valid, and the steps follow the shape's time
 scales (the same disc: 17 steps, one Jacobian).
