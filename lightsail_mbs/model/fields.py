@@ -251,6 +251,14 @@ FIELDS = {
         "|tilt| < π/2; 0 unless spin_rate ≠ 0",
         models=SHEETS,
     ),
+    "spin_equilibrium": FieldInfo(
+        SPIN,
+        "",
+        "start the spinning sheet in its static equilibrium in the turning frame (connectors and bending against "
+        "the centrifugal forces, the shape free to deform from the initial one; model.sheet_spun_shape)",
+        "False unless spin_rate ≠ 0",
+        models=SHEETS,
+    ),
     "billow_radius": FieldInfo(
         SAIL,
         "m",

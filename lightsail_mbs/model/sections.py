@@ -215,6 +215,8 @@ def _sheet(s) -> None:
 def _spin(s) -> None:
     spin, tilt = finite("spin_rate", s.spin_rate), finite("spin_tilt", s.spin_tilt)
     check("spin_tilt", tilt, abs(tilt) < math.pi / 2 and (tilt == 0 or spin != 0), "|β| < π/2, 0 unless spinning")
+    _flags(s, ("spin_equilibrium",))
+    check("spin_equilibrium", s.spin_equilibrium, not s.spin_equilibrium or spin != 0, "False unless spinning")
 
 
 def payload_problems(case) -> list:
