@@ -251,14 +251,6 @@ FIELDS = {
         "|tilt| < π/2; 0 unless spin_rate ≠ 0",
         models=SHEETS,
     ),
-    "spin_equilibrium": FieldInfo(
-        SPIN,
-        "",
-        "start the spinning sheet in its static equilibrium in the turning frame (connectors and bending against "
-        "the centrifugal forces, the shape free to deform from the initial one; model.sheet_spun_shape)",
-        "False unless spin_rate ≠ 0",
-        models=SHEETS,
-    ),
     "billow_radius": FieldInfo(
         SAIL,
         "m",
@@ -386,6 +378,15 @@ FIELDS = {
         "(TOML; model/sheet_grating.py)",
         "None or the path of a layout file",
         follows="none: the film's specular law alone",
+        models=SHEETS,
+    ),
+    "spin_equilibrium": FieldInfo(
+        SPIN,
+        "",
+        "start the spinning sheet in its static equilibrium in the turning frame (connectors and bending against "
+        "the centrifugal forces, the shape free to deform from the initial one; solvers.reduced.sheet_relax); "
+        "only with spin_rate ≠ 0",
+        "",
         models=SHEETS,
     ),
 }
