@@ -63,6 +63,8 @@ def test_exudyn_starts_the_billowed_map_disc_in_its_spun_shape():
     assert changes[True] < 1e-3 < 1e-2 < changes[False]
 
 
-def test_a_spun_equilibrium_needs_a_spin():
+def test_a_spun_equilibrium_needs_a_spin_about_the_normal():
     with pytest.raises(ParameterError, match="spin_equilibrium"):
         map_cap(0.0, spin_equilibrium=True)
+    with pytest.raises(ParameterError, match="spin_equilibrium"):  # a nutating spin has no steady state
+        map_cap(80.0, spin_tilt=0.1, spin_equilibrium=True)
