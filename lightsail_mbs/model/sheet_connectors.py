@@ -303,14 +303,11 @@ def relative_rotation(ta, tb, frame, rotations, rmi=None) -> np.ndarray:
     return relative
 
 
-def static_loads(
-    p: SailParameters, conn: Connectors, centres: np.ndarray, quaternions: np.ndarray, flat: np.ndarray | None = None
-) -> np.ndarray:
+def static_loads(p: SailParameters, conn: Connectors, centres: np.ndarray, quaternions: np.ndarray) -> np.ndarray:
     """(N, 6) force (global, N) and torque about the centre (global, N m) on every tile from the connectors
     and the follower edge tension in a state at rest: the connector law of both solvers (module docstring,
-    solvers.reduced.sheet) without its damping, evaluated in numpy from small quantities. flat: the bodies'
-    reference points (default the flat grid's; more bodies than tiles, e.g. a payload, append theirs)."""
-    flat = flat_centres(p) if flat is None else flat
+    solvers.reduced.sheet) without its damping, evaluated in numpy from small quantities."""
+    flat = flat_centres(p)
     rotations = quaternion_rotation(quaternions)
     ground = conn.tile_a < 0
     RA = frames_a(conn.tile_a, conn.frame, rotations)

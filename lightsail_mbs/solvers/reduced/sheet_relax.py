@@ -25,8 +25,8 @@ mean and the rotation that carries their angular momentum about the centre of ma
 craft (a payload on a long stem) tip over (the spin about its axis of least inertia is a maximum of the
 centrifugal potential, held only gyroscopically). The damping does no work at rest, so the states the
 damped motion ends in are exactly the equilibria above.
-Every mode of the turning frame decays at least at min(c/2, ω²/c) (ω its frequency; the membrane's
-transverse modes of a spinning disc have ω ≥ Ω, Lamb & Southwell, so c = Ω gives rates ≥ Ω/2 on them; the
+Every deformation mode of the turning frame decays at least at min(c/2, ω²/c) (ω its frequency; the
+membrane's transverse modes of a spinning disc have ω ≳ Ω, Lamb & Southwell, so c = 4Ω gives rates ≳ Ω/4; the
 stiff in-plane modes are damped by the connectors as in a run). Integrated by the run's Radau IIA with its
 sparse Jacobian over RELAX_TURNS turns: the slowest deformations (ω ≈ Ω, overdamped) decay at ≥ ω²/c = Ω/4,
 by e^(−3π) ≈ 8e-5 over the 6 turns. The rigid motion relative to the frame is not damped: a craft that is
