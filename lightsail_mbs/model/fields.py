@@ -380,4 +380,13 @@ FIELDS = {
         follows="none: the film's specular law alone",
         models=SHEETS,
     ),
+    "spin_equilibrium": FieldInfo(
+        SPIN,
+        "",
+        "start the spinning sheet in its static equilibrium in the turning frame (connectors and bending against "
+        "the centrifugal forces, the shape free to deform from the initial one; solvers.reduced.sheet_relax); "
+        "only with spin_rate ≠ 0 and spin_tilt = 0",
+        "",
+        models=SHEETS,
+    ),
 }

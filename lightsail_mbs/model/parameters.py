@@ -127,6 +127,7 @@ class SailParameters(DerivedQuantities):
     tether_stiffness: float = 0.0  # k, N/m: axial stiffness of each tether (slack in compression)
     initial_tilt_y: float = 0.0  # rad, sheet: the initial shape turned about x, its y axis towards the beam
     grating: str | None = None  # sheet: a grating layout file (model/sheet_grating.py): in-plane optical pressures
+    spin_equilibrium: bool = False  # sheet: start spinning in the static equilibrium of the turning frame
 
     def __post_init__(self):
         sections.check_sections(self)

@@ -61,6 +61,7 @@ LATER_DEFAULTS = {
     "tether_stiffness": 0.0,
     "initial_tilt_y": 0.0,
     "grating": None,
+    "spin_equilibrium": False,
 }
 # Names under which saved runs and store records written before the current field names hold them.
 LEGACY_NAMES = {

@@ -215,6 +215,9 @@ def _sheet(s) -> None:
 def _spin(s) -> None:
     spin, tilt = finite("spin_rate", s.spin_rate), finite("spin_tilt", s.spin_tilt)
     check("spin_tilt", tilt, abs(tilt) < math.pi / 2 and (tilt == 0 or spin != 0), "|β| < π/2, 0 unless spinning")
+    _flags(s, ("spin_equilibrium",))
+    steady = spin != 0 and tilt == 0  # a spin about the normal: a steady state in its turning frame
+    check("spin_equilibrium", s.spin_equilibrium, not s.spin_equilibrium or steady, "False unless spinning, β = 0")
 
 
 def payload_problems(case) -> list:

@@ -54,18 +54,23 @@ def body_masses(p: SailParameters, payload=None) -> np.ndarray:
     return masses if payload is None else np.append(masses, payload.mass)
 
 
-def initial_motion(p: SailParameters, centres: np.ndarray, quaternions: np.ndarray, payload=None):
+def initial_motion(p: SailParameters, centres: np.ndarray, quaternions: np.ndarray, payload=None, shape=None):
     """(centres, quaternions, velocities, angular velocities) of every body at t = 0, global axes: the tiles'
     (centres, quaternions: the untilted start) and the payload's (model.sheet_payload), tilted and spinning
-    (module docstring); arrays (N [+ 1], 3) and (N [+ 1], 4)."""
+    (module docstring); arrays (N [+ 1], 3) and (N [+ 1], 4). shape: None, or (centres, quaternions) of every
+    body to start from instead of the initial ones (the spun equilibrium, spin_equilibrium)."""
+    tiles = len(centres)
+    if shape is not None:
+        centres, quaternions = shape[0][:tiles], shape[1][:tiles]
     centres = np.asarray(centres, float)
     quaternions = np.asarray(quaternions, float)
     velocities, omega = sheet_spin.spin_velocities(p, centres)
     if payload is not None:
         spin = sheet_spin.spin_vector(p)
-        centres = np.vstack([centres, payload.start])
-        quaternions = np.vstack([quaternions, payload.quaternion])
-        lever = payload.start - sheet_spin.spin_centre(p, centres[:-1])
+        start, turned = (payload.start, payload.quaternion) if shape is None else (shape[0][tiles], shape[1][tiles])
+        centres = np.vstack([centres, start])
+        quaternions = np.vstack([quaternions, turned])
+        lever = start - sheet_spin.spin_centre(p, centres[:-1])
         velocities = np.vstack([velocities, np.cross(spin, lever)])
         omega = np.vstack([omega, spin])
     if p.initial_tilt == 0 and p.initial_tilt_y == 0:

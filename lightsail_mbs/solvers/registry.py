@@ -76,6 +76,7 @@ REDUCED_SHEET_CAPABILITIES = {
     **SHEET_CAPABILITIES,
     "linearise": "linearise",
     "linearise_rotating": "sheet_rotating:linearise_rotating",
+    "spun_equilibrium": "sheet_relax:spun_equilibrium",
 }
 FRAME = Option("frame", one_of("inertial", "turning"), "inertial or turning", None, "integration frame (spin)")
 register(

@@ -106,16 +106,18 @@ UNUSED = {
     "planform": "disc",
     "spin_rate": 1.0,
     "spin_tilt": 0.1,
+    "spin_equilibrium": True,
     "integrated_trajectory": True,
     "heated": True,
     "heat_absorptance": 1e-5,
     "carried_mass": 1e-3,
     "grating": write("pizza", PIZZA),
 }
-REFUSED_BY_THEIR_SECTION = {"optics_layout", "payload_tethers", "tether_stiffness", "spin_tilt"}
+REFUSED_BY_THEIR_SECTION = {"optics_layout", "payload_tethers", "tether_stiffness", "spin_tilt", "spin_equilibrium"}
 COMPANIONS = {
     "optics_layout": {"optics": "mirror"},
     "spin_tilt": {"spin_rate": 1.0},
+    "spin_equilibrium": {"spin_rate": 1.0},
     "planform": {"ny": 8},
     "heated": {"material": "silicon-nitride"},
     "heat_absorptance": {"material": "silicon-nitride", "heated": True},

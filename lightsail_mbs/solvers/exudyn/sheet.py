@@ -57,6 +57,7 @@ from lightsail_mbs.solvers.exudyn.sheet_load import load_into
 from lightsail_mbs.solvers.exudyn.sheet_tethers import add_payload_links
 from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.solvers.skeleton import FailureMonitor
+from lightsail_mbs.solvers.spun_start import spun_shape
 
 STEP_FACTOR = 0.026  # h = STEP_FACTOR · sqrt(L/g₀), as the chain's
 SPECTRAL_RADIUS = 0.9
@@ -149,7 +150,8 @@ class SheetSystem:
         self.conn = sheet.connectors(p, self.centres0, self.q0)
         self.payload = sheet_payload.payload(p, self.centres0, self.q0, self.conn)
         start = sheet.perturbed(p, self.centres0, perturbation)
-        start, q, velocities, omega = sheet_pose.initial_motion(p, start, self.q0, self.payload)  # all bodies
+        shape = spun_shape(p)  # None, or the spun equilibrium to start from (solvers.spun_start)
+        start, q, velocities, omega = sheet_pose.initial_motion(p, start, self.q0, self.payload, shape)  # all bodies
         angles0 = sheet.angles_xyz(sheet.quaternion_rotation(q))
         rates = np.zeros_like(velocities)
         if p.spin_rate != 0:  # rigid rotation (model.sheet_spin); the angles' rates φ̇ = G⁻¹ω

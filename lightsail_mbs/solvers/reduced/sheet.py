@@ -62,6 +62,7 @@ from lightsail_mbs.solvers.reduced.sheet_radau import SheetRadau, distance2_colo
 from lightsail_mbs.solvers.reduced.sheet_tethers import append_payload, split_bodies
 from lightsail_mbs.solvers.reduced.sheet_turning import TurningFrame
 from lightsail_mbs.solvers.skeleton import FailureMonitor
+from lightsail_mbs.solvers.spun_start import spun_shape
 
 DEFAULT_RTOL = 1e-7
 DEFAULT_MAX_STEP = 0.01
@@ -101,13 +102,14 @@ class SheetModel:
         self.n = STATE * self.count
         self.calls = 0
         self._pattern()
+        self.shape = spun_shape(p)  # None, or the spun equilibrium to start from (solvers.spun_start)
         self.turning = TurningFrame(self) if frame == "turning" else None  # the state's frame (sheet_turning)
 
     def y0(self) -> np.ndarray:
         return self.inertial_y0() if self.turning is None else self.turning.start.copy()
 
     def inertial_y0(self) -> np.ndarray:
-        centres, q, velocities, omega = sheet_pose.initial_motion(self.p, self.start, self.q0, self.payload)
+        centres, q, velocities, omega = sheet_pose.initial_motion(self.p, self.start, self.q0, self.payload, self.shape)
         y = np.zeros((self.count, STATE))
         y[:, 0:3] = centres - self.flat
         y[:, 3:7] = q
