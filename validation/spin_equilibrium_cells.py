@@ -1,8 +1,8 @@
 """Four cells of the spin map (paper.spinning_maps: the 25-tile billowed disc, R_c = 1 m, a stem payload of the
 sail's mass, the beam's axis 0.2 w off the middle) run from the spun equilibrium (spin_equilibrium: the unlit
 shape at rest in the turning frame, solvers.reduced.sheet_relax) for the map's 1.2 s, with the map's settings,
-solver options and verdict rule (studies.ride_maps.cell_of), beside the withdrawn cells of the map, which
-started from the spun state that held the cap's shape.
+solver options and verdict rule (studies.ride_maps.cell_of), beside the map's own cells, which started
+from the spun state that held the cap's shape.
 
 Run from the repository root:
 ``python validation/spin_equilibrium_cells.py [--out validation/spin_equilibrium_cells.md] [--workers 2]``.
@@ -19,10 +19,10 @@ from lightsail_mbs.studies.ride_maps import ride_map
 from lightsail_mbs.studies.tables import markdown_table
 
 CELLS = [(80.0, 1.0), (80.0, 1.3), (120.0, 1.0), (120.0, 1.3)]  # (Ω (rad/s), d/d*)
-WITHDRAWN = "scenarios/figures/spinning_maps.md"  # the map's table, made from the held cap's spun state
+MAP_TABLE = "scenarios/figures/spinning_maps.md"  # the map's table, made from the held cap's spun state
 
 
-def withdrawn_cells(path: Path) -> dict:
+def map_cells(path: Path) -> dict:
     """{(Ω, d/d*): the cell's text} of the spin map's table in the map's report."""
     lines = path.read_text().split("## d/d* against spin rate")[1].splitlines()
     rows = [[c.strip() for c in line.strip("|").split("|")] for line in lines if line.startswith("|")]
@@ -41,7 +41,7 @@ def main() -> None:
         cells = ride_map(
             cases, store_dir=store, settings=maps.SETTINGS, options=maps.OPTIONS, workers=args.workers, label="cells"
         )
-    old = withdrawn_cells(Path(WITHDRAWN))
+    old = map_cells(Path(MAP_TABLE))
     rows = []
     for (w, r), c in cells.items():
         when = "" if c.decided_at is None else f" {c.decided_at:.2f} s"
@@ -53,7 +53,7 @@ def main() -> None:
                 "from the spun equilibrium": verdict,
                 "largest distance (m)": f"{c.max_distance:.3f}",
                 "largest deformation (m)": f"{c.max_deformation:.4f}",
-                "withdrawn (held cap)": old.get((w, r), "-"),
+                "the map (shape held)": old.get((w, r), "-"),
             }
         )
     text = [
