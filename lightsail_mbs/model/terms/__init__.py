@@ -12,7 +12,7 @@ new one follows them from this docstring alone):
 
 1. **One module** in this package with ``ID`` (a unique positive integer), ``FAMILIES`` (a subset of
    ``("chain", "sheet")``), ``active(p)`` (whether it acts on case p: an inactive term is not packed and
-   costs nothing), ``reads(p)`` (``bodies.POSITIONS | bodies.VELOCITIES``, what it reads beyond angles or
+   costs nothing), ``reads(p)`` (``bodies.POSITIONS | bodies.VELOCITIES | bodies.AXES``, what it reads beyond angles or
    normals: the kernels may skip computing what no active term reads) and ``constants(p, family)`` (its
    block: a 1-D float array; the case and its derived quantities are read here, never in a kernel).
 2. **Bodies in, forces out.** For each family it declares, a numpy form ``chain(p, bodies, forces)`` or

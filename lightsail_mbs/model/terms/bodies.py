@@ -26,8 +26,8 @@ COUNT, READS = 0, 1
 HEADER = 2
 ENTRY = 2  # ID and size before each block
 # what a term reads beyond the angles (chain) or normals (sheet), bits of the header's READS: the kernels
-# compute positions and velocities only when an active term reads them
-POSITIONS, VELOCITIES = 1, 2
+# may compute positions, velocities and the tiles' in-plane axes only when an active term reads them
+POSITIONS, VELOCITIES, AXES = 1, 2, 4
 
 
 def chain_bodies(x, theta, y=None, vx=None, vy=None, omega=None) -> np.ndarray:

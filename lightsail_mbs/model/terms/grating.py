@@ -23,7 +23,7 @@ from lightsail_mbs.model import loads
 from lightsail_mbs.model.loads import round_gaussian_intensity
 from lightsail_mbs.model.sheet_grating import PER_TILE, TERMS, monomials, tile_coefficients
 from lightsail_mbs.model.sheet_grid import Tiles
-from lightsail_mbs.model.terms.bodies import E1X, E1Y, E1Z, N1, N2, NB, POSITIONS, TX, TY
+from lightsail_mbs.model.terms.bodies import AXES, E1X, E1Y, E1Z, N1, N2, NB, POSITIONS, TX, TY
 
 ID = 7
 FAMILIES = ("sheet",)
@@ -36,7 +36,7 @@ def active(p) -> bool:
 
 
 def reads(p) -> int:
-    return 0 if p.uniform_beam else POSITIONS
+    return (0 if p.uniform_beam else POSITIONS) | AXES
 
 
 def constants(p, family: str) -> np.ndarray:

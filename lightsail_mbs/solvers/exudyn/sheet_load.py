@@ -3,12 +3,12 @@
 From the ODE2 coordinates of each tile (centre displacement u from its flat grid point, Tait–Bryan xyz
 angles φ) and, where a physics term reads them, their rates: the rows the terms read (model/terms/bodies.py)
 — the centre p = flat + u, the unit normal n = R ẑ = (sin φ₁, −sin φ₀ cos φ₁, cos φ₀ cos φ₁)
-(model.sheet_grid.normal_xyz), the in-plane axis R x̂ = (cos φ₁ cos φ₂, cos φ₀ sin φ₂ + sin φ₀ sin φ₁ cos φ₂,
-sin φ₀ sin φ₂ − cos φ₀ sin φ₁ cos φ₂), the centre velocity u̇ and the global angular velocity
-ω = φ̇₀ x̂ + R_x φ̇₁ ŷ + R_x R_y φ̇₂ ẑ (solvers.exudyn.sheet.angular_velocity_xyz) — then the terms' compiled sum
-(terms.tile_forces_into, held to the numpy forms by tests/model/test_terms.py), written into the translational
-entries of the generalised force vector. Exudyn calls the load before every Newton residual; the numpy forms
-cost ~0.6 ms a call on 400 tiles inside its solver (a third of the run), this pass ~20 µs.
+(model.sheet_grid.normal_xyz), where a term reads it (bodies.AXES) the in-plane axis R x̂ = (cos φ₁ cos φ₂,
+cos φ₀ sin φ₂ + sin φ₀ sin φ₁ cos φ₂, sin φ₀ sin φ₂ − cos φ₀ sin φ₁ cos φ₂), the centre velocity u̇ and the global
+angular velocity ω = φ̇₀ x̂ + R_x φ̇₁ ŷ + R_x R_y φ̇₂ ẑ (solvers.exudyn.sheet.angular_velocity_xyz) — then the terms'
+compiled sum (terms.tile_forces_into, held to the numpy forms by tests/model/test_terms.py), written into the
+translational entries of the generalised force vector. Exudyn calls the load before every Newton residual; the
+numpy forms cost ~0.6 ms a call on 400 tiles inside its solver (a third of the run), this pass ~20 µs.
 """
 
 from __future__ import annotations
@@ -20,12 +20,14 @@ import numpy as np
 from lightsail_mbs.base.kernels import njit
 from lightsail_mbs.model.terms import tile_forces_into
 from lightsail_mbs.model.terms.bodies import (
+    AXES,
     E1X,
     E1Y,
     E1Z,
     N1,
     N2,
     NB,
+    READS,
     TILE_ROWS,
     TVX,
     TVY,
@@ -48,6 +50,7 @@ def load_into(packed, flat, q, q_t, tiles, time, force):
     they are."""
     bodies = np.zeros((TILE_ROWS, tiles))
     rates = q_t.shape[0] > 0
+    axes = int(packed[READS]) & AXES != 0
     for k in range(tiles):
         b = COORDINATES * k
         c0, s0 = math.cos(q[b + 3]), math.sin(q[b + 3])
@@ -58,10 +61,11 @@ def load_into(packed, flat, q, q_t, tiles, time, force):
         bodies[N1, k] = s1
         bodies[N2, k] = -s0 * c1
         bodies[NB, k] = c0 * c1
-        c2, s2 = math.cos(q[b + 5]), math.sin(q[b + 5])  # R x̂ of R = R_x(φ₀) R_y(φ₁) R_z(φ₂)
-        bodies[E1X, k] = c1 * c2
-        bodies[E1Y, k] = c0 * s2 + s0 * s1 * c2
-        bodies[E1Z, k] = s0 * s2 - c0 * s1 * c2
+        if axes:
+            c2, s2 = math.cos(q[b + 5]), math.sin(q[b + 5])  # R x̂ of R = R_x(φ₀) R_y(φ₁) R_z(φ₂)
+            bodies[E1X, k] = c1 * c2
+            bodies[E1Y, k] = c0 * s2 + s0 * s1 * c2
+            bodies[E1Z, k] = s0 * s2 - c0 * s1 * c2
         if rates:
             bodies[TVX, k] = q_t[b]
             bodies[TVY, k] = q_t[b + 1]
