@@ -238,12 +238,28 @@ def speed_findings(rows: list, costs: dict) -> list[str]:
             drift = ""
             if ref and ref[1] >= span:
                 mine, theirs = r["rides"]["spin_rate"][-1], at_time(ref[0], "spin_rate", span)
-                drift = f"; spin rate at {1e3 * span:g} ms {mine:.6g} rad/s against the in-house {theirs:.6g}"
+                drift = (
+                    f"; spin rate at {1e3 * span:g} ms {mine:.6g} rad/s against the in-house {theirs:.6g}, "
+                    f"{1 - mine / theirs:.2e} low ((Ωh)²/12 = {(SPIN * r['step']) ** 2 / 12:.2e}: the phase error of "
+                    "a second-order step on the tiles' circular motion)"
+                )
             out.append(
                 f"* {t} tiles, Exudyn, h = {1e3 * r['step']:.3g} ms: {r['jacobians'] / r['steps']:.1f} Jacobians and "
                 f"{r['newton'] / r['steps']:.1f} Newton iterations a step, {r['cpu'] / r['steps']:.2f} s CPU a step "
                 f"(inertial frame: the disc turns {r['step'] * SPIN:.2f} rad a step){drift}."
             )
+    exudyn = row_of(rows, big, "exudyn")
+    if exudyn:
+        r, _ = exudyn
+        h_max = math.sqrt(12e-3) / SPIN  # (Ωh)²/12 ≤ 1e-3: issue #26's bound on the spin rate
+        out.append(
+            f"* The floor, Exudyn at {big} tiles: the spin rate within 1e-3 needs (Ωh)²/12 ≤ 1e-3, h ≤ "
+            f"{1e3 * h_max:.3g} ms, {1 / h_max:,.0f} steps for 1 s; {TARGETS['exudyn']:g} s allows "
+            f"{1e3 * TARGETS['exudyn'] * h_max:.0f} ms a step against {r['cpu'] / r['steps']:.2f} s measured "
+            f"({r['newton'] / r['steps']:.1f} Newton iterations and {r['jacobians'] / r['steps']:.1f} Jacobians a "
+            f"step): {r['cpu'] / r['steps'] / (TARGETS['exudyn'] * h_max):,.0f}× over, the Newton iterations "
+            "alone (9–11 a step at h = 0.333 and 0.1 ms alike: the rows above) far over."
+        )
     return out
 
 
