@@ -83,16 +83,10 @@ import math
 
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.model.parameters import SailParameters
-from lightsail_mbs.solvers import contract, events, twin_workers
+from lightsail_mbs.solvers import contract, events, twin_options, twin_workers
 from lightsail_mbs.solvers.film_twin import FILM_TOL, film_sensitivity, film_twin  # noqa: F401 - FILM_TOL: the rule's
+from lightsail_mbs.solvers.twin_options import DOP853_LOOSEN, LOOSEN, TIGHTEN, WIDE_TIGHTEN
 
-LOOSEN = 10.0  # the loose twin's tolerances are the base run's × LOOSEN (adaptive methods)
-DOP853_LOOSEN = 3.0  # the reduced solver's DOP853: rtol × 3
-STEP_LOOSEN = 4.0  # generalized-α: rtol × 4, the step × 2
-TIGHTEN = 10.0  # the fallback's tight twin: the base run's tolerances / TIGHTEN (adaptive methods)
-WIDE_TIGHTEN = 100.0  # the fallback, the reduced solver's DOP853: rtol / 100
-HALF_TIGHTEN = 4.0  # the fallback, generalized-α (a fixed step): the middle twin, tolerances / 4, the step / 2
-STEP_TIGHTEN = 16.0  # the fallback, generalized-α: the tight twin, tolerances / 16, the step / 4
 PROBE_LEVEL = 1e-12  # the probe twin's roughness amplitude, in units of the defect amplitude a₀
 SAFETY = 2.0  # U = SAFETY · (E_int + S)
 CONDITION_TOL = 1e-4  # well-conditioned: S ≤ CONDITION_TOL · |q|
@@ -120,93 +114,10 @@ def answer(result) -> tuple[str, bool, float]:
     return "max_amplitude_ratio", False, float(result.max_amplitude_ratio)
 
 
-def is_fixed_step(info: dict) -> bool:
-    """Whether the base run is generalized-α at a fixed step (Exudyn's chains and sheets)."""
-    return info.get("method") == "generalized-alpha"
-
-
-def tightening(info: dict) -> float:
-    """F of the tight twin (module docstring): STEP_TIGHTEN for generalized-α, WIDE_TIGHTEN for DOP853,
-    else TIGHTEN."""
-    method = info.get("method")
-    return STEP_TIGHTEN if is_fixed_step(info) else WIDE_TIGHTEN if method == "DOP853" else TIGHTEN
-
-
-def sequence(info: dict) -> list[tuple[str, float]]:
-    """The twins of the tolerance sequence after the base run: (name, F), the tightest last."""
-    if is_fixed_step(info):
-        return [("half", HALF_TIGHTEN), ("tight", STEP_TIGHTEN)]
-    return [("tight", tightening(info))]
-
-
 def accurate(loose: dict, base: dict) -> bool:
     """Whether the loose twin's answer lies within ACCURACY · |q| of the base run's (same verdict): the base run is
     then reported; otherwise the first twin of the tightened sequence is run and reported (module docstring)."""
     return loose["failed"] == base["failed"] and abs(loose["value"] - base["value"]) <= ACCURACY * abs(base["value"])
-
-
-def loosening(info: dict) -> float:
-    """F of the loose twin (module docstring): STEP_LOOSEN for generalized-α, DOP853_LOOSEN for DOP853, else
-    LOOSEN."""
-    return STEP_LOOSEN if is_fixed_step(info) else DOP853_LOOSEN if info.get("method") == "DOP853" else LOOSEN
-
-
-def looser(twin_info: dict, info: dict) -> bool:
-    """Whether a twin ran at a larger fixed step (generalized-α) or rtol (the adaptive methods) than the base
-    run (`info`): a solver may cap its step (Exudyn's sheet: at the output interval), and a loose twin at the
-    base run's step is the base run again, whose difference from it says nothing."""
-    name = "step_size" if is_fixed_step(info) and info.get("step_size") else "rtol"
-    return info.get(name) is not None and float(twin_info.get(name) or 0.0) > float(info[name]) * (1 + 1e-12)
-
-
-def loosened(options: dict, info: dict, roles: dict | None = None) -> dict:
-    """The loose twin's options: tightened(...) by 1/loosening(info), every tolerance × F, a fixed step × √F."""
-    return tightened(options, info, 1.0 / loosening(info), roles)
-
-
-def tightened(options: dict, info: dict, factor: float | None = None, roles: dict | None = None) -> dict:
-    """A twin's options: the relative tolerance (the one the base run used, from its info) and the absolute
-    or Newton tolerances, if given, divided by F (default tightening(info)); a fixed step divided by √F —
-    the given one, or the base run's (info), with its Newton tolerances / F, when the solver has no rtol to
-    derive them from (Exudyn's sheet). `roles`: the solver's option names per role (solvers.contract,
-    rule 8; default: every registered solver's). A tolerance never goes below the floor the base run reports
-    (info["<name>_floor"]: Exudyn's sheet, the round-off of its stiff connectors, under which Newton
-    does not converge and every step is retried at a smaller step; a 12 × 12 sheet at E = E_m = 4.5e9 Pa
-    ran 90× slower with its absolute tolerance at a quarter of the base run's)."""
-    roles = contract.registered_roles() if roles is None else roles
-    factor = tightening(info) if factor is None else factor
-    tight = dict(options)
-    relative = [name for name in roles["rtol"] if name in info]
-    for name in relative:
-        tight[name] = float(info[name]) / factor
-
-    def divided(name, value):
-        floor = float(info.get(f"{name}_floor") or 0.0)
-        return max(value / factor, floor)
-
-    for name in roles["tolerance"]:
-        if options.get(name) is not None:
-            value = options[name]
-            tight[name] = divided(name, value) if not hasattr(value, "__len__") else [divided(name, v) for v in value]
-    for name in roles["step"]:
-        if options.get(name) is not None:
-            tight[name] = options[name] / math.sqrt(factor)
-        elif not relative and info.get(name) is not None:
-            tight[name] = float(info[name]) / math.sqrt(factor)
-            for tolerance in roles["tolerance"]:
-                if options.get(tolerance) is None and info.get(tolerance):
-                    tight[tolerance] = divided(tolerance, float(info[tolerance]))
-    return tight
-
-
-def held_at_floor(twin_options: dict, info: dict, roles: dict | None = None) -> list[str]:
-    """The tolerances of a twin that its floor (info["<name>_floor"]) kept from tightening."""
-    roles = contract.registered_roles() if roles is None else roles
-    return [
-        name
-        for name in roles["tolerance"]
-        if info.get(f"{name}_floor") and twin_options.get(name) == info[f"{name}_floor"]
-    ]
 
 
 def not_estimated(reason: str) -> dict:
@@ -244,7 +155,7 @@ def planned(solver, params, settings, options: dict, info: dict, roles: dict, pr
     """(twins, loose options): the twins every estimate starts with, by name, as (case, options, Job): the loose
     twin, the probe at the base run's options and the film twin at the loose twin's; `info`: the base run's, or
     the options the solver declares it will use (contract rule 10) when the twins start before it ends."""
-    loose = loosened(options, info, roles)
+    loose = twin_options.loosened(options, info, roles)
     twins = {"loose": (params, loose)}
     for name in roles["perturbation"][:1]:
         twins["probe"] = (params, {**options, name: PROBE_LEVEL * params.displacement_scale})
@@ -278,8 +189,8 @@ def speculation(solver, params, options: dict, progress: bool):
 def twin_runs(solver, params, settings, options, result, roles, progress, base_cpu) -> tuple[dict, dict, list[str]]:
     """(runs, records, order): the base run's twins (module docstring) by name, and the runs of the integration
     sequence from the loosest to the reported one — ["loose", "base"], or the fallback's ["base", (half,) tight]
-    when the loose twin ends with a solver error or did not run looser (`looser`). The probe twin runs at the
-    base run's options, the film twin at those of order[0]. The twins run where twin_workers's open session
+    when the loose twin ends with a solver error or did not run looser (twin_options.looser). The probe twin runs
+    at the base run's options, the film twin at those of order[0]. The twins run where twin_workers's open session
     puts them (worker processes, started before the base run ended where their inputs were known; else here)."""
     runs, records = {"base": result}, {"base": record_of(result, options, base_cpu)}
     workers = twin_workers.current()
@@ -287,23 +198,26 @@ def twin_runs(solver, params, settings, options, result, roles, progress, base_c
     for _, _, work in twins.values():
         workers.submit(work)
 
-    def run(name, case, twin_options, work=None):
-        runs[name], cpu = workers.take(work or twin_job(solver, case, twin_options, settings, progress))
-        records[name] = record_of(runs[name], twin_options, cpu)
+    def run(name, case, run_options, work=None):
+        runs[name], cpu = workers.take(work or twin_job(solver, case, run_options, settings, progress))
+        records[name] = record_of(runs[name], run_options, cpu)
 
     run("loose", *twins["loose"])
     order, reference = ["loose", "base"], loose
-    if runs["loose"].error is not None or not looser(runs["loose"].info, result.info):
+    if runs["loose"].error is not None or not twin_options.looser(runs["loose"].info, result.info):
         order, reference = ["base"], options
-        tighter = [(name, tightened(options, result.info, factor, roles)) for name, factor in sequence(result.info)]
-        for _, twin_options in tighter:
-            workers.submit(twin_job(solver, params, twin_options, settings, progress))
-        for name, twin_options in tighter:
-            run(name, params, twin_options)
+        tighter = [
+            (name, twin_options.tightened(options, result.info, factor, roles))
+            for name, factor in twin_options.sequence(result.info)
+        ]
+        for _, tight_options in tighter:
+            workers.submit(twin_job(solver, params, tight_options, settings, progress))
+        for name, tight_options in tighter:
+            run(name, params, tight_options)
             order.append(name)
     elif not accurate(records["loose"], records["base"]):
-        name, factor = sequence(result.info)[0]
-        run(name, params, tightened(options, result.info, factor, roles))
+        name, factor = twin_options.sequence(result.info)[0]
+        run(name, params, twin_options.tightened(options, result.info, factor, roles))
         order.append(name)
     if "probe" in twins:
         run("probe", *twins["probe"])
@@ -358,7 +272,8 @@ def assess(
     well = sensitivity <= CONDITION_TOL * abs(value)
     if "sampling" in result.info:
         reported.info["sampling"] = {**result.info["sampling"], "location_error": location if failed else None}
-    held = sorted({name for name in order[1:] for name in held_at_floor(records[name]["options"], result.info, roles)})
+    floored = twin_options.held_at_floor
+    held = sorted({name for name in order[1:] for name in floored(records[name]["options"], result.info, roles)})
     reported.uncertainty = {
         "estimated": True,
         "quantity": quantity,

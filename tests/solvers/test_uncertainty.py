@@ -11,7 +11,7 @@ import pytest
 from lightsail_mbs import RunSettings, SailParameters, paper_case
 from lightsail_mbs.model import theory
 from lightsail_mbs.result import Result, with_uncertainty
-from lightsail_mbs.solvers import solve, uncertainty
+from lightsail_mbs.solvers import solve, twin_options, uncertainty
 
 exudyn = pytest.importorskip("exudyn")
 
@@ -85,7 +85,7 @@ def test_reported_answer_is_the_base_run():
     assert reported.failure_time == alone.failure_time
     assert np.array_equal(reported.amplitude, alone.amplitude)
     u = reported.uncertainty
-    assert u["loose"]["options"]["rtol"] == pytest.approx(uncertainty.loosening(alone.info) * alone.info["rtol"])
+    assert u["loose"]["options"]["rtol"] == pytest.approx(twin_options.loosening(alone.info) * alone.info["rtol"])
     assert u["cpu_time"] >= u["base"]["cpu_time"] > 0
 
 
@@ -112,13 +112,13 @@ def test_not_estimated_for_a_flat_sail():
 
 
 def test_loose_twin_options():
-    assert uncertainty.loosened({}, {"rtol": 1e-7}) == {"rtol": pytest.approx(1e-6)}
-    assert uncertainty.loosened({}, {"rtol": 1e-8, "method": "DOP853"}) == {"rtol": pytest.approx(3e-8)}
-    loose = uncertainty.loosened({"step_size": 1e-3}, {"rtol": 1e-7, "method": "generalized-alpha"})
+    assert twin_options.loosened({}, {"rtol": 1e-7}) == {"rtol": pytest.approx(1e-6)}
+    assert twin_options.loosened({}, {"rtol": 1e-8, "method": "DOP853"}) == {"rtol": pytest.approx(3e-8)}
+    loose = twin_options.loosened({"step_size": 1e-3}, {"rtol": 1e-7, "method": "generalized-alpha"})
     assert loose["step_size"] == pytest.approx(2e-3) and loose["rtol"] == pytest.approx(4e-7)
     # a fixed-step solver without an rtol (Exudyn's sheet): the step × 2, its Newton tolerances × 4
     info = {"method": "generalized-alpha", "step_size": 1e-3, "newton_rel_tol": 1e-8, "newton_abs_tol": 1e-12}
-    assert uncertainty.loosened({}, info) == {
+    assert twin_options.loosened({}, info) == {
         "step_size": pytest.approx(2e-3),
         "newton_rel_tol": pytest.approx(4e-8),
         "newton_abs_tol": pytest.approx(4e-12),
@@ -127,29 +127,29 @@ def test_loose_twin_options():
 
 def test_tight_twin_options():
     info = {"rtol": 1e-7}
-    assert uncertainty.tightened({}, info) == {"rtol": 1e-8}
-    tight = uncertainty.tightened({"step_size": 1e-3, "atol": 1e-9}, info)
+    assert twin_options.tightened({}, info) == {"rtol": 1e-8}
+    tight = twin_options.tightened({"step_size": 1e-3, "atol": 1e-9}, info)
     assert tight["step_size"] == pytest.approx(1e-3 / math.sqrt(10)) and tight["atol"] == pytest.approx(1e-10)
-    quarter = uncertainty.tightened({"step_size": 1e-3}, {"rtol": 1e-7, "method": "generalized-alpha"})
+    quarter = twin_options.tightened({"step_size": 1e-3}, {"rtol": 1e-7, "method": "generalized-alpha"})
     assert quarter["step_size"] == pytest.approx(2.5e-4) and quarter["rtol"] == pytest.approx(1e-7 / 16)
-    assert uncertainty.tightened({}, {"rtol": 1e-8, "method": "DOP853"})["rtol"] == pytest.approx(1e-10)
+    assert twin_options.tightened({}, {"rtol": 1e-8, "method": "DOP853"})["rtol"] == pytest.approx(1e-10)
 
 
 def test_twin_sequences():
-    assert uncertainty.sequence({"method": "generalized-alpha", "rtol": 1e-7}) == [("half", 4.0), ("tight", 16.0)]
-    assert uncertainty.sequence({"method": "DOP853", "rtol": 1e-8}) == [("tight", 100.0)]
-    assert uncertainty.sequence({"method": "Radau", "rtol": 1e-6}) == [("tight", 10.0)]
+    assert twin_options.sequence({"method": "generalized-alpha", "rtol": 1e-7}) == [("half", 4.0), ("tight", 16.0)]
+    assert twin_options.sequence({"method": "DOP853", "rtol": 1e-8}) == [("tight", 100.0)]
+    assert twin_options.sequence({"method": "Radau", "rtol": 1e-6}) == [("tight", 10.0)]
     # a fixed-step solver without an rtol (Exudyn's sheet): the twin's step is the base run's / √F
     info = {"method": "generalized-alpha", "step_size": 1e-3, "newton_rel_tol": 1e-8, "newton_abs_tol": 1e-12}
-    half = uncertainty.tightened({}, info, 4.0)
+    half = twin_options.tightened({}, info, 4.0)
     assert half == {"step_size": pytest.approx(5e-4), "newton_rel_tol": 2.5e-9, "newton_abs_tol": 2.5e-13}
     # a Newton tolerance stops at the floor the base run reports (Exudyn's sheet: its connectors' round-off)
     floored = {**info, "newton_abs_tol_floor": 5e-13}
-    assert uncertainty.tightened({}, floored, 4.0)["newton_abs_tol"] == 5e-13
-    assert uncertainty.tightened({}, floored, 16.0)["step_size"] == pytest.approx(2.5e-4)
-    assert uncertainty.held_at_floor(uncertainty.tightened({}, floored, 4.0), floored) == ["newton_abs_tol"]
-    assert uncertainty.tightened({"newton_abs_tol": 1e-12}, floored, 16.0)["newton_abs_tol"] == 5e-13
-    assert uncertainty.held_at_floor(half, info) == []
+    assert twin_options.tightened({}, floored, 4.0)["newton_abs_tol"] == 5e-13
+    assert twin_options.tightened({}, floored, 16.0)["step_size"] == pytest.approx(2.5e-4)
+    assert twin_options.held_at_floor(twin_options.tightened({}, floored, 4.0), floored) == ["newton_abs_tol"]
+    assert twin_options.tightened({"newton_abs_tol": 1e-12}, floored, 16.0)["newton_abs_tol"] == 5e-13
+    assert twin_options.held_at_floor(half, info) == []
 
 
 class FakeSolver:
