@@ -17,8 +17,10 @@ per twin) concurrently with each other and, where their inputs are known before 
 - **Speculation.** At that moment the session starts the twins whose inputs do not depend on how the base run
   ends (``Session.speculation``, given the settings of the base run's current pass: the loose, probe and film
   twins, with the options the solver declares it will use, contract rule 10, standing for the base run's
-  ``info``; and ``Session.extra``: the n-twins, at the loose twin's options). Every twin is keyed by its inputs
-  (pickled: case, settings, options); when the base run has ended, the estimate asks for the twins its rule
+  ``info``; and ``Session.extra``: the n-twins, at the loose twin's options). A twin the estimate may not need (the
+  probe, where the film twin may stand for it) runs at a lower priority (``Job.niceness``): on a busy machine it
+  takes what the others leave, and it is stopped when the estimate finds it not needed. Every twin is keyed by its
+  inputs (pickled: case, settings, options); when the base run has ended, the estimate asks for the twins its rule
   names (:meth:`Session.take`), and gets the worker's Result when the key matches, else starts the twin then. The
   answers are therefore those of the same runs in this process, bit for bit; a wrong guess costs CPU on the other
   core, not the answer. A base pass rerun at finer sampling (:func:`~lightsail_mbs.solvers.events.located_run`)
@@ -63,6 +65,7 @@ class Job:
     args: tuple
     kwargs: dict = field(default_factory=dict)
     speculative: bool = False  # started for the base run's current pass (ended when it is rerun)
+    niceness: int = 0  # its worker's priority below this process's (os.nice): a twin that may not be needed
 
 
 def job(identity: tuple, fn: Callable, *args, **kwargs) -> Job:
@@ -150,6 +153,8 @@ def _work(sender, work: Job) -> None:
         ctypes.CDLL(None).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
     _local.sessions = []
     progress_module.watcher, progress_module.prefix = None, "twin "
+    if work.niceness:
+        os.nice(work.niceness)
     start = time.process_time()
     try:
         value = work.fn(*work.args, **work.kwargs)

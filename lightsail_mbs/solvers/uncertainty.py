@@ -41,7 +41,12 @@ the base run is found inaccurate (item 1), and its error bar comes from twins th
    from perturbations this small, the answer is set by whatever perturbation a run starts from. It runs
    at the base run's options, not the loose twin's: how fast the grid-scale waves grow depends on the
    step that resolves them (the paper's soft extensible TnT sail, ill-posed in n, on Exudyn's
-   generalized-α: S = 1.7e-4 s at the step h, 1.2e-2 s at 2h, whatever the Newton tolerances).
+   generalized-α: S = 1.7e-4 s at the step h, 1.2e-2 s at 2h, whatever the Newton tolerances). **It runs only
+   where the film twin (item 4) does not bound it**: where the film moves q by at most FILM_TOL · |q| (its waves
+   stayed small, their effect linear in their amplitudes), S is estimated as c times the film's change, c the
+   largest ratio of the probe's amplitude to the film's over the chain's modes (c ≤ 3e-5 on every chain of
+   validation/accuracy.md), and the probe is not run (:mod:`~lightsail_mbs.solvers.film_twin`; sheets always run
+   it). It saves a base run on the sails whose answers a real film does not move (the paper's stable ones).
 
 3. **Sampling** — where the failure falls between the base run's output samples, E_s = E_loc of
    :mod:`lightsail_mbs.solvers.events` (which has already refined the sampling until E_loc ≤ 1e-6 t_f where
@@ -84,26 +89,29 @@ import math
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.solvers import contract, events, twin_options, twin_workers
-from lightsail_mbs.solvers.film_twin import FILM_TOL, film_sensitivity, film_twin  # noqa: F401 - FILM_TOL: the rule's
+from lightsail_mbs.solvers.film_twin import FILM_TOL, film_sensitivity, film_twin, probe_bound  # noqa: F401 - FILM_TOL
 from lightsail_mbs.solvers.twin_options import DOP853_LOOSEN, LOOSEN, TIGHTEN, WIDE_TIGHTEN
 
 PROBE_LEVEL = 1e-12  # the probe twin's roughness amplitude, in units of the defect amplitude a₀
 SAFETY = 2.0  # U = SAFETY · (E_int + S)
 CONDITION_TOL = 1e-4  # well-conditioned: S ≤ CONDITION_TOL · |q|
+PROBE_NICENESS = 19  # a probe worker's priority below this process's where the film twin may stand for it
 ACCURACY = 1e-3  # the base run is reported when the loose twin's answer is within ACCURACY · |q| of it
 RULE = (
     f"reported: the base run (the run at tolerances/F, F = {TIGHTEN:g}, DOP853 {WIDE_TIGHTEN:g}, generalized-α the "
     f"step / 2, when |q − q_loose| > {ACCURACY:g}·|q|); U = {SAFETY:g}·(E_int + S) + E_s; E_int = Σ|q_(k+1) − q_k| "
     f"over the runs from q_loose, at tolerances × {LOOSEN:g} (DOP853: × {DOP853_LOOSEN:g}; generalized-α: the "
     f"step × 2); "
-    f"S = |q(start + seeded roughness {PROBE_LEVEL:g} a₀) − q_base|; "
+    f"S = |q(start + seeded roughness {PROBE_LEVEL:g} a₀) − q_base|, or c·|q_film − q_loose| where the film twin "
+    f"moves q by ≤ {FILM_TOL:g}·|q| (c: the probe's largest amplitude over the film's, mode by mode); "
     f"E_s: where q falls between output samples; well-conditioned when S ≤ {CONDITION_TOL:g}·|q|"
 )
 FALLBACK_RULE = (
     f"reported: the run at tolerances/F (the loose twin failed); U = {SAFETY:g}·(E_int + S) + E_s; E_int = "
     f"Σ|q_(k+1) − q_k| over the runs at tolerances/1, /F: F = {TIGHTEN:g} (DOP853: {WIDE_TIGHTEN:g}; generalized-α: "
-    f"the step /1, /2, /4); S = |q(start + seeded roughness {PROBE_LEVEL:g} a₀) − q|; E_s: where q falls between "
-    f"output samples; well-conditioned when S ≤ {CONDITION_TOL:g}·|q|"
+    f"the step /1, /2, /4); S = |q(start + seeded roughness {PROBE_LEVEL:g} a₀) − q| (or the film twin's "
+    f"c·|q_film − q| where it moves q by ≤ {FILM_TOL:g}·|q|); E_s: where q falls between output samples; "
+    f"well-conditioned when S ≤ {CONDITION_TOL:g}·|q|"
 )
 
 
@@ -153,7 +161,8 @@ def why_not_case(solver, params: SailParameters) -> str | None:
 
 def planned(solver, params, settings, options: dict, info: dict, roles: dict, progress: bool) -> tuple[dict, dict]:
     """(twins, loose options): the twins every estimate starts with, by name, as (case, options, Job): the loose
-    twin, the probe at the base run's options and the film twin at the loose twin's; `info`: the base run's, or
+    twin, the probe at the base run's options (its worker at a lower priority where the film twin may stand for
+    it) and the film twin at the loose twin's; `info`: the base run's, or
     the options the solver declares it will use (contract rule 10) when the twins start before it ends."""
     loose = twin_options.loosened(options, info, roles)
     twins = {"loose": (params, loose)}
@@ -162,7 +171,10 @@ def planned(solver, params, settings, options: dict, info: dict, roles: dict, pr
     film_case, _ = film_twin(params)
     if film_case is not None:
         twins["film"] = (film_case, loose)
-    return {name: (*twin, twin_job(solver, *twin, settings, progress)) for name, twin in twins.items()}, loose
+    jobs = {name: (*twin, twin_job(solver, *twin, settings, progress)) for name, twin in twins.items()}
+    if "probe" in jobs and "film" in jobs and params.model != "sheet":  # the film twin may stand for it
+        jobs["probe"][2].niceness = PROBE_NICENESS
+    return jobs, loose
 
 
 def twin_job(solver, case, options: dict, settings, progress: bool) -> twin_workers.Job:
@@ -186,12 +198,13 @@ def speculation(solver, params, options: dict, progress: bool):
     return speculate
 
 
-def twin_runs(solver, params, settings, options, result, roles, progress, base_cpu) -> tuple[dict, dict, list[str]]:
-    """(runs, records, order): the base run's twins (module docstring) by name, and the runs of the integration
+def twin_runs(solver, params, settings, options, result, roles, progress, base_cpu) -> tuple:
+    """(runs, records, order, bound): the base run's twins (module docstring) by name, and the runs of the integration
     sequence from the loosest to the reported one — ["loose", "base"], or the fallback's ["base", (half,) tight]
-    when the loose twin ends with a solver error or did not run looser (twin_options.looser). The probe twin runs
-    at the base run's options, the film twin at those of order[0]. The twins run where twin_workers's open session
-    puts them (worker processes, started before the base run ended where their inputs were known; else here)."""
+    when the loose twin ends with a solver error or did not run looser (twin_options.looser). The film twin runs
+    at the options of order[0], then the probe twin at the base run's where the film twin does not bound it (the
+    bound, or None: film_twin.probe_bound, the last of the four returned). The twins run where twin_workers's open
+    session puts them (worker processes, started before the base run ended where their inputs were known; else here)."""
     runs, records = {"base": result}, {"base": record_of(result, options, base_cpu)}
     workers = twin_workers.current()
     twins, loose = planned(solver, params, settings, options, result.info, roles, progress)
@@ -219,13 +232,19 @@ def twin_runs(solver, params, settings, options, result, roles, progress, base_c
         name, factor = twin_options.sequence(result.info)[0]
         run(name, params, twin_options.tightened(options, result.info, factor, roles))
         order.append(name)
-    if "probe" in twins:
-        run("probe", *twins["probe"])
     if "film" in twins:
         if reference is not loose:
             workers.discard(twins["film"][2])
         run("film", twins["film"][0], reference)
-    return runs, records, order
+    bound = None
+    if "probe" in twins:
+        level = PROBE_LEVEL * params.displacement_scale
+        bound = probe_bound(params, records, order[0], level, CONDITION_TOL * abs(records["base"]["value"]))
+        if bound is None:
+            run("probe", *twins["probe"])
+        else:
+            workers.discard(twins["probe"][2])
+    return runs, records, order, bound
 
 
 def assess(
@@ -248,7 +267,7 @@ def assess(
         return result
     quantity, failed, value = answer(result)
     roles = solver.roles() if hasattr(solver, "roles") else contract.registered_roles()
-    runs, records, order = twin_runs(solver, params, settings, options, result, roles, progress, base_cpu)
+    runs, records, order, bound = twin_runs(solver, params, settings, options, result, roles, progress, base_cpu)
     total_wall = sum(record["wall_time"] for record in records.values())
     for name, record in records.items():
         if record["error"] is not None and name not in ("film", "loose"):  # the film twin's error is its own record's
@@ -265,8 +284,11 @@ def assess(
     steps = [records[b]["value"] - records[a]["value"] for a, b in zip(order, order[1:])]
     same_verdict = all(records[name]["failed"] == failed for name in order)
     integration = sum(abs(d) for d in steps) if same_verdict else math.inf
-    probe, base = records["probe"], records["base"]
-    sensitivity = abs(probe["value"] - base["value"]) if probe["failed"] == base["failed"] else math.inf
+    probe, base = records.get("probe"), records["base"]
+    if probe is None:
+        sensitivity = bound
+    else:
+        sensitivity = abs(probe["value"] - base["value"]) if probe["failed"] == base["failed"] else math.inf
     location = sampling_error(reported, settings, failed)
     uncertainty = SAFETY * (integration + sensitivity) + location
     well = sensitivity <= CONDITION_TOL * abs(value)
@@ -281,12 +303,13 @@ def assess(
         "uncertainty": uncertainty,
         "integration_error": integration,
         "sensitivity": sensitivity,
+        "sensitivity_from": "film" if probe is None else "probe",
         "sampling_error": location,
         "well_conditioned": bool(well),
         "explanation": " ".join(
             part
             for part in (
-                explain(params, quantity, value, integration, sensitivity, well, failed),
+                explain(params, quantity, value, integration, sensitivity, well, failed, probe is None),
                 sampling_note(location, SAFETY * (integration + sensitivity), failed),
                 floor_note(held, result.info) if order[0] == "base" else "",
             )
@@ -331,14 +354,17 @@ def floor_note(held: list[str], info: dict) -> str:
     )
 
 
-def explain(params, quantity, value, integration, sensitivity, well, failed) -> str:
-    """One paragraph: how sure the run is and, when it is ill-conditioned, why and what would change it."""
+def explain(params, quantity, value, integration, sensitivity, well, failed, bounded=False) -> str:
+    """One paragraph: how sure the run is and, when it is ill-conditioned, why and what would change it; `bounded`:
+    the sensitivity is the film twin's bound (film_twin.probe_bound), the probe twin not run."""
     what = "failure time" if quantity == "failure_time" else "largest amplitude ratio"
     shortest = 2.0 * params.length / params.n
     if well:
+        how = "by at most" if bounded else "by"
+        why = " (bounded by the film twin's change, a perturbation far larger at every wave)" if bounded else ""
         return (
-            f"well-conditioned: a roughness of {PROBE_LEVEL:g} a₀ moves the {what} by "
-            f"{sensitivity / abs(value):.1g} relative (≤ {CONDITION_TOL:g}); the uncertainty is dominated by "
+            f"well-conditioned: a roughness of {PROBE_LEVEL:g} a₀ moves the {what} {how} "
+            f"{sensitivity / abs(value):.1g} relative (≤ {CONDITION_TOL:g}){why}; the uncertainty is dominated by "
             f"{'the integration error' if integration >= sensitivity else 'that sensitivity'}."
         )
     sheet = params.model == "sheet"
