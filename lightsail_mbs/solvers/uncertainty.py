@@ -172,6 +172,8 @@ def planned(solver, params, settings, options: dict, info: dict, roles: dict, pr
     if film_case is not None:
         twins["film"] = (film_case, loose)
     jobs = {name: (*twin, twin_job(solver, *twin, settings, progress)) for name, twin in twins.items()}
+    for _, _, work in jobs.values():
+        work.answer_only = True  # never the run reported: its record and answer are all the estimate reads
     if "probe" in jobs and "film" in jobs and params.model != "sheet":  # the film twin may stand for it
         jobs["probe"][2].niceness = PROBE_NICENESS
     return jobs, loose
@@ -360,8 +362,8 @@ def explain(params, quantity, value, integration, sensitivity, well, failed, bou
     what = "failure time" if quantity == "failure_time" else "largest amplitude ratio"
     shortest = 2.0 * params.length / params.n
     if well:
-        how = "by at most" if bounded else "by"
-        why = " (bounded by the film twin's change, a perturbation far larger at every wave)" if bounded else ""
+        how = "by about" if bounded else "by"
+        why = " (from the film twin's change, its perturbation far larger at every wave)" if bounded else ""
         return (
             f"well-conditioned: a roughness of {PROBE_LEVEL:g} a₀ moves the {what} {how} "
             f"{sensitivity / abs(value):.1g} relative (≤ {CONDITION_TOL:g}){why}; the uncertainty is dominated by "
