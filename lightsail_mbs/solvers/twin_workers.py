@@ -9,11 +9,12 @@ per twin) concurrently with each other and, where their inputs are known before 
   (the session's clock starts with the default run; checked at each progress update of the base run, in the
   main thread, through ``progress.watcher``, and when it ends, :meth:`Session.base_ended`) and the machine had
   MIN_IDLE_CORES idle meanwhile (Linux's /proc/stat; the base run itself keeps one core busy). A quicker base run
-  keeps its twins in this process, one after the other, as before: a worker costs 10–50 ms of CPU to start and
-  collect (a fork, its pages copied as they are written, its Result pickled back: 11–13 ms for an answer-only
-  twin, 40–70 ms with the 8.7 MB of trajectories of the paper's 6 s stable torsion chain), while the twins of a base
-  run B cost about 2.3 B of CPU and two cores save at most about 1.6 B of wall time with them; so workers pay
-  from a B of a few tens of ms, and 0.1 s leaves a margin. On a machine with no idle core they only add that
+  keeps its twins in this process, one after the other, as before: a worker costs CPU to start and collect (a
+  fork, its pages copied as they are written, its Result pickled back: 11–13 ms for an answer-only twin, 40–70 ms
+  with the 8.7 MB of trajectories of the paper's 6 s stable torsion chain), while the twins of a base run B cost
+  T = 1.5–3 B of CPU and two cores save at most (B + T)/2 of wall time with them; so workers pay from a B of a
+  few tens of ms (about 20 ms with three or four answer-only twins), and 0.05 s leaves a margin. On a machine
+  with no idle core they only add that
   cost (every core busy, the twins' CPU time is the wait either way). A run of 0.01 s is not made slower.
 - **Speculation.** At that moment the session starts the twins whose inputs do not depend on how the base run
   ends (``Session.speculation``, given the settings of the base run's current pass: the loose, probe and film
@@ -56,7 +57,7 @@ from dataclasses import dataclass, field
 
 from lightsail_mbs.solvers import progress as progress_module
 
-CONCURRENT_AFTER = 0.1  # s of the base run's wall time after which its twins go to worker processes ...
+CONCURRENT_AFTER = 0.05  # s of the base run's wall time after which its twins go to worker processes ...
 MIN_IDLE_CORES = 0.5  # ... if the machine had this many cores idle on average meanwhile
 _local = threading.local()  # .sessions: this thread's open sessions (one per default run; nested solves share it)
 
