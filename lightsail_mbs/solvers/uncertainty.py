@@ -53,7 +53,8 @@ the base run is found inaccurate (item 1), and its error bar comes from twins th
    it could), or for a sail that did not fail, how far its largest amplitude may lie above the largest
    sample (the parabola through the peak sample and its neighbours).
 
-4. **Film twin** — the loose twin started from the case's shape plus a physical film
+4. **Film twin** — run before the probe (item 2), which waits for its verdict: the loose twin started from the
+   case's shape plus a physical film
    (:mod:`lightsail_mbs.model.film`): the reference film (1 nm RMS, ξ = 0.1 m, H = 0.5) for a case without
    one, or the case's own film at the next seed. It is not part of U: the ideal-defect answer and its U
    stand for a film smoother than any real one, and this twin says whether a real film changes them — the
@@ -74,12 +75,14 @@ DOP853; generalized-α: two, the step / 2 and / 4 with tolerances / HALF_TIGHTEN
 probe and film twins at the base run's options, E_int = Σ |q_(k+1) − q_k| over the sequence base, (h/2,)
 tight, and the tightest run reported.
 
-Cost (validation/uncertainty_cost.md, CPU time): the loose and film twins 0.4–0.7 of a base run each, the probe
-one, the n-twins 0.1–0.5: 2.2–4.8 base runs. On two cores or more they run in worker processes, started while the
-base run runs (`speculation`, :mod:`~lightsail_mbs.solvers.twin_workers`; a run under its CONCURRENT_AFTER keeps
-them in process). Coverage: validation/accuracy.md. On for single runs (``solve``, ``lightsail-mbs simulate``);
-sweeps run the base run alone. ``Result.uncertainty`` records each run (options, answer, wall and CPU time: a
-worker's its own) and ``elapsed``, the default run's wall time (s); ``Result.wall_time`` sums every run's.
+Cost (validation/uncertainty_cost.md, CPU time): the loose and film twins 0.4–0.8 of a base run each (0.7–1.3 for
+the reduced solver's runs of milliseconds), the probe one where it runs, the n-twins 0.1–0.7: 2.2–3.8 base runs
+with Exudyn, 2.7–3.6 with the reduced solver, on the paper's benchmark rows. On two cores or more they run in
+worker processes, started while the base run runs (`speculation`, :mod:`~lightsail_mbs.solvers.twin_workers`; a
+run under its CONCURRENT_AFTER keeps them in process). Coverage: validation/accuracy.md. On for single runs
+(``solve``, ``lightsail-mbs simulate``); sweeps run the base run alone. ``Result.uncertainty`` records each run
+(options, answer, wall and CPU time: a worker's its own) and ``elapsed``, the default run's wall time (s);
+``Result.wall_time`` sums every run's.
 """
 
 from __future__ import annotations
