@@ -166,9 +166,11 @@ def job(params, size: int, solver: str, settings, options: dict, progress: bool)
     """The twin at `size` slices: the base run's solver, settings and `options` (the reference run's), alone."""
     twin = params.replace(n=size)
     identity = ("n-twin", twin, solver, settings, progress, options)
-    return twin_workers.job(
+    work = twin_workers.job(
         identity, solvers.solve, twin, solver, settings, progress=progress, uncertainty=False, **options
     )
+    work.answer_only = True  # fold reads its answer, time and amplitude history
+    return work
 
 
 def jobs(params, solver: str, settings, options: dict, progress: bool) -> list[twin_workers.Job]:

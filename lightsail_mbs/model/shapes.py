@@ -83,9 +83,8 @@ def roughness_profile(p: SailParameters, amplitude: float, seed: int):
     with `seed`: a seeded roughness with the same expected amplitude at every wavelength 2L/k the chain of
     n slices carries, down to 2l, and the RMS over 0 ≤ x ≤ L of a sine of amplitude `amplitude` (in
     expectation). Zero for amplitude 0."""
-    xi = np.random.default_rng(seed).standard_normal(p.n) / np.sqrt(p.n)
     k = np.pi * np.arange(1, p.n + 1) / p.length
-    a = amplitude * xi
+    a = roughness_coefficients(p, amplitude, seed)
     if amplitude == 0:
         return lambda x: 0.0 * np.asarray(x, float)
     return lambda x: (
@@ -93,6 +92,11 @@ def roughness_profile(p: SailParameters, amplitude: float, seed: int):
         if np.ndim(x) == 0
         else (a[:, None] * np.sin(k[:, None] * np.asarray(x)[None, :])).sum(axis=0)
     )
+
+
+def roughness_coefficients(p: SailParameters, amplitude: float, seed: int) -> np.ndarray:
+    """The sine coefficients amplitude · ξ_k, k = 1 … n, of roughness_profile(p, amplitude, seed) (m)."""
+    return amplitude * (np.random.default_rng(seed).standard_normal(p.n) / np.sqrt(p.n))
 
 
 def defect_profile(p: SailParameters, perturbation: float = 0.0):

@@ -1,11 +1,36 @@
-"""The film twin of the uncertainty estimate (:mod:`lightsail_mbs.solvers.uncertainty`, item 4): its case, and
-what its answer says of a real film against the ideal defect."""
+"""The film twin of the uncertainty estimate (:mod:`lightsail_mbs.solvers.uncertainty`, item 4): its case, what its
+answer says of a real film against the ideal defect, and what it says of the probe twin.
+
+**The film bounds the probe.** The probe twin starts the base run from the shape plus a seeded roughness of
+PROBE_LEVEL · a₀, sine coefficients p_j at the chain's wavenumbers q_j = πj/L, j = 1 … n
+(shapes.roughness_coefficients); the film twin starts it from the shape plus a film, coefficients (a_j, b_j) at
+the same q_j (model.film.film_profile; for a case with its own film, the change from its seed to the next). While
+a perturbation stays small the answer responds to it linearly, mode by mode, so with
+
+    c = max_j |p_j| / √(a_j² + b_j²)
+
+the probe is at most c times the film twin's perturbation at every wave, and S = |q_probe − q_base| is estimated
+by c · |q_film − q_ref| (q_ref: the run of the film twin's options; an estimate, not a bound: the modes' responses
+could cancel in the film's sum and not in the probe's, which the margins below leave room for). On the paper's
+chains c = 3.8e-8 (the rigid sail, a₀ = 1 mm: 1.8e-5); on the 160 seeded chains of validation/accuracy.md, 6e-9 to
+3e-5 (median 8e-7). The estimate stands for the probe only where the film twin finds the run defect-dominated (it
+moves q by at most FILM_TOL · |q|: the film's waves have stayed small) and it is at most CONDITION_TOL · |q|; there
+the probe twin is not run. Where the film is roughness-dominated its waves have grown beyond the linear regime and
+say nothing of a perturbation a million times smaller: the probe runs. A run the probe would call ill-conditioned
+(S > CONDITION_TOL · |q|) would, linearly, be moved by the film by more than CONDITION_TOL · |q| / c, ≥ 3 |q|:
+roughness-dominated by a factor of 3000, so the probe runs for it. The film twin runs at the loose twin's options
+(generalized-α: twice the step) and the probe at the base run's, whose grid-scale waves may grow at another rate
+(uncertainty's docstring, item 2); validation/accuracy.md compares the verdicts with those of the probe run on
+every case. Sheets keep their probe (its tile offsets are no sum of the film's modes).
+"""
 
 from __future__ import annotations
 
 import math
 
-from lightsail_mbs.model import film
+import numpy as np
+
+from lightsail_mbs.model import film, shapes
 from lightsail_mbs.model.parameters import SailParameters
 
 FILM_TOL = 1e-3  # defect-dominated: the film twin moves q by ≤ FILM_TOL · |q|
@@ -48,3 +73,35 @@ def film_sensitivity(records: dict, text: str, quantity: str, reference: str = "
         "verdict": verdict,
         "holds_below": holds_below,
     }
+
+
+def probe_ratio(params: SailParameters, probe_amplitude: float) -> float:
+    """c of the module docstring: the largest ratio, over the chain's modes, of the probe's sine coefficient (a
+    roughness of `probe_amplitude`, m, seed shapes.PERTURBATION_SEED) to the film twin's perturbation; inf for a
+    sheet or where the film twin puts nothing into a mode."""
+    if params.model == "sheet":
+        return math.inf
+    twin, _ = film_twin(params)
+    probe = np.abs(shapes.roughness_coefficients(params, probe_amplitude, shapes.PERTURBATION_SEED))
+    seed = twin.film_seed
+    heights = film.film_profile(film.of_case(twin), params.length, params.n, seed)
+    cosine, sine = heights.cosine, heights.sine
+    if params.film_rms != 0:  # the film twin changes the case's film from its seed to the next
+        own = film.film_profile(film.of_case(params), params.length, params.n, params.film_seed)
+        cosine, sine = cosine - own.cosine, sine - own.sine
+    change = np.hypot(cosine, sine)
+    return float(np.max(probe / change)) if np.all(change > 0) else math.inf
+
+
+def probe_bound(params: SailParameters, records: dict, reference: str, probe_amplitude: float, limit: float):
+    """S ≤ c · |q_film − q_ref| (module docstring) where the film twin of `records` ran, gave the verdict of the run
+    of options `reference`, moved its answer by at most FILM_TOL · |q| and the bound is at most `limit` (the
+    probe's); else None: the probe twin runs."""
+    twin, base = records.get("film"), records[reference]
+    if twin is None or twin["error"] is not None or twin["failed"] != base["failed"]:
+        return None
+    shift = abs(twin["value"] - base["value"])
+    if shift > FILM_TOL * abs(base["value"]):
+        return None
+    bound = probe_ratio(params, probe_amplitude) * shift
+    return bound if bound <= limit else None

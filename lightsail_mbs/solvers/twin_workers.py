@@ -9,16 +9,20 @@ per twin) concurrently with each other and, where their inputs are known before 
   (the session's clock starts with the default run; checked at each progress update of the base run, in the
   main thread, through ``progress.watcher``, and when it ends, :meth:`Session.base_ended`) and the machine had
   MIN_IDLE_CORES idle meanwhile (Linux's /proc/stat; the base run itself keeps one core busy). A quicker base run
-  keeps its twins in this process, one after the other, as before: a worker costs 10–50 ms of CPU to start and
-  collect (a fork, its pages copied as they are written, its Result pickled back), while the twins of a base
-  run B cost about 2.3 B of CPU and two cores save at most about 1.6 B of wall time with them; so workers pay
-  from a B of a few tens of ms, and 0.1 s leaves a margin. On a machine with no idle core they only add that
+  keeps its twins in this process, one after the other, as before: a worker costs CPU to start and collect (a
+  fork, its pages copied as they are written, its Result pickled back: 11–13 ms for an answer-only twin, 40–70 ms
+  with the 8.7 MB of trajectories of the paper's 6 s stable torsion chain), while the twins of a base run B cost
+  T = 1.5–3 B of CPU and two cores save at most (B + T)/2 of wall time with them; so workers pay from a B of a
+  few tens of ms (about 20 ms with three or four answer-only twins), and 0.05 s leaves a margin. On a machine
+  with no idle core they only add that
   cost (every core busy, the twins' CPU time is the wait either way). A run of 0.01 s is not made slower.
 - **Speculation.** At that moment the session starts the twins whose inputs do not depend on how the base run
   ends (``Session.speculation``, given the settings of the base run's current pass: the loose, probe and film
   twins, with the options the solver declares it will use, contract rule 10, standing for the base run's
-  ``info``; and ``Session.extra``: the n-twins, at the loose twin's options). Every twin is keyed by its inputs
-  (pickled: case, settings, options); when the base run has ended, the estimate asks for the twins its rule
+  ``info``; and ``Session.extra``: the n-twins, at the loose twin's options). A twin the estimate may not need (the
+  probe, where the film twin may stand for it) runs at a lower priority (``Job.niceness``): on a busy machine it
+  takes what the others leave, and it is stopped when the estimate finds it not needed. Every twin is keyed by its
+  inputs (pickled: case, settings, options); when the base run has ended, the estimate asks for the twins its rule
   names (:meth:`Session.take`), and gets the worker's Result when the key matches, else starts the twin then. The
   answers are therefore those of the same runs in this process, bit for bit; a wrong guess costs CPU on the other
   core, not the answer. A base pass rerun at finer sampling (:func:`~lightsail_mbs.solvers.events.located_run`)
@@ -29,6 +33,9 @@ per twin) concurrently with each other and, where their inputs are known before 
   a solver error is a Result as in process; an exception in a worker is raised again here; a worker that dies
   is a RuntimeError.
 - **Progress.** A worker's runs draw their bars on the shared stderr, labelled 'twin'.
+- **What comes back.** A twin whose run only its answer is read of (``Job.answer_only``: the loose, probe and film
+  twins, the n-twins; not a tightened twin, which may be the run reported) sends its Result back without its
+  trajectories (:func:`slimmed`).
 
 Workers are forked (no re-import, the compiled kernels inherited). Where the OS has no fork, in a process that
 multiprocessing started (a sweep's pool worker), outside the main thread or on one core, every twin runs in this
@@ -38,6 +45,7 @@ process.
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import math
 import os
 import pickle
@@ -49,7 +57,7 @@ from dataclasses import dataclass, field
 
 from lightsail_mbs.solvers import progress as progress_module
 
-CONCURRENT_AFTER = 0.1  # s of the base run's wall time after which its twins go to worker processes ...
+CONCURRENT_AFTER = 0.05  # s of the base run's wall time after which its twins go to worker processes ...
 MIN_IDLE_CORES = 0.5  # ... if the machine had this many cores idle on average meanwhile
 _local = threading.local()  # .sessions: this thread's open sessions (one per default run; nested solves share it)
 
@@ -63,6 +71,8 @@ class Job:
     args: tuple
     kwargs: dict = field(default_factory=dict)
     speculative: bool = False  # started for the base run's current pass (ended when it is rerun)
+    niceness: int = 0  # its worker's priority below this process's (os.nice): a twin that may not be needed
+    answer_only: bool = False  # its worker sends its Result back without the trajectories (`slimmed`)
 
 
 def job(identity: tuple, fn: Callable, *args, **kwargs) -> Job:
@@ -150,14 +160,34 @@ def _work(sender, work: Job) -> None:
         ctypes.CDLL(None).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
     _local.sessions = []
     progress_module.watcher, progress_module.prefix = None, "twin "
+    if work.niceness:
+        os.nice(work.niceness)
     start = time.process_time()
     try:
         value = work.fn(*work.args, **work.kwargs)
     except BaseException as exc:  # sent back and raised again in the session
         sender.send(("error", exc, time.process_time() - start))
     else:
-        sender.send(("ok", value, time.process_time() - start))
+        sender.send(("ok", slimmed(value) if work.answer_only else value, time.process_time() - start))
     sender.close()
+
+
+TRAJECTORIES = ("x", "y", "theta", "z", "vx", "vy", "omega", "z_rate")  # a chain's Result: (T, n) arrays
+TILE_TRAJECTORIES = ("tile_centres", "tile_angles", "tile_velocities", "tile_angular_velocities")  # (T, N, 3)
+
+
+def slimmed(value):
+    """A Result without its trajectories (each coordinate's or tile's array cut to no columns; its time,
+    amplitude history, record and so its answer kept), else `value`: what a twin's estimate reads of its run, at a
+    few kB where the whole Result of a 6 s chain pickles to megabytes (tens of ms of CPU on both sides)."""
+    if not dataclasses.is_dataclass(value) or not all(hasattr(value, name) for name in TRAJECTORIES):
+        return value
+    cut = {}
+    for name in TRAJECTORIES + TILE_TRAJECTORIES:
+        array = getattr(value, name, None)
+        if getattr(array, "ndim", 0) >= 2:
+            cut[name] = array[:, :0].copy()
+    return dataclasses.replace(value, **cut)
 
 
 class Session:

@@ -41,14 +41,20 @@ the base run is found inaccurate (item 1), and its error bar comes from twins th
    from perturbations this small, the answer is set by whatever perturbation a run starts from. It runs
    at the base run's options, not the loose twin's: how fast the grid-scale waves grow depends on the
    step that resolves them (the paper's soft extensible TnT sail, ill-posed in n, on Exudyn's
-   generalized-α: S = 1.7e-4 s at the step h, 1.2e-2 s at 2h, whatever the Newton tolerances).
+   generalized-α: S = 1.7e-4 s at the step h, 1.2e-2 s at 2h, whatever the Newton tolerances). **It runs only
+   where the film twin (item 4) does not bound it**: where the film moves q by at most FILM_TOL · |q| (its waves
+   stayed small, their effect linear in their amplitudes), S is estimated as c times the film's change, c the
+   largest ratio of the probe's amplitude to the film's over the chain's modes (c ≤ 3e-5 on every chain of
+   validation/accuracy.md), and the probe is not run (:mod:`~lightsail_mbs.solvers.film_twin`; sheets always run
+   it). It saves a base run on the sails whose answers a real film does not move (the paper's stable ones).
 
 3. **Sampling** — where the failure falls between the base run's output samples, E_s = E_loc of
    :mod:`lightsail_mbs.solvers.events` (which has already refined the sampling until E_loc ≤ 1e-6 t_f where
    it could), or for a sail that did not fail, how far its largest amplitude may lie above the largest
    sample (the parabola through the peak sample and its neighbours).
 
-4. **Film twin** — the loose twin started from the case's shape plus a physical film
+4. **Film twin** — run before the probe (item 2), which waits for its verdict: the loose twin started from the
+   case's shape plus a physical film
    (:mod:`lightsail_mbs.model.film`): the reference film (1 nm RMS, ξ = 0.1 m, H = 0.5) for a case without
    one, or the case's own film at the next seed. It is not part of U: the ideal-defect answer and its U
    stand for a film smoother than any real one, and this twin says whether a real film changes them — the
@@ -69,12 +75,14 @@ DOP853; generalized-α: two, the step / 2 and / 4 with tolerances / HALF_TIGHTEN
 probe and film twins at the base run's options, E_int = Σ |q_(k+1) − q_k| over the sequence base, (h/2,)
 tight, and the tightest run reported.
 
-Cost (validation/uncertainty_cost.md, CPU time): the loose and film twins 0.4–0.7 of a base run each, the probe
-one, the n-twins 0.1–0.5: 2.2–4.8 base runs. On two cores or more they run in worker processes, started while the
-base run runs (`speculation`, :mod:`~lightsail_mbs.solvers.twin_workers`; a run under its CONCURRENT_AFTER keeps
-them in process). Coverage: validation/accuracy.md. On for single runs (``solve``, ``lightsail-mbs simulate``);
-sweeps run the base run alone. ``Result.uncertainty`` records each run (options, answer, wall and CPU time: a
-worker's its own) and ``elapsed``, the default run's wall time (s); ``Result.wall_time`` sums every run's.
+Cost (validation/uncertainty_cost.md, CPU time): the loose and film twins 0.4–0.8 of a base run each (0.7–1.3 for
+the reduced solver's runs of milliseconds), the probe one where it runs, the n-twins 0.1–0.7: 2.2–3.8 base runs
+with Exudyn, 2.7–3.6 with the reduced solver, on the paper's benchmark rows. On two cores or more they run in
+worker processes, started while the base run runs (`speculation`, :mod:`~lightsail_mbs.solvers.twin_workers`; a
+run under its CONCURRENT_AFTER keeps them in process). Coverage: validation/accuracy.md. On for single runs
+(``solve``, ``lightsail-mbs simulate``); sweeps run the base run alone. ``Result.uncertainty`` records each run
+(options, answer, wall and CPU time: a worker's its own) and ``elapsed``, the default run's wall time (s);
+``Result.wall_time`` sums every run's.
 """
 
 from __future__ import annotations
@@ -83,33 +91,30 @@ import math
 
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.model.parameters import SailParameters
-from lightsail_mbs.solvers import contract, events, twin_workers
-from lightsail_mbs.solvers.film_twin import FILM_TOL, film_sensitivity, film_twin  # noqa: F401 - FILM_TOL: the rule's
+from lightsail_mbs.solvers import contract, events, twin_options, twin_workers
+from lightsail_mbs.solvers.film_twin import FILM_TOL, film_sensitivity, film_twin, probe_bound  # noqa: F401 - FILM_TOL
+from lightsail_mbs.solvers.twin_options import DOP853_LOOSEN, LOOSEN, TIGHTEN, WIDE_TIGHTEN
 
-LOOSEN = 10.0  # the loose twin's tolerances are the base run's × LOOSEN (adaptive methods)
-DOP853_LOOSEN = 3.0  # the reduced solver's DOP853: rtol × 3
-STEP_LOOSEN = 4.0  # generalized-α: rtol × 4, the step × 2
-TIGHTEN = 10.0  # the fallback's tight twin: the base run's tolerances / TIGHTEN (adaptive methods)
-WIDE_TIGHTEN = 100.0  # the fallback, the reduced solver's DOP853: rtol / 100
-HALF_TIGHTEN = 4.0  # the fallback, generalized-α (a fixed step): the middle twin, tolerances / 4, the step / 2
-STEP_TIGHTEN = 16.0  # the fallback, generalized-α: the tight twin, tolerances / 16, the step / 4
 PROBE_LEVEL = 1e-12  # the probe twin's roughness amplitude, in units of the defect amplitude a₀
 SAFETY = 2.0  # U = SAFETY · (E_int + S)
 CONDITION_TOL = 1e-4  # well-conditioned: S ≤ CONDITION_TOL · |q|
+PROBE_NICENESS = 19  # a probe worker's priority below this process's where the film twin may stand for it
 ACCURACY = 1e-3  # the base run is reported when the loose twin's answer is within ACCURACY · |q| of it
 RULE = (
     f"reported: the base run (the run at tolerances/F, F = {TIGHTEN:g}, DOP853 {WIDE_TIGHTEN:g}, generalized-α the "
     f"step / 2, when |q − q_loose| > {ACCURACY:g}·|q|); U = {SAFETY:g}·(E_int + S) + E_s; E_int = Σ|q_(k+1) − q_k| "
     f"over the runs from q_loose, at tolerances × {LOOSEN:g} (DOP853: × {DOP853_LOOSEN:g}; generalized-α: the "
     f"step × 2); "
-    f"S = |q(start + seeded roughness {PROBE_LEVEL:g} a₀) − q_base|; "
+    f"S = |q(start + seeded roughness {PROBE_LEVEL:g} a₀) − q_base|, or c·|q_film − q_loose| where the film twin "
+    f"moves q by ≤ {FILM_TOL:g}·|q| (c: the probe's largest amplitude over the film's, mode by mode); "
     f"E_s: where q falls between output samples; well-conditioned when S ≤ {CONDITION_TOL:g}·|q|"
 )
 FALLBACK_RULE = (
     f"reported: the run at tolerances/F (the loose twin failed); U = {SAFETY:g}·(E_int + S) + E_s; E_int = "
     f"Σ|q_(k+1) − q_k| over the runs at tolerances/1, /F: F = {TIGHTEN:g} (DOP853: {WIDE_TIGHTEN:g}; generalized-α: "
-    f"the step /1, /2, /4); S = |q(start + seeded roughness {PROBE_LEVEL:g} a₀) − q|; E_s: where q falls between "
-    f"output samples; well-conditioned when S ≤ {CONDITION_TOL:g}·|q|"
+    f"the step /1, /2, /4); S = |q(start + seeded roughness {PROBE_LEVEL:g} a₀) − q| (or the film twin's "
+    f"c·|q_film − q| where it moves q by ≤ {FILM_TOL:g}·|q|); E_s: where q falls between output samples; "
+    f"well-conditioned when S ≤ {CONDITION_TOL:g}·|q|"
 )
 
 
@@ -120,93 +125,10 @@ def answer(result) -> tuple[str, bool, float]:
     return "max_amplitude_ratio", False, float(result.max_amplitude_ratio)
 
 
-def is_fixed_step(info: dict) -> bool:
-    """Whether the base run is generalized-α at a fixed step (Exudyn's chains and sheets)."""
-    return info.get("method") == "generalized-alpha"
-
-
-def tightening(info: dict) -> float:
-    """F of the tight twin (module docstring): STEP_TIGHTEN for generalized-α, WIDE_TIGHTEN for DOP853,
-    else TIGHTEN."""
-    method = info.get("method")
-    return STEP_TIGHTEN if is_fixed_step(info) else WIDE_TIGHTEN if method == "DOP853" else TIGHTEN
-
-
-def sequence(info: dict) -> list[tuple[str, float]]:
-    """The twins of the tolerance sequence after the base run: (name, F), the tightest last."""
-    if is_fixed_step(info):
-        return [("half", HALF_TIGHTEN), ("tight", STEP_TIGHTEN)]
-    return [("tight", tightening(info))]
-
-
 def accurate(loose: dict, base: dict) -> bool:
     """Whether the loose twin's answer lies within ACCURACY · |q| of the base run's (same verdict): the base run is
     then reported; otherwise the first twin of the tightened sequence is run and reported (module docstring)."""
     return loose["failed"] == base["failed"] and abs(loose["value"] - base["value"]) <= ACCURACY * abs(base["value"])
-
-
-def loosening(info: dict) -> float:
-    """F of the loose twin (module docstring): STEP_LOOSEN for generalized-α, DOP853_LOOSEN for DOP853, else
-    LOOSEN."""
-    return STEP_LOOSEN if is_fixed_step(info) else DOP853_LOOSEN if info.get("method") == "DOP853" else LOOSEN
-
-
-def looser(twin_info: dict, info: dict) -> bool:
-    """Whether a twin ran at a larger fixed step (generalized-α) or rtol (the adaptive methods) than the base
-    run (`info`): a solver may cap its step (Exudyn's sheet: at the output interval), and a loose twin at the
-    base run's step is the base run again, whose difference from it says nothing."""
-    name = "step_size" if is_fixed_step(info) and info.get("step_size") else "rtol"
-    return info.get(name) is not None and float(twin_info.get(name) or 0.0) > float(info[name]) * (1 + 1e-12)
-
-
-def loosened(options: dict, info: dict, roles: dict | None = None) -> dict:
-    """The loose twin's options: tightened(...) by 1/loosening(info), every tolerance × F, a fixed step × √F."""
-    return tightened(options, info, 1.0 / loosening(info), roles)
-
-
-def tightened(options: dict, info: dict, factor: float | None = None, roles: dict | None = None) -> dict:
-    """A twin's options: the relative tolerance (the one the base run used, from its info) and the absolute
-    or Newton tolerances, if given, divided by F (default tightening(info)); a fixed step divided by √F —
-    the given one, or the base run's (info), with its Newton tolerances / F, when the solver has no rtol to
-    derive them from (Exudyn's sheet). `roles`: the solver's option names per role (solvers.contract,
-    rule 8; default: every registered solver's). A tolerance never goes below the floor the base run reports
-    (info["<name>_floor"]: Exudyn's sheet, the round-off of its stiff connectors, under which Newton
-    does not converge and every step is retried at a smaller step; a 12 × 12 sheet at E = E_m = 4.5e9 Pa
-    ran 90× slower with its absolute tolerance at a quarter of the base run's)."""
-    roles = contract.registered_roles() if roles is None else roles
-    factor = tightening(info) if factor is None else factor
-    tight = dict(options)
-    relative = [name for name in roles["rtol"] if name in info]
-    for name in relative:
-        tight[name] = float(info[name]) / factor
-
-    def divided(name, value):
-        floor = float(info.get(f"{name}_floor") or 0.0)
-        return max(value / factor, floor)
-
-    for name in roles["tolerance"]:
-        if options.get(name) is not None:
-            value = options[name]
-            tight[name] = divided(name, value) if not hasattr(value, "__len__") else [divided(name, v) for v in value]
-    for name in roles["step"]:
-        if options.get(name) is not None:
-            tight[name] = options[name] / math.sqrt(factor)
-        elif not relative and info.get(name) is not None:
-            tight[name] = float(info[name]) / math.sqrt(factor)
-            for tolerance in roles["tolerance"]:
-                if options.get(tolerance) is None and info.get(tolerance):
-                    tight[tolerance] = divided(tolerance, float(info[tolerance]))
-    return tight
-
-
-def held_at_floor(twin_options: dict, info: dict, roles: dict | None = None) -> list[str]:
-    """The tolerances of a twin that its floor (info["<name>_floor"]) kept from tightening."""
-    roles = contract.registered_roles() if roles is None else roles
-    return [
-        name
-        for name in roles["tolerance"]
-        if info.get(f"{name}_floor") and twin_options.get(name) == info[f"{name}_floor"]
-    ]
 
 
 def not_estimated(reason: str) -> dict:
@@ -242,16 +164,22 @@ def why_not_case(solver, params: SailParameters) -> str | None:
 
 def planned(solver, params, settings, options: dict, info: dict, roles: dict, progress: bool) -> tuple[dict, dict]:
     """(twins, loose options): the twins every estimate starts with, by name, as (case, options, Job): the loose
-    twin, the probe at the base run's options and the film twin at the loose twin's; `info`: the base run's, or
+    twin, the probe at the base run's options (its worker at a lower priority where the film twin may stand for
+    it) and the film twin at the loose twin's; `info`: the base run's, or
     the options the solver declares it will use (contract rule 10) when the twins start before it ends."""
-    loose = loosened(options, info, roles)
+    loose = twin_options.loosened(options, info, roles)
     twins = {"loose": (params, loose)}
     for name in roles["perturbation"][:1]:
         twins["probe"] = (params, {**options, name: PROBE_LEVEL * params.displacement_scale})
     film_case, _ = film_twin(params)
     if film_case is not None:
         twins["film"] = (film_case, loose)
-    return {name: (*twin, twin_job(solver, *twin, settings, progress)) for name, twin in twins.items()}, loose
+    jobs = {name: (*twin, twin_job(solver, *twin, settings, progress)) for name, twin in twins.items()}
+    for _, _, work in jobs.values():
+        work.answer_only = True  # never the run reported: its record and answer are all the estimate reads
+    if "probe" in jobs and "film" in jobs and params.model != "sheet":  # the film twin may stand for it
+        jobs["probe"][2].niceness = PROBE_NICENESS
+    return jobs, loose
 
 
 def twin_job(solver, case, options: dict, settings, progress: bool) -> twin_workers.Job:
@@ -275,43 +203,53 @@ def speculation(solver, params, options: dict, progress: bool):
     return speculate
 
 
-def twin_runs(solver, params, settings, options, result, roles, progress, base_cpu) -> tuple[dict, dict, list[str]]:
-    """(runs, records, order): the base run's twins (module docstring) by name, and the runs of the integration
+def twin_runs(solver, params, settings, options, result, roles, progress, base_cpu) -> tuple:
+    """(runs, records, order, bound): the base run's twins (module docstring) by name, and the runs of the integration
     sequence from the loosest to the reported one — ["loose", "base"], or the fallback's ["base", (half,) tight]
-    when the loose twin ends with a solver error or did not run looser (`looser`). The probe twin runs at the
-    base run's options, the film twin at those of order[0]. The twins run where twin_workers's open session
-    puts them (worker processes, started before the base run ended where their inputs were known; else here)."""
+    when the loose twin ends with a solver error or did not run looser (twin_options.looser). The film twin runs
+    at the options of order[0], then the probe twin at the base run's where the film twin does not bound it (the
+    bound, or None: film_twin.probe_bound, the last of the four returned). The twins run where twin_workers's open
+    session puts them (worker processes, started before the base run ended where their inputs were known; else here)."""
     runs, records = {"base": result}, {"base": record_of(result, options, base_cpu)}
     workers = twin_workers.current()
     twins, loose = planned(solver, params, settings, options, result.info, roles, progress)
     for _, _, work in twins.values():
         workers.submit(work)
 
-    def run(name, case, twin_options, work=None):
-        runs[name], cpu = workers.take(work or twin_job(solver, case, twin_options, settings, progress))
-        records[name] = record_of(runs[name], twin_options, cpu)
+    def run(name, case, run_options, work=None):
+        runs[name], cpu = workers.take(work or twin_job(solver, case, run_options, settings, progress))
+        records[name] = record_of(runs[name], run_options, cpu)
 
     run("loose", *twins["loose"])
     order, reference = ["loose", "base"], loose
-    if runs["loose"].error is not None or not looser(runs["loose"].info, result.info):
+    if runs["loose"].error is not None or not twin_options.looser(runs["loose"].info, result.info):
         order, reference = ["base"], options
-        tighter = [(name, tightened(options, result.info, factor, roles)) for name, factor in sequence(result.info)]
-        for _, twin_options in tighter:
-            workers.submit(twin_job(solver, params, twin_options, settings, progress))
-        for name, twin_options in tighter:
-            run(name, params, twin_options)
+        tighter = [
+            (name, twin_options.tightened(options, result.info, factor, roles))
+            for name, factor in twin_options.sequence(result.info)
+        ]
+        for _, tight_options in tighter:
+            workers.submit(twin_job(solver, params, tight_options, settings, progress))
+        for name, tight_options in tighter:
+            run(name, params, tight_options)
             order.append(name)
     elif not accurate(records["loose"], records["base"]):
-        name, factor = sequence(result.info)[0]
-        run(name, params, tightened(options, result.info, factor, roles))
+        name, factor = twin_options.sequence(result.info)[0]
+        run(name, params, twin_options.tightened(options, result.info, factor, roles))
         order.append(name)
-    if "probe" in twins:
-        run("probe", *twins["probe"])
     if "film" in twins:
         if reference is not loose:
             workers.discard(twins["film"][2])
         run("film", twins["film"][0], reference)
-    return runs, records, order
+    bound = None
+    if "probe" in twins:
+        level = PROBE_LEVEL * params.displacement_scale
+        bound = probe_bound(params, records, order[0], level, CONDITION_TOL * abs(records["base"]["value"]))
+        if bound is None:
+            run("probe", *twins["probe"])
+        else:
+            workers.discard(twins["probe"][2])
+    return runs, records, order, bound
 
 
 def assess(
@@ -334,7 +272,7 @@ def assess(
         return result
     quantity, failed, value = answer(result)
     roles = solver.roles() if hasattr(solver, "roles") else contract.registered_roles()
-    runs, records, order = twin_runs(solver, params, settings, options, result, roles, progress, base_cpu)
+    runs, records, order, bound = twin_runs(solver, params, settings, options, result, roles, progress, base_cpu)
     total_wall = sum(record["wall_time"] for record in records.values())
     for name, record in records.items():
         if record["error"] is not None and name not in ("film", "loose"):  # the film twin's error is its own record's
@@ -351,14 +289,18 @@ def assess(
     steps = [records[b]["value"] - records[a]["value"] for a, b in zip(order, order[1:])]
     same_verdict = all(records[name]["failed"] == failed for name in order)
     integration = sum(abs(d) for d in steps) if same_verdict else math.inf
-    probe, base = records["probe"], records["base"]
-    sensitivity = abs(probe["value"] - base["value"]) if probe["failed"] == base["failed"] else math.inf
+    probe, base = records.get("probe"), records["base"]
+    if probe is None:
+        sensitivity = bound
+    else:
+        sensitivity = abs(probe["value"] - base["value"]) if probe["failed"] == base["failed"] else math.inf
     location = sampling_error(reported, settings, failed)
     uncertainty = SAFETY * (integration + sensitivity) + location
     well = sensitivity <= CONDITION_TOL * abs(value)
     if "sampling" in result.info:
         reported.info["sampling"] = {**result.info["sampling"], "location_error": location if failed else None}
-    held = sorted({name for name in order[1:] for name in held_at_floor(records[name]["options"], result.info, roles)})
+    floored = twin_options.held_at_floor
+    held = sorted({name for name in order[1:] for name in floored(records[name]["options"], result.info, roles)})
     reported.uncertainty = {
         "estimated": True,
         "quantity": quantity,
@@ -366,12 +308,13 @@ def assess(
         "uncertainty": uncertainty,
         "integration_error": integration,
         "sensitivity": sensitivity,
+        "sensitivity_from": "film" if probe is None else "probe",
         "sampling_error": location,
         "well_conditioned": bool(well),
         "explanation": " ".join(
             part
             for part in (
-                explain(params, quantity, value, integration, sensitivity, well, failed),
+                explain(params, quantity, value, integration, sensitivity, well, failed, probe is None),
                 sampling_note(location, SAFETY * (integration + sensitivity), failed),
                 floor_note(held, result.info) if order[0] == "base" else "",
             )
@@ -416,14 +359,17 @@ def floor_note(held: list[str], info: dict) -> str:
     )
 
 
-def explain(params, quantity, value, integration, sensitivity, well, failed) -> str:
-    """One paragraph: how sure the run is and, when it is ill-conditioned, why and what would change it."""
+def explain(params, quantity, value, integration, sensitivity, well, failed, bounded=False) -> str:
+    """One paragraph: how sure the run is and, when it is ill-conditioned, why and what would change it; `bounded`:
+    the sensitivity is the film twin's bound (film_twin.probe_bound), the probe twin not run."""
     what = "failure time" if quantity == "failure_time" else "largest amplitude ratio"
     shortest = 2.0 * params.length / params.n
     if well:
+        how = "by about" if bounded else "by"
+        why = " (from the film twin's change, its perturbation far larger at every wave)" if bounded else ""
         return (
-            f"well-conditioned: a roughness of {PROBE_LEVEL:g} a₀ moves the {what} by "
-            f"{sensitivity / abs(value):.1g} relative (≤ {CONDITION_TOL:g}); the uncertainty is dominated by "
+            f"well-conditioned: a roughness of {PROBE_LEVEL:g} a₀ moves the {what} {how} "
+            f"{sensitivity / abs(value):.1g} relative (≤ {CONDITION_TOL:g}){why}; the uncertainty is dominated by "
             f"{'the integration error' if integration >= sensitivity else 'that sensitivity'}."
         )
     sheet = params.model == "sheet"

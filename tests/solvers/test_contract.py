@@ -8,7 +8,7 @@ import pytest
 
 from lightsail_mbs import ParameterError, RunSettings, SailParameters, solve
 from lightsail_mbs.analysis import linear_stability
-from lightsail_mbs.solvers import SOLVERS, contract, uncertainty
+from lightsail_mbs.solvers import SOLVERS, contract, twin_options
 
 SHEET = SailParameters(model="sheet", n=4, ny=4, youngs_modulus=4.5e9)
 
@@ -132,10 +132,10 @@ def test_roles_drive_the_twins_as_the_option_names_did():
     base run's info, a given step by √F, the Newton tolerances from info when there is no rtol."""
     exudyn_sheet = contract.REGISTRY[("exudyn", "sheet")].roles()
     info = {"method": "generalized-alpha", "step_size": 1e-3, "newton_rel_tol": 1e-8, "newton_abs_tol": 4e-12}
-    tight = uncertainty.tightened({}, info, 16.0, exudyn_sheet)
+    tight = twin_options.tightened({}, info, 16.0, exudyn_sheet)
     assert tight == {"step_size": pytest.approx(2.5e-4), "newton_rel_tol": 1e-8 / 16, "newton_abs_tol": 4e-12 / 16}
     reduced_chain = contract.REGISTRY[("reduced", "chain")].roles()
-    assert uncertainty.tightened({"atol": 1e-9}, {"rtol": 1e-8, "method": "DOP853"}, None, reduced_chain) == {
+    assert twin_options.tightened({"atol": 1e-9}, {"rtol": 1e-8, "method": "DOP853"}, None, reduced_chain) == {
         "rtol": pytest.approx(1e-10),
         "atol": pytest.approx(1e-11),
     }

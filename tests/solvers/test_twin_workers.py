@@ -186,3 +186,18 @@ def test_workers_only_where_a_core_stood_idle(monkeypatch):
     started = Started(monkeypatch)
     result = lightsail_mbs.solve(p, "reduced", settings)
     assert started.jobs == [] and result.uncertainty["estimated"]
+
+
+def test_an_answer_only_twin_comes_back_without_its_trajectories():
+    """A worker's answer-only Result (the loose, probe, film and n-twins) keeps the time, amplitude history and
+    answer of the run in process, with no column of its trajectories: kilobytes, not the megabytes of 6 s of a
+    chain, pickled back."""
+    p, settings = paper_case("torsion-stable", n=10), paper_settings("torsion-stable")
+    here = lightsail_mbs.solvers.solve(p, "reduced", settings, uncertainty=False)
+    work = twin_workers.job(("answer only",), lightsail_mbs.solvers.solve, p, "reduced", settings, uncertainty=False)
+    work.answer_only = True
+    there, _ = twin_workers.Worker(work).result()
+    assert np.array_equal(there.time, here.time) and np.array_equal(there.amplitude, here.amplitude)
+    assert there.max_amplitude_ratio == here.max_amplitude_ratio and there.failed == here.failed
+    assert there.x.shape == (here.time.size, 0) and there.omega.shape == (here.time.size, 0)
+    assert len(pickle.dumps(there)) < len(pickle.dumps(here)) / 10

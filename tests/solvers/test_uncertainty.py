@@ -11,7 +11,7 @@ import pytest
 from lightsail_mbs import RunSettings, SailParameters, paper_case
 from lightsail_mbs.model import theory
 from lightsail_mbs.result import Result, with_uncertainty
-from lightsail_mbs.solvers import solve, uncertainty
+from lightsail_mbs.solvers import film_twin, solve, twin_options, uncertainty
 
 exudyn = pytest.importorskip("exudyn")
 
@@ -66,9 +66,9 @@ def test_uncertainty_covers_the_difference_to_a_sixteenth_step(case, kind, t_fin
     fine = solve(p, "exudyn", settings, step_size=h / 16, uncertainty=False)
     u = reported.uncertainty
     assert u["quantity"] == kind and u["reported"] == "base" and u["reference"] == "loose"
-    assert [u[name]["options"]["step_size"] for name in ("base", "loose", "probe", "film")] == pytest.approx(
-        [h, 2 * h, h, 2 * h]
-    )
+    steps = {"base": h, "loose": 2 * h, "probe": h, "film": 2 * h}  # the probe where the film twin does not stand in
+    ran = [name for name in steps if name in u]
+    assert [u[name]["options"]["step_size"] for name in ran] == pytest.approx([steps[name] for name in ran])
     assert reported.info["step_size"] == pytest.approx(h)
     value = reported.failure_time if kind == "failure_time" else reported.max_amplitude_ratio
     fine_value = fine.failure_time if kind == "failure_time" else fine.max_amplitude_ratio
@@ -85,7 +85,7 @@ def test_reported_answer_is_the_base_run():
     assert reported.failure_time == alone.failure_time
     assert np.array_equal(reported.amplitude, alone.amplitude)
     u = reported.uncertainty
-    assert u["loose"]["options"]["rtol"] == pytest.approx(uncertainty.loosening(alone.info) * alone.info["rtol"])
+    assert u["loose"]["options"]["rtol"] == pytest.approx(twin_options.loosening(alone.info) * alone.info["rtol"])
     assert u["cpu_time"] >= u["base"]["cpu_time"] > 0
 
 
@@ -112,13 +112,13 @@ def test_not_estimated_for_a_flat_sail():
 
 
 def test_loose_twin_options():
-    assert uncertainty.loosened({}, {"rtol": 1e-7}) == {"rtol": pytest.approx(1e-6)}
-    assert uncertainty.loosened({}, {"rtol": 1e-8, "method": "DOP853"}) == {"rtol": pytest.approx(3e-8)}
-    loose = uncertainty.loosened({"step_size": 1e-3}, {"rtol": 1e-7, "method": "generalized-alpha"})
+    assert twin_options.loosened({}, {"rtol": 1e-7}) == {"rtol": pytest.approx(1e-6)}
+    assert twin_options.loosened({}, {"rtol": 1e-8, "method": "DOP853"}) == {"rtol": pytest.approx(3e-8)}
+    loose = twin_options.loosened({"step_size": 1e-3}, {"rtol": 1e-7, "method": "generalized-alpha"})
     assert loose["step_size"] == pytest.approx(2e-3) and loose["rtol"] == pytest.approx(4e-7)
     # a fixed-step solver without an rtol (Exudyn's sheet): the step × 2, its Newton tolerances × 4
     info = {"method": "generalized-alpha", "step_size": 1e-3, "newton_rel_tol": 1e-8, "newton_abs_tol": 1e-12}
-    assert uncertainty.loosened({}, info) == {
+    assert twin_options.loosened({}, info) == {
         "step_size": pytest.approx(2e-3),
         "newton_rel_tol": pytest.approx(4e-8),
         "newton_abs_tol": pytest.approx(4e-12),
@@ -127,37 +127,37 @@ def test_loose_twin_options():
 
 def test_tight_twin_options():
     info = {"rtol": 1e-7}
-    assert uncertainty.tightened({}, info) == {"rtol": 1e-8}
-    tight = uncertainty.tightened({"step_size": 1e-3, "atol": 1e-9}, info)
+    assert twin_options.tightened({}, info) == {"rtol": 1e-8}
+    tight = twin_options.tightened({"step_size": 1e-3, "atol": 1e-9}, info)
     assert tight["step_size"] == pytest.approx(1e-3 / math.sqrt(10)) and tight["atol"] == pytest.approx(1e-10)
-    quarter = uncertainty.tightened({"step_size": 1e-3}, {"rtol": 1e-7, "method": "generalized-alpha"})
+    quarter = twin_options.tightened({"step_size": 1e-3}, {"rtol": 1e-7, "method": "generalized-alpha"})
     assert quarter["step_size"] == pytest.approx(2.5e-4) and quarter["rtol"] == pytest.approx(1e-7 / 16)
-    assert uncertainty.tightened({}, {"rtol": 1e-8, "method": "DOP853"})["rtol"] == pytest.approx(1e-10)
+    assert twin_options.tightened({}, {"rtol": 1e-8, "method": "DOP853"})["rtol"] == pytest.approx(1e-10)
 
 
 def test_twin_sequences():
-    assert uncertainty.sequence({"method": "generalized-alpha", "rtol": 1e-7}) == [("half", 4.0), ("tight", 16.0)]
-    assert uncertainty.sequence({"method": "DOP853", "rtol": 1e-8}) == [("tight", 100.0)]
-    assert uncertainty.sequence({"method": "Radau", "rtol": 1e-6}) == [("tight", 10.0)]
+    assert twin_options.sequence({"method": "generalized-alpha", "rtol": 1e-7}) == [("half", 4.0), ("tight", 16.0)]
+    assert twin_options.sequence({"method": "DOP853", "rtol": 1e-8}) == [("tight", 100.0)]
+    assert twin_options.sequence({"method": "Radau", "rtol": 1e-6}) == [("tight", 10.0)]
     # a fixed-step solver without an rtol (Exudyn's sheet): the twin's step is the base run's / √F
     info = {"method": "generalized-alpha", "step_size": 1e-3, "newton_rel_tol": 1e-8, "newton_abs_tol": 1e-12}
-    half = uncertainty.tightened({}, info, 4.0)
+    half = twin_options.tightened({}, info, 4.0)
     assert half == {"step_size": pytest.approx(5e-4), "newton_rel_tol": 2.5e-9, "newton_abs_tol": 2.5e-13}
     # a Newton tolerance stops at the floor the base run reports (Exudyn's sheet: its connectors' round-off)
     floored = {**info, "newton_abs_tol_floor": 5e-13}
-    assert uncertainty.tightened({}, floored, 4.0)["newton_abs_tol"] == 5e-13
-    assert uncertainty.tightened({}, floored, 16.0)["step_size"] == pytest.approx(2.5e-4)
-    assert uncertainty.held_at_floor(uncertainty.tightened({}, floored, 4.0), floored) == ["newton_abs_tol"]
-    assert uncertainty.tightened({"newton_abs_tol": 1e-12}, floored, 16.0)["newton_abs_tol"] == 5e-13
-    assert uncertainty.held_at_floor(half, info) == []
+    assert twin_options.tightened({}, floored, 4.0)["newton_abs_tol"] == 5e-13
+    assert twin_options.tightened({}, floored, 16.0)["step_size"] == pytest.approx(2.5e-4)
+    assert twin_options.held_at_floor(twin_options.tightened({}, floored, 4.0), floored) == ["newton_abs_tol"]
+    assert twin_options.tightened({"newton_abs_tol": 1e-12}, floored, 16.0)["newton_abs_tol"] == 5e-13
+    assert twin_options.held_at_floor(half, info) == []
 
 
 class FakeSolver:
     """A solver whose failure time is a given function of its step (None: the step fails): the rule's bookkeeping
     in isolation."""
 
-    def __init__(self, failure_time):
-        self.failure_time = failure_time
+    def __init__(self, failure_time, film_shift=0.1):
+        self.failure_time, self.film_shift = failure_time, film_shift  # a film moves t_f by film_shift
 
     def run(self, params, settings, progress=False, step_size=1e-3, perturbation=0.0):
         from types import SimpleNamespace
@@ -165,7 +165,7 @@ class FakeSolver:
         t_f = self.failure_time(step_size)
         info = {"method": "generalized-alpha", "step_size": step_size}
         error = None if t_f is not None else "Newton did not converge"
-        t_f = (t_f or 1.0) + (1e-9 if perturbation else 0.0)
+        t_f = (t_f or 1.0) + (1e-9 if perturbation else 0.0) + (self.film_shift if params.film_rms else 0.0)
         time, amplitude = np.array([0.0, 0.5 * t_f, t_f]), np.array([1.0, 1.5, 2.0])  # a line: located exactly
         return SimpleNamespace(
             error=error,
@@ -195,8 +195,23 @@ def test_reported_run_is_the_base_and_its_error_bar_the_change_to_the_loose_twin
     assert u["integration_error"] == pytest.approx(3e-6)
     assert u["sensitivity"] == pytest.approx(1e-9)
     assert u["uncertainty"] == pytest.approx(2 * (3e-6 + 1e-9))
-    assert u["film_sensitivity"]["shift"] == 0.0  # the fake ignores the film: its twin equals the loose one
-    assert reported.wall_time == pytest.approx(4.0)  # base, the loose twin, the probe and the film twin
+    assert u["film_sensitivity"]["shift"] == pytest.approx(0.1) and u["sensitivity_from"] == "probe"
+    assert reported.wall_time == pytest.approx(4.0)  # base, the loose twin, the film twin and the probe
+
+
+def test_a_film_that_does_not_move_the_answer_stands_for_the_probe():
+    """The film moves t_f by 1e-6 (defect-dominated): the probe is not run, and S is the film's change times c, the
+    probe's largest amplitude over the film's mode by mode, which is far below 1 (a probe of 1e-12 a₀ against 1 nm)."""
+    solver = FakeSolver(nearest({1e-3: 1.0, 2e-3: 1.0 + 3e-6}), film_shift=1e-6)
+    p = paper_case("torsion-soft", n=10)
+    reported = uncertainty.assess(solver, p, RUN, {}, solver.run(p, RUN))
+    u = reported.uncertainty
+    c = film_twin.probe_ratio(p, uncertainty.PROBE_LEVEL * p.displacement_scale)
+    assert "probe" not in u and u["sensitivity_from"] == "film" and u["well_conditioned"]
+    assert u["sensitivity"] == pytest.approx(c * 1e-6, rel=1e-6) and 0 < c < 1e-4
+    assert u["uncertainty"] == pytest.approx(2 * (3e-6 + c * 1e-6))
+    assert "from the film twin's change" in u["explanation"]
+    assert reported.wall_time == pytest.approx(3.0)  # base, the loose twin and the film twin
 
 
 def test_a_base_run_the_loose_twin_finds_inaccurate_is_tightened():
@@ -211,7 +226,7 @@ def test_a_base_run_the_loose_twin_finds_inaccurate_is_tightened():
     assert u["integration_error"] == pytest.approx(5e-3 + 1e-4)
     assert "step_size" not in u["probe"]["options"] and u["sensitivity"] == pytest.approx(1e-9)  # the base run's
     assert u["film"]["options"]["step_size"] == pytest.approx(2e-3)
-    assert reported.wall_time == pytest.approx(5.0)  # base, loose, h/2, the probe and the film twin
+    assert reported.wall_time == pytest.approx(5.0)  # base, loose, h/2, the film twin and the probe
 
 
 def test_a_loose_twin_that_fails_falls_back_to_the_tightened_sequence():
@@ -228,7 +243,7 @@ def test_a_loose_twin_that_fails_falls_back_to_the_tightened_sequence():
     assert u["integration_error"] == pytest.approx(2e-6 + 7e-6)
     assert u["sensitivity"] == pytest.approx(1e-9)
     assert u["uncertainty"] == pytest.approx(2 * (9e-6 + 1e-9))
-    assert reported.wall_time == pytest.approx(6.0)  # base, loose, h/2, h/4, the probe and the film twin
+    assert reported.wall_time == pytest.approx(6.0)  # base, loose, h/2, h/4, the film twin and the probe
 
 
 @pytest.mark.parametrize(
