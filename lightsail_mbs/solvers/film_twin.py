@@ -93,15 +93,15 @@ def probe_ratio(params: SailParameters, probe_amplitude: float) -> float:
     return float(np.max(probe / change)) if np.all(change > 0) else math.inf
 
 
-def probe_bound(params: SailParameters, records: dict, reference: str, probe_amplitude: float, limit: float):
-    """S ≤ c · |q_film − q_ref| (module docstring) where the film twin of `records` ran, gave the verdict of the run
-    of options `reference`, moved its answer by at most FILM_TOL · |q| and the bound is at most `limit` (the
-    probe's); else None: the probe twin runs."""
+def probe_estimate(params: SailParameters, records: dict, reference: str, probe_amplitude: float, limit: float):
+    """S ≈ c · |q_film − q_ref| (module docstring; an estimate, not a bound) where the film twin of `records` ran,
+    gave the verdict of the run of options `reference`, moved its answer by at most FILM_TOL · |q| and the estimate
+    is at most `limit` (the probe's); else None: the probe twin runs."""
     twin, base = records.get("film"), records[reference]
     if twin is None or twin["error"] is not None or twin["failed"] != base["failed"]:
         return None
     shift = abs(twin["value"] - base["value"])
     if shift > FILM_TOL * abs(base["value"]):
         return None
-    bound = probe_ratio(params, probe_amplitude) * shift
-    return bound if bound <= limit else None
+    estimate = probe_ratio(params, probe_amplitude) * shift
+    return estimate if estimate <= limit else None

@@ -42,7 +42,7 @@ the base run is found inaccurate (item 1), and its error bar comes from twins th
    at the base run's options, not the loose twin's: how fast the grid-scale waves grow depends on the
    step that resolves them (the paper's soft extensible TnT sail, ill-posed in n, on Exudyn's
    generalized-α: S = 1.7e-4 s at the step h, 1.2e-2 s at 2h, whatever the Newton tolerances). **It runs only
-   where the film twin (item 4) does not bound it**: where the film moves q by at most FILM_TOL · |q| (its waves
+   where the film twin (item 4) does not stand for it**: where the film moves q by at most FILM_TOL · |q| (its waves
    stayed small, their effect linear in their amplitudes), S is estimated as c times the film's change, c the
    largest ratio of the probe's amplitude to the film's over the chain's modes (c ≤ 3e-5 on every chain of
    validation/accuracy.md), and the probe is not run (:mod:`~lightsail_mbs.solvers.film_twin`; sheets always run
@@ -92,7 +92,7 @@ import math
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.solvers import contract, events, twin_options, twin_workers
-from lightsail_mbs.solvers.film_twin import FILM_TOL, film_sensitivity, film_twin, probe_bound  # noqa: F401 - FILM_TOL
+from lightsail_mbs.solvers.film_twin import FILM_TOL, film_sensitivity, film_twin, probe_estimate  # noqa: F401 - FILM_TOL
 from lightsail_mbs.solvers.twin_options import DOP853_LOOSEN, LOOSEN, TIGHTEN, WIDE_TIGHTEN
 
 PROBE_LEVEL = 1e-12  # the probe twin's roughness amplitude, in units of the defect amplitude a₀
@@ -204,12 +204,13 @@ def speculation(solver, params, options: dict, progress: bool):
 
 
 def twin_runs(solver, params, settings, options, result, roles, progress, base_cpu) -> tuple:
-    """(runs, records, order, bound): the base run's twins (module docstring) by name, and the runs of the integration
-    sequence from the loosest to the reported one — ["loose", "base"], or the fallback's ["base", (half,) tight]
-    when the loose twin ends with a solver error or did not run looser (twin_options.looser). The film twin runs
-    at the options of order[0], then the probe twin at the base run's where the film twin does not bound it (the
-    bound, or None: film_twin.probe_bound, the last of the four returned). The twins run where twin_workers's open
-    session puts them (worker processes, started before the base run ended where their inputs were known; else here)."""
+    """(runs, records, order, estimate): the base run's twins (module docstring) by name, and the runs of the
+    integration sequence from the loosest to the reported one — ["loose", "base"], or the fallback's ["base",
+    (half,) tight] when the loose twin ends with a solver error or did not run looser (twin_options.looser). The
+    film twin runs at the options of order[0], then the probe twin at the base run's where the film twin does not
+    stand for it (the estimate, or None: film_twin.probe_estimate, the last of the four returned). The twins run
+    where twin_workers's open session puts them (worker processes, started before the base run ended where their
+    inputs were known; else here)."""
     runs, records = {"base": result}, {"base": record_of(result, options, base_cpu)}
     workers = twin_workers.current()
     twins, loose = planned(solver, params, settings, options, result.info, roles, progress)
@@ -241,15 +242,15 @@ def twin_runs(solver, params, settings, options, result, roles, progress, base_c
         if reference is not loose:
             workers.discard(twins["film"][2])
         run("film", twins["film"][0], reference)
-    bound = None
+    estimate = None
     if "probe" in twins:
         level = PROBE_LEVEL * params.displacement_scale
-        bound = probe_bound(params, records, order[0], level, CONDITION_TOL * abs(records["base"]["value"]))
-        if bound is None:
+        estimate = probe_estimate(params, records, order[0], level, CONDITION_TOL * abs(records["base"]["value"]))
+        if estimate is None:
             run("probe", *twins["probe"])
         else:
             workers.discard(twins["probe"][2])
-    return runs, records, order, bound
+    return runs, records, order, estimate
 
 
 def assess(
@@ -361,7 +362,7 @@ def floor_note(held: list[str], info: dict) -> str:
 
 def explain(params, quantity, value, integration, sensitivity, well, failed, bounded=False) -> str:
     """One paragraph: how sure the run is and, when it is ill-conditioned, why and what would change it; `bounded`:
-    the sensitivity is the film twin's bound (film_twin.probe_bound), the probe twin not run."""
+    the sensitivity is the film twin's estimate (film_twin.probe_estimate), the probe twin not run."""
     what = "failure time" if quantity == "failure_time" else "largest amplitude ratio"
     shortest = 2.0 * params.length / params.n
     if well:
