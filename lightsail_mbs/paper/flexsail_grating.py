@@ -266,6 +266,8 @@ RUNS = {
     "17 tiles, wide grating, Exudyn, 5 s": (5, 8, True, "exudyn", 5.0, {"step_size": 2.5e-5}, "wide"),
     "49 tiles, wide grating": (9, 12, True, "reduced", 1.0, {"rtol": 1e-4}, "wide"),
     "49 tiles, wide grating, Exudyn": (9, 12, True, "exudyn", 1.0, {"step_size": 2.5e-5}, "wide"),
+    "17 tiles, wide grating, 15 s": (5, 8, True, "reduced", 15.0, {"rtol": 1e-4}, "wide"),
+    "17 tiles, grating, 15 s": (5, 8, True, "reduced", 15.0, {"rtol": 1e-4}, "tables"),
 }
 # the pairs that test the grating runs beside those of the specular film's (flexsail.grating_pairs): (a, b, what
 # [, span]), b compared against a
@@ -309,6 +311,31 @@ EXTRA_PAIRS = [
     ("49 tiles, wide grating", "49 tiles, wide grating, Exudyn", "±6° law: Exudyn against in-house, 49 tiles, 1 s"),
     ("49 tiles, wide grating", "17 tiles, wide grating", "±6° law: mesh, 17 against 49 tiles, 1 s"),
 ]
+
+
+ENVELOPED = ("17 tiles, grating, 15 s", "17 tiles, wide grating, 15 s", "17 tiles, wide grating, Exudyn, 5 s")
+
+
+def envelope_rows(runs: dict, names=ENVELOPED) -> list[dict]:
+    """Whether a ride stays bounded: per run (those of `names` at hand), the largest distance from the axis (mm)
+    and tilt (°) within each second."""
+    rows = []
+    for name in (n for n in names if n in runs):
+        r = runs[name]
+        t = r["time"]
+        distance = 1e3 * np.hypot(r["lateral"][:, 0], r["lateral"][:, 1])
+        tilt = np.degrees(np.hypot(r["tilt"][:, 0], r["tilt"][:, 1]))
+        seconds = [(t >= k) & (t <= k + 1) for k in range(int(round(t[-1])))]
+        rows.append(
+            {
+                "run": name,
+                "largest distance from the axis in each second (mm)": " ".join(
+                    f"{distance[s].max():.0f}" for s in seconds
+                ),
+                "largest tilt in each second (°)": " ".join(f"{tilt[s].max():.1f}" for s in seconds),
+            }
+        )
+    return rows
 
 
 def ride_rows(runs: dict) -> list[dict]:

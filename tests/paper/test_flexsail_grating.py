@@ -43,7 +43,8 @@ def test_the_committed_laws_are_their_tables_fit():
 
 def test_our_rcwa_of_their_bars_reproduces_their_pressures_and_the_tilts_sign():
     """At normal incidence our RCWA is their published (0°, 0°) rows to 2e-3; across ±2° and at ±5° (the TM
-    region near its resonance at 6.5-7.5°) it is the ±6° law (WIDE, with TILT_SIGN) to 0.013, and 0.03 or more
+    region near its resonance at 6.5-7.5°) it is the ±6° law (WIDE, with TILT_SIGN) to 0.015 (measured: 0.013 at
+    TE +5°), and 0.03 or more
     away from that law read with the other sign; the ±3° quadratic carried to ±5° is 0.04 or more off the TM law."""
     rows = flexsail_grating.rcwa_rows(angles=(-5, -2, 0, 2, 5))
     laws = flexsail_grating.region_laws(wide=True)
@@ -54,7 +55,7 @@ def test_our_rcwa_of_their_bars_reproduces_their_pressures_and_the_tilts_sign():
         if row["θ (°)"] == 0:
             assert np.allclose(ours, theirs, atol=2e-3)
             continue
-        assert np.allclose(ours, theirs, atol=0.013)
+        assert np.allclose(ours, theirs, atol=0.015)
         u = math.sin(math.radians(row["θ (°)"]))
         other = [flexsail_grating.law_at(law, -u) for law in laws[row["region"]]]
         assert max(abs(a - b) for a, b in zip(ours, other)) > 0.03
