@@ -11,21 +11,26 @@ specular facet law (model.loads, the radiation term) the force
 
     δF = (I A/c) cos θ [c_g(u₁, u₂) ĝ + c_l(u₁, u₂) (n̂ × ĝ) + c_n(u₁, u₂) n̂],
 
-its pressures per unit lit area (cos θ A is the projected area, as in FlexSailSim's tables), each a quadratic
-c(u₁, u₂) = c₀ + c₁ u₁ + c₂ u₂ + c₁₁ u₁² + c₁₂ u₁u₂ + c₂₂ u₂²: its value, slopes and curvatures at normal
-incidence. A grating whose table gives its whole normal pressure c_z carries c_n = c_z − c_n,film (the film's
-(2R + α) cos θ expanded to second order: c̄ − c̄ (u₁² + u₂²)/2), so that the tile's normal pressure is the
-table's. With every coefficient 0 the load is the film's, to the bit.
+its pressures per unit lit area (cos θ A is the projected area, as in FlexSailSim's tables), each a polynomial
+of degree d in (u₁, u₂), its monomials in graded order (:func:`monomials`):
 
-**Sectors.** A layout (a TOML file, :func:`read`) lists sectors of the sail by polar angle φ about the sail's
-middle (L/2, W/2), φ from +x towards +y: each ``[[sector]]`` has ``from`` and ``to`` (degrees, to − from ≤ 360),
+    c(u₁, u₂) = c₀ + c₁ u₁ + c₂ u₂ + c₁₁ u₁² + c₁₂ u₁u₂ + c₂₂ u₂² + c₁₁₁ u₁³ + c₁₁₂ u₁²u₂ + … + c₂…₂ u₂^d,
+
+(d + 1)(d + 2)/2 coefficients: d = 2 is the value, slopes and curvatures at normal incidence; a higher d fits a
+table over wider angles. A grating whose table gives its whole normal pressure c_z carries c_n = c_z − c_n,film
+(the film's (2R + α) cos θ to the law's degree: c̄ − c̄ (u₁² + u₂²)/2 at d = 2), so that the tile's normal
+pressure is the table's. With every coefficient 0 the load is the film's, to the bit.
+
+**Sectors.** A layout (a TOML file, :func:`read`) lists sectors of the sail by polar angle φ about the sail's middle
+(L/2, W/2), φ from +x towards +y: each ``[[sector]]`` has ``from`` and ``to`` (degrees, to − from ≤ 360),
 ``direction`` (the grating vector's angle from the sail's x axis, degrees, in the sail's own axes, which are the
-tiles' at rest) and the three coefficient lists ``along`` (c_g), ``across`` (c_l) and ``normal`` (c_n), six
-numbers each in the order above (a list left out: zeros). Sectors may not overlap; a tile outside every sector
-is plain film. A tile that straddles sectors carries their laws weighted by the shares of its area in each
-(:func:`tile_coefficients`: the tile's polygon cut by the sectors' rays), rotated into the tile's own axes
-(x̂_b, ŷ_b) — the rotated law is again quadratic in (u_x, u_y) = (R x̂·ẑ, R ŷ·ẑ), so each tile carries 18 numbers:
-c_x, c_y, c_n in its axes (:data:`PER_TILE`).
+tiles' at rest) and the three coefficient lists ``along`` (c_g), ``across`` (c_l) and ``normal`` (c_n), each
+(d + 1)(d + 2)/2 numbers in the order above for some degree d ≤ MAX_DEGREE (a list left out: zeros; a shorter list is
+the same polynomial with zeros above its degree: the layout's degree is its longest list's). Sectors may not overlap; a
+tile outside every sector is plain film. A tile that straddles sectors carries their laws weighted by the shares of
+its area in each (:func:`tile_coefficients`: the tile's polygon cut by the sectors' rays), rotated into the tile's
+own axes (x̂_b, ŷ_b) — the rotated law is again a polynomial of degree d in (u_x, u_y) = (R x̂·ẑ, R ŷ·ẑ), so each
+tile carries 3 (d + 1)(d + 2)/2 numbers (18 at d = 2): c_x, c_y, c_n in its axes.
 """
 
 from __future__ import annotations
@@ -38,22 +43,41 @@ import numpy as np
 
 from lightsail_mbs.base.validation import ParameterError
 
-TERMS = 6  # c₀, c₁, c₂, c₁₁, c₁₂, c₂₂
-PER_TILE = 3 * TERMS  # c_x, c_y, c_n of a tile in its own axes
+MAX_DEGREE = 12
 LISTS = ("along", "across", "normal")
 KEYS = {"from", "to", "direction", *LISTS, "name"}
 
 
-def monomials(u1, u2) -> np.ndarray:
-    """(…, 6): 1, u₁, u₂, u₁², u₁u₂, u₂²."""
+def count(degree: int) -> int:
+    """The number of coefficients of a law of this degree, (d + 1)(d + 2)/2."""
+    return (degree + 1) * (degree + 2) // 2
+
+
+def degree_of(terms: int) -> int:
+    """The degree d of a law of `terms` coefficients (a triangular number: count(d) = terms)."""
+    return int(round((math.sqrt(8 * terms + 1) - 3) / 2))
+
+
+def powers(degree: int) -> list[tuple[int, int]]:
+    """The exponents (a, b) of u₁^a u₂^b in graded order: 1, u₁, u₂, u₁², u₁u₂, u₂², u₁³, …"""
+    return [(k - j, j) for k in range(degree + 1) for j in range(k + 1)]
+
+
+def monomials(u1, u2, degree: int = 2) -> np.ndarray:
+    """(…, count(degree)): the monomials u₁^a u₂^b in graded order (:func:`powers`), each row of degree k the
+    row of degree k − 1 times u₁, its last times u₂ (as the compiled kernel forms them)."""
     u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
-    return np.stack([np.ones_like(u1), u1, u2, u1 * u1, u1 * u2, u2 * u2], axis=-1)
+    rows = [[np.ones_like(u1)]]
+    for _ in range(degree):
+        rows.append([m * u1 for m in rows[-1]] + [rows[-1][-1] * u2])
+    return np.stack([m for row in rows for m in row], axis=-1)
 
 
 def _fail(path, what: str):
     raise ParameterError(
         f"grating={str(path)!r} is invalid: {what} (a TOML file of [[sector]] tables with from, to, direction "
-        f"in degrees and along, across, normal: 6 numbers each; model/sheet_grating.py)"
+        f"in degrees and along, across, normal: (d + 1)(d + 2)/2 numbers each, d ≤ {MAX_DEGREE}; "
+        f"model/sheet_grating.py)"
     )
 
 
@@ -78,17 +102,22 @@ def _read(path: str, stamp: float) -> tuple:
             _fail(path, f"sector {i + 1}: finite angles with 0 < to − from ≤ 360")
         laws = []
         for key in LISTS:
-            values = s.get(key, [0.0] * TERMS)
-            if len(values) != TERMS or not all(isinstance(v, (int, float)) and math.isfinite(v) for v in values):
-                _fail(path, f"sector {i + 1}: {key} must be {TERMS} finite numbers")
+            values = s.get(key, [0.0])
+            sizes = [count(d) for d in range(MAX_DEGREE + 1)]
+            numbers = isinstance(values, list) and all(isinstance(v, (int, float)) for v in values)
+            if not numbers or len(values) not in sizes or not all(math.isfinite(v) for v in values):
+                _fail(path, f"sector {i + 1}: {key} must be (d + 1)(d + 2)/2 finite numbers ({sizes[1:4]}, …)")
             laws.append([float(v) for v in values])
-        sectors.append((start, end, direction, tuple(map(tuple, laws))))
-    return tuple(sectors)
+        sectors.append((start, end, direction, laws))
+    terms = max(len(law) for *_, laws in sectors for law in laws)
+    padded = [(*head, tuple(tuple(law + [0.0] * (terms - len(law))) for law in laws)) for *head, laws in sectors]
+    return tuple(padded)
 
 
 def read(path: str) -> tuple:
-    """The sectors of a layout file: ((from, to, direction) in degrees, ((c_g), (c_l), (c_n))) per sector,
-    checked (one ParameterError line naming the field); read once per file version."""
+    """The sectors of a layout file: ((from, to, direction) in degrees, ((c_g), (c_l), (c_n))) per sector, every
+    list as long as the layout's longest (zeros above a list's own degree), checked (one ParameterError line
+    naming the field); read once per file version."""
     file = Path(path)
     if not file.is_file():
         _fail(path, "no such file")
@@ -111,15 +140,27 @@ def _inside(phi, start, end) -> np.ndarray:
 
 
 def rotated(law: np.ndarray, direction: float) -> np.ndarray:
-    """(3, 6): a sector's law ((c_g), (c_l), (c_n)) as c_x, c_y, c_n against (u_x, u_y) in the sail's axes, for
-    its grating vector at `direction` (rad) from x: u₁ = cos ψ u_x + sin ψ u_y, u₂ = −sin ψ u_x + cos ψ u_y,
-    c_x = cos ψ c_g − sin ψ c_l, c_y = sin ψ c_g + cos ψ c_l (exact: the quadratic is fitted at 6 points)."""
+    """(3, T): a sector's law ((c_g), (c_l), (c_n), T coefficients each) as c_x, c_y, c_n against (u_x, u_y) in
+    the sail's axes, for its grating vector at `direction` (rad) from x: u₁ = cos ψ u_x + sin ψ u_y,
+    u₂ = −sin ψ u_x + cos ψ u_y, c_x = cos ψ c_g − sin ψ c_l, c_y = sin ψ c_g + cos ψ c_l; each monomial
+    u₁^a u₂^b multiplied out in (u_x, u_y) (exact but for rounding)."""
+    law = np.asarray(law, float)
+    degree = degree_of(law.shape[1])
     c, s = math.cos(direction), math.sin(direction)
-    points = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0], [1.0, 1.0]])
-    basis = monomials(points[:, 0], points[:, 1])
-    local = monomials(c * points[:, 0] + s * points[:, 1], -s * points[:, 0] + c * points[:, 1]) @ np.asarray(law).T
-    values = np.stack([c * local[:, 0] - s * local[:, 1], s * local[:, 0] + c * local[:, 1], local[:, 2]], axis=1)
-    return np.linalg.solve(basis, values).T
+    index = {pair: i for i, pair in enumerate(powers(degree))}
+    change = np.zeros((law.shape[1], law.shape[1]))  # row: a monomial of (u₁, u₂); columns: its (u_x, u_y) form
+    for row, (a, b) in enumerate(powers(degree)):
+        poly = {(0, 0): 1.0}
+        for alpha, beta in [(c, s)] * a + [(-s, c)] * b:  # times (α u_x + β u_y)
+            product: dict = {}
+            for (i, j), v in poly.items():
+                product[(i + 1, j)] = product.get((i + 1, j), 0.0) + alpha * v
+                product[(i, j + 1)] = product.get((i, j + 1), 0.0) + beta * v
+            poly = product
+        for pair, v in poly.items():
+            change[row, index[pair]] += v
+    local = law @ change
+    return np.stack([c * local[0] - s * local[1], s * local[0] + c * local[1], local[2]])
 
 
 def _area(polygon: np.ndarray) -> float:
@@ -158,7 +199,8 @@ def shares(outline: np.ndarray, middle, sectors) -> np.ndarray:
 
 
 def tile_coefficients(p) -> np.ndarray:
-    """(N, 18): c_x, c_y, c_n (6 coefficients each) of every tile of case p in its own axes (module docstring)."""
+    """(N, 3T): c_x, c_y, c_n (T = (d + 1)(d + 2)/2 coefficients each, d the layout's degree) of every tile of
+    case p in its own axes (module docstring)."""
     from lightsail_mbs.model import planforms
 
     sectors = read(p.grating)

@@ -430,8 +430,10 @@ def write(out, quick: bool = False, names=None) -> Path:
             markdown_table(convergence_rows(runs)),
             "## Their metagrating's pressures: our RCWA of their bars against their tables (paper.flexsail_grating)",
             markdown_table(flexsail_grating.rcwa_rows()),
-            "## The runs with their metagrating's pressures (the grating term's sectors)",
+            "## The runs with their metagrating's pressures (the grating term's sectors; wide: their tables' ±6° law "
+            "of degree 8, else the ±3° quadratic)",
             markdown_table(flexsail_grating.ride_rows({k: v for k, v in runs.items() if k in flexsail_grating.RUNS})),
+            markdown_table(flexsail_grating.envelope_rows(runs)),
             "## Their pressures: convergence, bending, the two solvers and the angle dependence",
             markdown_table(convergence_rows(runs, grating_pairs())),
         ]

@@ -9,6 +9,15 @@ TM = ([0.14, -0.6, 0.1, 1.6, -0.2, 0.15], [-0.02, 0.1, 0.2, 0.3, 0.0, -0.1], [-0
 # FlexSailSim's pizza: TE about ±x, TM about ±y, in-plane pressures pointing outward
 PIZZA = ((-30, 30, 0, TE), (30, 150, 90, TM), (150, 210, 180, TE), (210, 330, 270, TM))
 ZERO = ([0.0] * 6,) * 3
+# a law of degree 5 (21 coefficients a list, graded order 1, u₁, u₂, u₁², u₁u₂, u₂², u₁³, …) beside one of degree 3
+HIGHER = [(-1) ** k * (9.0 + k) * 10 ** (k // 4) for k in range(15)]  # degrees 3, 4, 5: 9 … 2300
+QUINTIC = tuple([f * v for v in [0.15, 1.3, 0.2, -2.3, 0.4, -0.27] + HIGHER] for f in (1.0, -0.1, 0.5))
+CUBIC = (
+    [0.14, -0.6, 0.1, 1.6, -0.2, 0.15, 8.0, -3.0, 2.0, 5.0],
+    [0.01, 0.3, -0.1],
+    [-0.16, -0.2, 0.05, -1.4, 0.1, -0.5],
+)
+WIDE = ((-30, 30, 0, QUINTIC), (30, 150, 90, CUBIC), (150, 210, 180, QUINTIC), (210, 330, 270, CUBIC))
 _FOLDER = Path(tempfile.mkdtemp(prefix="grating_layouts_"))
 
 

@@ -14,7 +14,7 @@ from lightsail_mbs.model.sheet_grid import rotation_xyz
 from lightsail_mbs.solvers import contract
 from lightsail_mbs.solvers.exudyn.sheet import SheetSystem
 from lightsail_mbs.solvers.reduced.sheet import SheetModel
-from tests.model.grating_layouts import PIZZA, TE, TM, ZERO, write
+from tests.model.grating_layouts import CUBIC, PIZZA, QUINTIC, TE, TM, WIDE, ZERO, write
 
 C = 299_792_458.0
 PLATE = SailParameters(model="sheet", n=6, ny=4, length=0.8, width=0.6, youngs_modulus=4.5e9, intensity=1e9)
@@ -22,8 +22,13 @@ DISC = SailParameters(model="sheet", planform="disc", n=5, ny=8, youngs_modulus=
 
 
 def law(coefficients, u1, u2) -> np.ndarray:
-    """(c_g, c_l, c_n) of a sector's law at the direction cosines (u₁, u₂), by hand."""
-    return np.array([c[0] + c[1] * u1 + c[2] * u2 + c[3] * u1**2 + c[4] * u1 * u2 + c[5] * u2**2 for c in coefficients])
+    """(c_g, c_l, c_n) of a sector's law at the direction cosines (u₁, u₂), by hand: the k-th coefficient of
+    degree n multiplies u₁^(n − k) u₂^k."""
+    out = []
+    for c in coefficients:
+        exponents = [(n - k, k) for n in range(10) for k in range(n + 1)][: len(c)]
+        out.append(sum(v * u1**a * u2**b for v, (a, b) in zip(c, exponents)))
+    return np.array(out)
 
 
 def cross2(a, b) -> float:
@@ -43,19 +48,23 @@ def grating_force(p, centres, normals, axes):
     return terms.tile_forces(p, centres, normals, axes=axes) - plain
 
 
-@pytest.mark.parametrize("direction", [0.0, 35.0, 90.0])
-def test_a_rigid_tilted_sheet_carries_the_law_of_its_grating(direction):
+@pytest.mark.parametrize(
+    "direction, coefficients", [(0.0, TE), (35.0, TE), (90.0, TE), (35.0, QUINTIC), (-120.0, CUBIC)]
+)
+def test_a_rigid_tilted_sheet_carries_the_law_of_its_grating(direction, coefficients):
     """One grating over the whole plate (one sector of 360°), the plate turned rigidly (small tilts and a yaw) in
     a uniform beam: the grating's force is (I L W/c) cos θ [c_g ĝ + c_l (n̂ × ĝ) + c_n n̂] at the direction cosines
     u₁ = ĝ·ẑ, u₂ = (n̂ × ĝ)·ẑ of the turned grating vector ĝ = R (cos ψ, sin ψ, 0), and its torque about the
-    middle vanishes (every tile carries the same force per area)."""
-    p = PLATE.replace(grating=write(f"uniform{direction:g}", [(0, 360, direction, TE)]))
+    middle vanishes (every tile carries the same force per area); for laws of degree 2, 3 (lists of mixed
+    degree) and 5."""
+    name = f"uniform{direction:g}_{len(coefficients[0])}"
+    p = PLATE.replace(grating=write(name, [(0, 360, direction, coefficients)]))
     centres, normals, axes, R, middle = rigid(p, [0.03, -0.05, 0.7])
     psi = math.radians(direction)
     g = R @ [math.cos(psi), math.sin(psi), 0.0]
     n = R[:, 2]
     l = np.cross(n, g)
-    c = law(TE, g[2], l[2])
+    c = law(coefficients, g[2], l[2])
     expected = p.intensity * p.length * p.width / C * n[2] * (c[0] * g + c[1] * l + c[2] * n)
     f = grating_force(p, centres, normals, axes)
     np.testing.assert_allclose(f.sum(axis=0), expected, rtol=1e-12)
@@ -139,11 +148,13 @@ def test_zero_coefficients_are_todays_load_to_the_bit():
     assert np.array_equal(systems[0].force_vector(q, None, 0.1), systems[1].force_vector(q, None, 0.1))
 
 
-def test_both_kernels_hand_the_grating_the_tiles_axes():
+@pytest.mark.parametrize("sectors", ["PIZZA", "WIDE"])
+def test_both_kernels_hand_the_grating_the_tiles_axes(sectors):
     """The grating's part of the reduced right-hand side (its accelerations times the tiles' masses) and of
     Exudyn's compiled load, at a random turned state, is the term's numpy force at those tiles' centres, normals
-    R ẑ and in-plane axes R x̂."""
-    p = DISC.replace(grating=write("pizza", PIZZA), beam_waist=0.4, beam_centre=0.45)
+    R ẑ and in-plane axes R x̂: for the quadratic pizza and for laws of degree 5 and 3 (WIDE)."""
+    layout = {"PIZZA": PIZZA, "WIDE": WIDE}[sectors]
+    p = DISC.replace(grating=write(sectors.lower(), layout), beam_waist=0.4, beam_centre=0.45)
     rng = np.random.default_rng(8)
     reduced = [SheetModel(q) for q in (p.replace(grating=None), p)]
     y = reduced[0].y0() + rng.normal(0, 0.05, reduced[0].y0().size)
@@ -167,7 +178,7 @@ def test_layouts_and_cases_are_checked():
     for sectors, what in (
         ([(-30, 30, 0, TE), (20, 90, 90, TM)], "overlap"),
         ([(30, 30, 0, TE)], "0 < to − from ≤ 360"),
-        ([(0, 90, 0, (TE[0][:5], TE[1], TE[2]))], "along must be 6 finite numbers"),
+        ([(0, 90, 0, (TE[0][:5], TE[1], TE[2]))], r"along must be \(d \+ 1\)\(d \+ 2\)/2 finite numbers"),
     ):
         with pytest.raises(ParameterError, match=what):
             DISC.replace(grating=write("bad", sectors))
