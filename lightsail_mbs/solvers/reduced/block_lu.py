@@ -193,13 +193,23 @@ def _invert_diagonal(diagonal, out):
 
 
 @njit(cache=True)
-def _apply(M, y, k, t):
-    """t = M y[k] for a 6 × 6 block M."""
+def _apply(blocks, q, y, k, t):
+    """t = M y[k] for the 6 × 6 block M = blocks[q]."""
     for a in range(WIDTH):
-        s = M[a, 0] * y[k, 0]
+        s = blocks[q, a, 0] * y[k, 0]
         for c in range(1, WIDTH):
-            s += M[a, c] * y[k, c]
+            s += blocks[q, a, c] * y[k, c]
         t[a] = s
+
+
+@njit(cache=True)
+def _subtract(blocks, q, t, y, i):
+    """y[i] −= M t for the 6 × 6 block M = blocks[q]."""
+    for a in range(WIDTH):
+        s = y[i, a]
+        for c in range(WIDTH):
+            s -= blocks[q, a, c] * t[c]
+        y[i, a] = s
 
 
 @njit(cache=True)
@@ -213,25 +223,15 @@ def _solve(order, Lp, Li, Up, Ui, Lx, Ux, Linv, Uinv, b, out):
         for a in range(WIDTH):
             y[k, a] = b[WIDTH * order[k] + a]
     for j in range(n):
-        _apply(Linv[j], y, j, t)
+        _apply(Linv, j, y, j, t)
         y[j] = t
         for q in range(Lp[j], Lp[j + 1]):
-            i = Li[q]
-            for a in range(WIDTH):
-                s = y[i, a]
-                for c in range(WIDTH):
-                    s -= Lx[q, a, c] * t[c]
-                y[i, a] = s
+            _subtract(Lx, q, t, y, Li[q])
     for k in range(n - 1, -1, -1):
-        _apply(Uinv[k], y, k, t)
+        _apply(Uinv, k, y, k, t)
         y[k] = t
         for u in range(Up[k], Up[k + 1]):
-            j = Ui[u]
-            for a in range(WIDTH):
-                s = y[j, a]
-                for c in range(WIDTH):
-                    s -= Ux[u, a, c] * t[c]
-                y[j, a] = s
+            _subtract(Ux, u, t, y, Ui[u])
     for k in range(n):
         for a in range(WIDTH):
             out[WIDTH * order[k] + a] = y[k, a]
