@@ -230,9 +230,13 @@ class SheetModel:
         return self.flat + Y[..., 0:3], angles, Y[..., 7:10].copy(), omega
 
     def unpack_to(self, rows: np.ndarray, arrays: tuple, at: int) -> None:
-        """Writes :meth:`unpack` of state rows (T, 13N) into `arrays` (each (samples, N, 3)) from sample `at` on."""
-        for target, values in zip(arrays, self.unpack(rows)):
-            target[at : at + len(rows)] = values
+        """Writes :meth:`unpack` of state rows (T, 13N) into `arrays` (each (samples, N, 3)) from sample `at` on,
+        in place (no temporaries of the rows' size: at 100 × 100 tiles each would be fresh pages)."""
+        Y = np.ascontiguousarray(np.asarray(rows).reshape(len(rows), self.count, STATE))
+        centres, angles, velocities, omega = (a[at : at + len(rows)] for a in arrays)
+        np.add(self.flat, Y[..., 0:3], out=centres)
+        velocities[...] = Y[..., 7:10]
+        unpack_into(Y, angles, omega)
 
     def stiffness(self, y: np.ndarray) -> sp.csc_matrix:
         """K = ∂a/∂ξ = A_X B: accelerations per generalised displacement ξ = (Δu, Δθ_b) of every tile."""
