@@ -50,24 +50,29 @@ class Counts:
         self.factor = {}
 
     def install(self):
-        original, counts = sheet_radau.ReducedLU, self
+        original, counts, factor = sheet_radau.ReducedLU, self, sheet_radau.splu
+        made = []
+
+        def kept(*args, **kwargs):  # SuperLU's factorisation, kept here (ReducedLU keeps only its blocks)
+            made[:] = [factor(*args, **kwargs)]
+            return made[0]
 
         class Counted(original):
             def __init__(self, system, mu):
                 super().__init__(system, mu)
                 counts.factorisations += 1
-                counts.factor.setdefault(bool(np.iscomplexobj(mu)), (self.lu, system))
+                counts.factor.setdefault(bool(np.iscomplexobj(mu)), (made[0], system))
                 if not np.iscomplexobj(mu):
-                    counts.nnz = max(counts.nnz, self.lu.L.nnz + self.lu.U.nnz)
+                    counts.nnz = max(counts.nnz, self.nnz)
 
             def solve(self, f):
                 counts.solves[bool(np.iscomplexobj(self.mu))] += 1
                 return super().solve(f)
 
-        sheet_radau.ReducedLU = Counted
+        sheet_radau.ReducedLU, sheet_radau.splu = Counted, kept
 
         def undo():
-            sheet_radau.ReducedLU = original
+            sheet_radau.ReducedLU, sheet_radau.splu = original, factor
 
         return undo
 

@@ -186,8 +186,10 @@ class ReducedLU:
             self.dtype = np.dtype(np.complex64 if self.complex else np.float32)
             S = S.astype(self.dtype)
         S = S[system.order][:, system.order]
-        self.lu = splu(S, permc_spec="NATURAL", diag_pivot_thresh=0.0, options=dict(SymmetricMode=True))
-        self.blocks = block_lu.BlockFactors.from_superlu(self.lu, system.pattern)
+        lu = splu(S, permc_spec="NATURAL", diag_pivot_thresh=0.0, options=dict(SymmetricMode=True))
+        self.nnz = lu.L.nnz + lu.U.nnz
+        self.blocks = block_lu.BlockFactors.from_superlu(lu, system.pattern)
+        self.lu = lu if self.blocks is None else None  # SuperLU's own factors only where the blocks do not fit
 
     def solve(self, f):
         s, mu = self.system, self.mu
