@@ -75,3 +75,23 @@ def test_factors_with_row_interchanges_are_refused():
     lu = splu(S[order][:, order], permc_spec="NATURAL", diag_pivot_thresh=1.0)
     assert not np.array_equal(lu.perm_r, np.arange(S.shape[0]))
     assert block_lu.BlockFactors.from_superlu(lu, pattern) is None
+
+
+def test_small_pages_restores_numpys_huge_page_advice():
+    """The factors and samples are allocated without numpy's huge-page advice (sheet_radau.small_pages); the
+    advice is numpy's own setting again afterwards, also after an error."""
+    from numpy._core import multiarray
+
+    from lightsail_mbs.solvers.reduced.sheet_radau import empty_small_pages, small_pages
+
+    before = multiarray._set_madvise_hugepage(True)
+    try:
+        with pytest.raises(RuntimeError), small_pages():
+            assert multiarray._set_madvise_hugepage(False) is False  # off inside
+            raise RuntimeError
+        assert multiarray._set_madvise_hugepage(True) is True  # on again
+        a = empty_small_pages((3, 4), np.float32)
+        assert a.shape == (3, 4) and a.dtype == np.float32
+        assert multiarray._set_madvise_hugepage(True) is True
+    finally:
+        multiarray._set_madvise_hugepage(before)
