@@ -3,7 +3,8 @@
 The paper's soft sail (E = 4.5e9 Pa, 1-D sine ν = 1.5) on nx × nx tiles, run to failure by the in-house
 solver with its defaults, once warm in this process and once more under cProfile with the process CPU clock
 (time.process_time), its time grouped by what the work is: the sparse triangular solves of the Newton
-iterations and the error estimate (SuperLU), the factorisations, the two sparse products of each solve
+iterations and the error estimate (block_lu), the factorisations (SuperLU, and the copy of its factors into
+blocks), the two sparse products of each solve
 (A_X, B), the right-hand sides (the compiled kernel; those of the coloured finite-difference Jacobian
 counted apart from the count of Jacobians × colours × 13), the sampling and unpacking of the output, and
 the rest. The counts are the run's: steps, Newton iterations (one complex solve each), solves,
@@ -32,8 +33,8 @@ from lightsail_mbs.solvers.reduced.sheet import STATE  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 GROUPS = {  # category -> (parts of built-in functions' names, names of Python functions) it holds
-    "triangular solves": (("method 'solve' of 'SuperLU'",), ()),
-    "factorisations": (("gstrf",), ()),
+    "triangular solves": (("method 'solve' of 'SuperLU'",), ("_solve",)),
+    "factorisations": (("gstrf",), ("from_superlu", "_gather_factor", "_invert_diagonal")),
     "sparse products": (("csr_matvec",), ()),
     "right-hand sides": ((), ("rhs_kernel",)),
     "output (dense output, sampling, unpacking)": ((), ("unpack_into", "sol", "plane_offsets", "unpack")),
@@ -49,24 +50,29 @@ class Counts:
         self.factor = {}
 
     def install(self):
-        original, counts = sheet_radau.ReducedLU, self
+        original, counts, factor = sheet_radau.ReducedLU, self, sheet_radau.splu
+        made = []
+
+        def kept(*args, **kwargs):  # SuperLU's factorisation, kept here (ReducedLU keeps only its blocks)
+            made[:] = [factor(*args, **kwargs)]
+            return made[0]
 
         class Counted(original):
             def __init__(self, system, mu):
                 super().__init__(system, mu)
                 counts.factorisations += 1
-                counts.factor.setdefault(bool(np.iscomplexobj(mu)), (self.lu, system))
+                counts.factor.setdefault(bool(np.iscomplexobj(mu)), (made[0], system))
                 if not np.iscomplexobj(mu):
-                    counts.nnz = max(counts.nnz, self.lu.L.nnz + self.lu.U.nnz)
+                    counts.nnz = max(counts.nnz, self.nnz)
 
             def solve(self, f):
                 counts.solves[bool(np.iscomplexobj(self.mu))] += 1
                 return super().solve(f)
 
-        sheet_radau.ReducedLU = Counted
+        sheet_radau.ReducedLU, sheet_radau.splu = Counted, kept
 
         def undo():
-            sheet_radau.ReducedLU = original
+            sheet_radau.ReducedLU, sheet_radau.splu = original, factor
 
         return undo
 

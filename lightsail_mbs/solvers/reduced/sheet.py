@@ -58,7 +58,7 @@ from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.progress import Progress
 from lightsail_mbs.solvers.reduced.sheet_kernels import STATE, fill_jacobian, rhs_kernel, unpack_into
-from lightsail_mbs.solvers.reduced.sheet_radau import SheetRadau, distance2_colouring
+from lightsail_mbs.solvers.reduced.sheet_radau import SheetRadau, distance2_colouring, empty_small_pages
 from lightsail_mbs.solvers.reduced.sheet_tethers import append_payload, split_bodies
 from lightsail_mbs.solvers.reduced.sheet_turning import TurningFrame
 from lightsail_mbs.solvers.skeleton import FailureMonitor
@@ -223,16 +223,18 @@ class SheetModel:
 
     def unpack(self, Y: np.ndarray):
         """(centres, xyz angles, velocities, global angular velocities) of state rows (T, 13N), each (T, N, 3)."""
-        Y = np.ascontiguousarray(np.asarray(Y).reshape(len(Y), self.count, STATE))
-        angles = np.empty(Y.shape[:2] + (3,))
-        omega = np.empty(Y.shape[:2] + (3,))
-        unpack_into(Y, angles, omega)
-        return self.flat + Y[..., 0:3], angles, Y[..., 7:10].copy(), omega
+        arrays = tuple(np.empty((len(Y), self.count, 3)) for _ in range(4))
+        self.unpack_to(Y, arrays, 0)
+        return arrays
 
     def unpack_to(self, rows: np.ndarray, arrays: tuple, at: int) -> None:
-        """Writes :meth:`unpack` of state rows (T, 13N) into `arrays` (each (samples, N, 3)) from sample `at` on."""
-        for target, values in zip(arrays, self.unpack(rows)):
-            target[at : at + len(rows)] = values
+        """Writes :meth:`unpack` of state rows (T, 13N) into `arrays` (each (samples, N, 3)) from sample `at` on,
+        in place (no temporaries of the rows' size: at 100 × 100 tiles each would be fresh pages)."""
+        Y = np.ascontiguousarray(np.asarray(rows).reshape(len(rows), self.count, STATE))
+        centres, angles, velocities, omega = (a[at : at + len(rows)] for a in arrays)
+        np.add(self.flat, Y[..., 0:3], out=centres)
+        velocities[...] = Y[..., 7:10]
+        unpack_into(Y, angles, omega)
 
     def stiffness(self, y: np.ndarray) -> sp.csc_matrix:
         """K = ∂a/∂ξ = A_X B: accelerations per generalised displacement ξ = (Δu, Δθ_b) of every tile."""
@@ -314,9 +316,8 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
     times = settings.sample_times()
     monitor = FailureMonitor(failure.plane_amplitude(model.start), settings)
     bar = Progress(settings.t_final, progress, label=f"reduced sheet {sheet.tile_count(params)} tiles")
-    # the bodies' (centres, angles, velocities, angular velocities) at every sample, unpacked as the samples
-    # come (np.empty: only the pages of the samples written are ever touched; GBs at 100 × 100 tiles)
-    arrays = tuple(np.empty((len(times), model.count, 3)) for _ in range(4))
+    # the bodies' (centres, angles, velocities, angular velocities) at every sample, unpacked as they come
+    arrays = tuple(empty_small_pages((len(times), model.count, 3)) for _ in range(4))  # pages touched as written
     model.unpack_to(model.inertial([0.0], y0[None]), arrays, 0)
     error, k = None, 1
     try:

@@ -25,9 +25,9 @@ scipy's Radau as is, 3.5 s CPU with the first four; docs: sheet):
 3. **Jacobian refresh only when simplified Newton contracts slower than JACOBIAN_RATE** (scipy: 1e-3
    after more than two iterations), with up to NEWTON_MAXITER iterations: tile rotations of 1e-4 rad
    give contraction rates of 1e-2–0.3, and scipy's rule refreshed 68–174 times per run.
-4. SuperLU with a minimum-degree ordering of the bodies (body_order: each body's 6 unknowns kept together)
-   on the structurally symmetric pattern and no pivoting (μI dominates the diagonal), in single precision
-   (ReducedLU).
+4. SuperLU with a minimum-degree ordering of the bodies (each body's 6 unknowns kept together) on the
+   structurally symmetric pattern and no pivoting (μI dominates the diagonal), in single precision, its
+   factors copied into 6 × 6 blocks for the triangular solves (ReducedLU, block_lu).
 5. The first Newton increment of a step may already be converged, judged by the contraction rate θ last
    measured (RADAU5's FACCON = θ/(1 − θ), raised to the power 0.8 at every step so that an old rate counts
    for less; scipy's Radau always iterates at least twice): at 20 × 20 tiles 25 % fewer iterations.
@@ -36,13 +36,14 @@ scipy's Radau as is, 3.5 s CPU with the first four; docs: sheet):
 from __future__ import annotations
 
 import heapq
+from contextlib import contextmanager
 
 import numpy as np
 import scipy.sparse as sp
 from numpy.linalg import norm
 from scipy.sparse.linalg import splu
 
-from lightsail_mbs.solvers.reduced import tableaus
+from lightsail_mbs.solvers.reduced import block_lu, tableaus
 
 C = tableaus.RADAU_C
 E = tableaus.RADAU_E
@@ -126,15 +127,39 @@ def solve_collocation(fun, t, y, h, Z0, scale, tol, lu_real, lu_complex, faccon=
     return converged, k + 1, Z, rate
 
 
+@contextmanager
+def small_pages():
+    """numpy's large arrays allocated in this block without its transparent-huge-page advice. On a machine whose
+    memory is fragmented the kernel compacts memory to give an advised region its 2 MB pages at the first touch:
+    measured on this (shared) machine, the first touch of 2 GB took 3.7–5.5 s with the advice and 0.8 s without
+    (0.14 s when huge pages were free). The sheet's factors (~0.1 GB each at 100 × 100 tiles, a new pair per step
+    level and Jacobian) and its samples (GBs) are written once each, where that compaction dominated."""
+    advise = getattr(getattr(np, "_core", np).multiarray, "_set_madvise_hugepage", None)
+    previous = advise(False) if advise is not None else None
+    try:
+        yield
+    finally:
+        if advise is not None:
+            advise(previous)
+
+
+def empty_small_pages(shape, dtype=float) -> np.ndarray:
+    """np.empty(shape, dtype) allocated in small_pages."""
+    with small_pages():
+        return np.empty(shape, dtype)
+
+
 class ReducedSystem:
-    """The frozen Jacobian's blocks A_X, A_V, B and K = A_X B, and the index sets of X and V.
+    """The frozen Jacobian's blocks A_X, A_V, B and K = A_X B, the index sets of X and V, and the body pattern of
+    the reduced matrix with its elimination order and symbolic factorisation (block_lu.BlockPattern;
+    `pattern`: an earlier system's, reused when the pattern is the same).
 
     products(complex) gives A_X and B for the right-hand sides of that kind: for the complex system their
     complex copies, made once per Jacobian (a real sparse matrix times a complex vector converts the
     matrix at every product: 8 ms a product at 100 × 100 tiles; the converted product is the same
     arithmetic, so the same numbers)."""
 
-    def __init__(self, J: sp.spmatrix, B: sp.spmatrix, X: np.ndarray, V: np.ndarray):
+    def __init__(self, J: sp.spmatrix, B: sp.spmatrix, X: np.ndarray, V: np.ndarray, pattern=None):
         rows = J.tocsr()[V]
         self.AX = rows[:, X].tocsr()
         self.AV = rows[:, V].tocsc()
@@ -143,7 +168,9 @@ class ReducedSystem:
         self.X, self.V = X, V
         self.n = J.shape[0]
         self.identity = sp.identity(len(V), format="csc")
-        self.order = body_order(abs(self.AV) + abs(self.K) + self.identity)
+        graph = block_lu.body_graph(abs(self.AV) + abs(self.K), BODY_VELOCITIES)
+        self.pattern = pattern if pattern is not None and pattern.matches(graph) else block_lu.BlockPattern(graph)
+        self.order = (BODY_VELOCITIES * self.pattern.order[:, None] + np.arange(BODY_VELOCITIES)).ravel()
         self._complex = None
 
     def products(self, complex_: bool):
@@ -155,23 +182,13 @@ class ReducedSystem:
         return self._complex
 
 
-def body_order(S: sp.spmatrix, width: int = BODY_VELOCITIES) -> np.ndarray:
-    """A fill-reducing elimination order of the unknowns of S (`width` consecutive ones per body) that keeps
-    each body's unknowns together: SuperLU's minimum degree (MMD on the pattern of Sᵀ + S) on the graph of
-    the bodies, each body's unknowns then in their own order. Minimum degree on the scalar unknowns
-    interleaves bodies: at 100 × 100 tiles its factors need 1.4× (real) and 1.2× (complex) the time per
-    triangular solve of this order's, for the same fill (12.5 M entries)."""
-    bodies = S.shape[0] // width
-    coo = S.tocoo()
-    T = sp.csc_matrix((np.ones(coo.nnz), (coo.row // width, coo.col // width)), shape=(bodies, bodies))
-    T.data[:] = 1.0
-    T = (T + T.T + (2 * np.diff(T.indptr).max() + 1) * sp.identity(bodies)).tocsc()  # diagonally dominant
-    position = splu(T, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options=dict(SymmetricMode=True)).perm_c
-    return (width * np.argsort(position)[:, None] + np.arange(width)).ravel()
-
-
 class ReducedLU:
     """The LU of μ I − A_V − K/μ and the back-substitution of the full system (μ I − J) x = f.
+
+    SuperLU factors the matrix with the rows and columns in the bodies' elimination order (ReducedSystem.order)
+    and no pivoting (μ I dominates the diagonal); its factors are then copied into 6 × 6 blocks
+    (block_lu.BlockFactors), whose triangular solves are dense block products (SuperLU's own solve where they
+    do not fit the block pattern).
 
     With single=True (default: SINGLE_PRECISION_LU) the LU is factored and applied in single precision
     (float32, complex64), everything around it in double: the reduced right-hand side is formed in double
@@ -192,16 +209,23 @@ class ReducedLU:
             self.dtype = np.dtype(np.complex64 if self.complex else np.float32)
             S = S.astype(self.dtype)
         S = S[system.order][:, system.order]
-        self.lu = splu(S, permc_spec="NATURAL", diag_pivot_thresh=0.0, options=dict(SymmetricMode=True))
+        with small_pages():
+            lu = splu(S, permc_spec="NATURAL", diag_pivot_thresh=0.0, options=dict(SymmetricMode=True))
+            self.nnz = lu.L.nnz + lu.U.nnz
+            self.blocks = block_lu.BlockFactors.from_superlu(lu, system.pattern)
+        self.lu = lu if self.blocks is None else None  # SuperLU's own factors only where the blocks do not fit
 
     def solve(self, f):
         s, mu = self.system, self.mu
         fx, fv = f[s.X], f[s.V]
         AX, B = s.products(self.complex or np.iscomplexobj(f))
         rhs = fv + (AX @ fx) / mu
-        order = s.order
-        xv = np.empty_like(rhs)
-        xv[order] = self.lu.solve(rhs[order].astype(self.dtype, copy=False))
+        if self.blocks is not None and not (np.iscomplexobj(rhs) and not self.complex):
+            xv = self.blocks.solve(rhs)
+        else:
+            order = s.order
+            xv = np.empty_like(rhs)
+            xv[order] = self.lu.solve(rhs[order].astype(self.dtype, copy=False))
         xx = (fx + B @ xv) / mu
         out = np.empty(s.n, dtype=np.result_type(xv, xx))
         out[s.X] = xx
@@ -233,10 +257,12 @@ class SheetRadau:
         self.status = "running"
         self.njev = self.nlu = self.nsteps = self.nrejected = 0
         self.step_index = 0  # t = step_index · h_max / 2^MAX_LEVEL, exact
+        self.system = None
         self._new_jacobian()
 
     def _new_jacobian(self):
-        self.system = ReducedSystem(self.jac(self.t, self.y), self.kinematics(self.y), self.X, self.V)
+        pattern = None if self.system is None else self.system.pattern  # the same for the whole run
+        self.system = ReducedSystem(self.jac(self.t, self.y), self.kinematics(self.y), self.X, self.V, pattern)
         self.current_jac = True
         self.lus = {}
         self.njev += 1
