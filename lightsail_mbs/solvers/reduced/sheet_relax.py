@@ -61,9 +61,11 @@ RELAX_TURNS = 6.0  # the relaxation's length in turns: every deformation decays 
 RTOL = 1e-6
 
 
-def relaxing_case(p: SailParameters) -> SailParameters:
-    """The case whose turning-frame dynamics are relaxed: p unlit, started from its initial shape."""
-    return p.replace(intensity=0.0, spin_equilibrium=False)
+def relaxing_case(p: SailParameters, lit: bool = False) -> SailParameters:
+    """The case whose turning-frame dynamics are relaxed: p untilted, unlit unless `lit`, started from its initial
+    shape (the run's start, model.sheet_pose.initial_motion, tilts the relaxed shape as one body)."""
+    q = p.replace(spin_equilibrium=False, initial_tilt=0.0, initial_tilt_y=0.0)
+    return q if lit else q.replace(intensity=0.0)
 
 
 class DampedTurning:
@@ -102,12 +104,20 @@ class DampedTurning:
         return (self.model.jacobian(t, y) - self.diagonal).tocsc()
 
 
-def spun_equilibrium(p: SailParameters) -> tuple[np.ndarray, np.ndarray]:
+def spun_equilibrium(p: SailParameters, lit: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """(centres (B, 3), quaternions (B, 4)) of every body (the tiles, then the payload) at rest in the frame
-    turning with the spinning sheet case p, unlit (module docstring)."""
+    turning with the spinning sheet case p, unlit (module docstring), or `lit` by a beam centred on the spin
+    axis (the state a spectrum in the turning frame linearises about; the craft's rigid acceleration along
+    the axis, its thrust against the frame's g₀, is left to it)."""
     if p.spin_rate == 0:
         raise ParameterError("spin_rate=0 is invalid for a spun equilibrium: allowed a spinning sheet")
-    model = SheetModel(relaxing_case(p), frame="turning")
+    centred = p.beam_centre in (None, 0.5 * p.length) and p.beam_centre_y in (None, 0.5 * p.width)
+    if lit and not centred:
+        raise ParameterError(
+            f"beam_centre={p.beam_centre!r}, beam_centre_y={p.beam_centre_y!r} are invalid for a lit spun "
+            "equilibrium: allowed the beam on the spin axis (None, or L/2 and W/2)"
+        )
+    model = SheetModel(relaxing_case(p, lit), frame="turning")
     spin = float(np.linalg.norm(model.turning.spin))
     damped = DampedTurning(model, DAMPING * spin)
     turn = 2.0 * math.pi / spin
