@@ -11,6 +11,14 @@ ones: the Coriolis force of a body at rest is zero. The springs keep their rest 
 deform from the case's initial shape (unlike initial_equilibrium with spin, model.sheet_spin, which corrects
 the rest state so that the initial shape itself rests and compresses a doubly curved sheet's tiles).
 
+Tethers
+-------
+A payload on tethers has no unlit spun equilibrium: unlit, the tethers start at their rest lengths (they carry
+the payload's share m_p g₀, which is zero without light) and the spinning cap pulls their rim ends in as it
+flattens: relaxed, the map's cap at 80 rad/s with six tethers (k = 1e3 N/m) has five of them slack, by up to
+1.8 cm, the payload floating 4 mm off the axis. ``spin_equilibrium`` refuses tethers; the lit equilibrium
+(``lit=True``, a spectrum's state) holds them taut by the payload's load.
+
 The solve
 ---------
 The same turning-frame equations as a run, unlit (intensity 0: no light, no accelerating frame, the stem
@@ -117,6 +125,18 @@ def spun_equilibrium(p: SailParameters, lit: bool = False) -> tuple[np.ndarray, 
             f"beam_centre={p.beam_centre!r}, beam_centre_y={p.beam_centre_y!r} are invalid for a lit spun "
             "equilibrium: allowed the beam on the spin axis (None, or L/2 and W/2)"
         )
+    if p.payload_tethers and not lit:
+        raise ParameterError(
+            f"spin_equilibrium=True is invalid with payload_tethers={p.payload_tethers}: unlit the tethers carry "
+            "nothing (ℓ₀ = ℓ) and the spinning cap slackens them, leaving the payload no equilibrium; allowed a stem "
+            "payload (payload_tethers=0) or no payload"
+        )
+    return relax(p, lit)
+
+
+def relax(p: SailParameters, lit: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """(centres, quaternions) of every body of the spinning case p's relaxing_case after RELAX_TURNS turns of the
+    damped turning-frame dynamics (module docstring), without spun_equilibrium's checks."""
     model = SheetModel(relaxing_case(p, lit), frame="turning")
     spin = float(np.linalg.norm(model.turning.spin))
     damped = DampedTurning(model, DAMPING * spin)
