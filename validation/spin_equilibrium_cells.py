@@ -1,11 +1,23 @@
-"""Four cells of the spin map (paper.spinning_maps: the 25-tile billowed disc, R_c = 1 m, a stem payload of the
-sail's mass, the beam's axis 0.2 w off the middle) run from the spun equilibrium (spin_equilibrium: the unlit
-shape at rest in the turning frame, solvers.reduced.sheet_relax) for the map's 1.2 s, with the map's settings,
-solver options and verdict rule (studies.ride_maps.cell_of), beside the map's own cells, which started
-from the spun state that held the cap's shape.
+"""The spin map's cap from the spun equilibrium: its spectrum in the turning frame, and the map's spinning cells.
+
+A. **Spectrum** (analysis.spin_spectrum). The map's case (paper.spinning_maps: the 25-tile disc of the stiff film
+   on a cap of R_c = 1 m, a stem payload of the sail's mass at 1.15 d*) spinning at 40, 80 and 120 rad/s in its
+   beam centred on the spin axis, linearised in its turning frame about its lit spun equilibrium
+   (spin_spectrum.lit_state: the relaxation of solvers.reduced.sheet_relax with the light on): the fastest
+   eigenvalue of the whole linearisation L, of L on the craft's six rigid motions (spin_spectrum.rigid_modes:
+   the shape held) and of the deformations (rotating_spectrum), beside the rigid criterion's fastest root
+   (analysis.ride3d_criterion, undamped, on the sphere R_c). The relaxed cap's sag and the radius of the sphere
+   through its apex and rim, R_fit = (r² + s²)/(2s), and the criterion's d* on that sphere, tell how far spin
+   has flattened it.
+B. **Cells**. The spin map's spinning cells (Ω = 40–160 rad/s, d/d* = 0.7–1.3) from the spun equilibrium (the
+   map's start, spin_equilibrium), with the map's settings, options and verdict rule (studies.ride_maps), read
+   from the map's store where they are finished (run otherwise, unless --stored-only), beside the map's table as
+   committed (MAP_TABLE), made from the spun state that held the cap's exact shape (initial_equilibrium).
 
 Run from the repository root:
-``python validation/spin_equilibrium_cells.py [--out validation/spin_equilibrium_cells.md] [--workers 2]``.
+``nice -n 10 python validation/spin_equilibrium_cells.py [--out validation/spin_equilibrium_cells.md]
+[--store scenarios/figures/store/spinning_maps] [--stored-only] [--spins 40 ...] [--cells-only] [--workers 2]``
+(--cells-only with --store fills the store with the chosen cells and writes no report).
 """
 
 from __future__ import annotations
@@ -14,12 +26,62 @@ import argparse
 import tempfile
 from pathlib import Path
 
+import numpy as np
+
+from lightsail_mbs.analysis import spin_spectrum
+from lightsail_mbs.analysis.ride3d_criterion import cap_criterion
 from lightsail_mbs.paper import spinning_maps as maps
 from lightsail_mbs.studies.ride_maps import ride_map
+from lightsail_mbs.studies.store import CaseStore
+from lightsail_mbs.studies.sweep import Case
 from lightsail_mbs.studies.tables import markdown_table
 
-CELLS = [(80.0, 1.0), (80.0, 1.3), (120.0, 1.0), (120.0, 1.3)]  # (Ω (rad/s), d/d*)
-MAP_TABLE = "scenarios/figures/spinning_maps.md"  # the map's table, made from the held cap's spun state
+SPECTRUM_SPINS, SPECTRUM_RATIO = (40.0, 80.0, 120.0), 1.15
+MAP_TABLE = "scenarios/figures/spinning_maps.md"  # the map's table as committed
+
+
+def fastest(values) -> str:
+    v = np.asarray(values)[np.argmax(np.real(values))]
+    return f"{v.real:+.3f} ± {abs(v.imag):.2f}i"
+
+
+def spectrum_rows() -> list[dict]:
+    rows = []
+    for spin in SPECTRUM_SPINS:
+        p = maps.BASE.replace(billow_radius=1.0, spin_rate=spin)
+        d = SPECTRUM_RATIO * maps.d_star(p)
+        p = p.replace(payload_stem=d)
+        state = spin_spectrum.lit_state(p)
+        L = spin_spectrum.rotating_linearisation(p, state).toarray()
+        whole = np.linalg.eigvals(L)
+        whole = whole[np.abs(whole) > 1e-6]  # the rigid motions' zero eigenvalues (axial, spin)
+        rigid = spin_spectrum.rigid_modes(p, state=state)
+        shape = spin_spectrum.rotating_spectrum(p, state=state)
+        tiles = spin_spectrum._start(p)[0][:-1] + state.reshape(-1, 13)[:-1, 0:3]
+        radius = np.hypot(*(tiles[:, :2] - tiles[:, :2].mean(axis=0)).T)
+        sag = float(tiles[np.argmax(radius), 2] - tiles[np.argmin(radius), 2])
+        fit = (radius.max() ** 2 + sag**2) / (2 * abs(sag))
+        rows.append(
+            {
+                "Ω (rad/s)": f"{spin:g}",
+                "whole L: fastest λ (1/s)": fastest(whole),
+                "rigid motions: fastest λ": fastest(rigid),
+                "deformations: fastest λ": fastest(shape.eigenvalues),
+                "criterion on R_c = 1 m: fastest s": fastest(cap_criterion(p, maps.SAIL_MASS, d).roots),
+                "sag (mm), start → spun": f"{spin_sag(p):.1f} → {abs(sag) * 1e3:.1f}",
+                "R_fit (m)": f"{fit:.2f}",
+                "d/d* on R_fit": f"{d / maps.d_star(p.replace(billow_radius=fit)):.2f}",
+            }
+        )
+        print(rows[-1], flush=True)
+    return rows
+
+
+def spin_sag(p) -> float:
+    """The start's sag (mm) of the case's tiles: the rim tile's height above the middle tile's."""
+    tiles = spin_spectrum._start(p.replace(spin_rate=0.0))[1][:-1]
+    radius = np.hypot(*(tiles[:, :2] - tiles[:, :2].mean(axis=0)).T)
+    return abs(float(tiles[np.argmax(radius), 2] - tiles[np.argmin(radius), 2])) * 1e3
 
 
 def map_cells(path: Path) -> dict:
@@ -30,20 +92,19 @@ def map_cells(path: Path) -> dict:
     return {(w, float(r[0])): text for r in rows[2:] for w, text in zip(spins, r[1:])}
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--out", type=Path, default=Path("validation/spin_equilibrium_cells.md"))
-    parser.add_argument("--workers", type=int, default=1)
-    args = parser.parse_args()
+def cell_rows(store: Path | None, stored_only: bool, workers: int, spins=None) -> list[dict]:
     make = maps.make("spin_rate")
-    cases = {(w, r): make(maps.BASE, w, r).replace(spin_equilibrium=True) for w, r in CELLS}
-    with tempfile.TemporaryDirectory() as store:
-        cells = ride_map(
-            cases, store_dir=store, settings=maps.SETTINGS, options=maps.OPTIONS, workers=args.workers, label="cells"
-        )
+    spins = [w for w in maps.MAPS["spin"][2] if w and (spins is None or w in spins)]
+    cases = {(w, r): make(maps.BASE, w, r) for r in maps.SPIN_RATIOS for w in spins}
+    if stored_only:  # the cells whose ride_map key is in the store
+        found, settings = CaseStore(store), maps.SETTINGS
+        cases = {c: p for c, p in cases.items() if found.has(Case(p, "reduced", maps.OPTIONS, settings=settings).key)}
+    with tempfile.TemporaryDirectory() as scratch:
+        settings, options = maps.SETTINGS, maps.OPTIONS
+        cells = ride_map(cases, store_dir=store or scratch, settings=settings, options=options, workers=workers)
     old = map_cells(Path(MAP_TABLE))
     rows = []
-    for (w, r), c in cells.items():
+    for (w, r), c in sorted(cells.items()):
         when = "" if c.decided_at is None else f" {c.decided_at:.2f} s"
         verdict = c.error if c.verdict is None else f"{maps.SHORT[c.verdict]}{when} ({c.growth:.1f}/s)"
         rows.append(
@@ -56,14 +117,45 @@ def main() -> None:
                 "the map (shape held)": old.get((w, r), "-"),
             }
         )
+    return rows
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--out", type=Path, default=Path("validation/spin_equilibrium_cells.md"))
+    parser.add_argument("--store", type=Path, help="the map's store (default: a scratch store, every cell run)")
+    parser.add_argument("--stored-only", action="store_true", help="only the cells finished in --store")
+    parser.add_argument("--spins", type=float, nargs="+", help="only these spin rates' cells (rad/s)")
+    parser.add_argument("--cells-only", action="store_true", help="part B only (no report written)")
+    parser.add_argument("--workers", type=int, default=1)
+    args = parser.parse_args()
+    if args.stored_only and args.store is None:
+        parser.error("--stored-only needs --store")
+    cells = cell_rows(args.store, args.stored_only, args.workers, args.spins)
+    if args.cells_only:
+        print(markdown_table(cells))
+        return
+    spectrum = spectrum_rows()
+    total = len(maps.SPIN_RATIOS) * (len(maps.MAPS["spin"][2]) - 1)
     text = [
-        "# Spin map cells from the spun equilibrium",
+        "# The spin map's cap from the spun equilibrium",
         "",
-        "Made by `python validation/spin_equilibrium_cells.py` (its docstring says what it runs).",
+        "Made by `nice -n 10 python validation/spin_equilibrium_cells.py"
+        + (f" --store {args.store} --stored-only`" if args.stored_only else "`")
+        + " (its docstring says what it runs).",
+        "",
+        f"## A. Spectrum in the turning frame (d = {SPECTRUM_RATIO:g} d*, beam centred, lit spun equilibrium)",
+        "",
+        "λ = Re λ ± |Im λ| i (1/s); the rigid criterion's s is in the inertial frame (its Re the same).",
+        "",
+        markdown_table(spectrum),
+        "",
+        f"## B. The spin map's spinning cells ({len(cells)} of {total})",
+        "",
         "Verdicts as in the map: R rides, D drifts out, T tips over, C crumples, with the decision time and the",
         "growth rate of the distance from the beam's axis.",
         "",
-        markdown_table(rows),
+        markdown_table(cells) if cells else "(none finished)",
     ]
     args.out.write_text("\n".join(text) + "\n")
     print("\n".join(text))

@@ -167,6 +167,11 @@ def rigid_basis(p: SailParameters, state: np.ndarray | None = None) -> np.ndarra
     if state is not None:
         rows = np.asarray(state).reshape(-1, 13)
         centres, q = sheet.flat_centres(p) + rows[:, 0:3], rows[:, 3:7]
+    return rigid_motions(centres, q)
+
+
+def rigid_motions(centres: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """The six rigid-body displacements ξ (6B × 6) of bodies at centres (B, 3) with quaternions q (B, 4)."""
     rotations = sheet.quaternion_rotation(q)
     r = centres - centres.mean(axis=0)
     out = np.zeros((centres.shape[0], DOF, 6))
@@ -198,14 +203,14 @@ class Modes:
     shape: np.ndarray
 
 
-def _deformation_modes(p: SailParameters, L: sp.spmatrix, basis: np.ndarray) -> Modes:
+def _deformation_modes(p: SailParameters, L: sp.spmatrix, basis: np.ndarray, weights=None) -> Modes:
     """Eigen-decomposition of L restricted (Galerkin, kinetic metric) to the deformations spanned by `basis`
     (columns orthonormal in the scaled coordinates z = M^½ ξ, free of rigid-body motion): with ξ = M^-½ Q η,
-    η̈ = Qᵀ M^½ (K M^-½ Q η + C M^-½ Q η̇)."""
+    η̈ = Qᵀ M^½ (K M^-½ Q η + C M^-½ Q η̇). weights: M's diagonal (default the tiles', kinetic_weights)."""
     import scipy.linalg as sl
 
     n = L.shape[0] // 2
-    m = np.sqrt(kinetic_weights(p))
+    m = np.sqrt(kinetic_weights(p) if weights is None else weights)
     K, C = L[n:, :n], L[n:, n:]
     back = basis / m[:, None]  # M^-½ Q: ξ of each basis vector
     k = basis.T @ (m[:, None] * (K @ back))

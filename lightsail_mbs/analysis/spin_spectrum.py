@@ -20,6 +20,13 @@ closed form they are compared with (Lamb & Southwell).
 ``linearise``, to the kinetic-metric complement of the six rigid-body motions; the fastest Re λ is the
 growth rate of the shape.
 
+**With a payload** (model.sheet_payload: a stem, or tethers taut at the state) the payload is one more body,
+its mass and principal inertia in the kinetic metric; the rigid-body motions are the whole craft's.
+**Rigid modes** (:func:`rigid_modes`): L restricted to those six motions: the craft's beam-riding modes with
+its shape held. In a round Gaussian beam centred on the spin axis they are the roots s of the rigid criterion's
+quartic (analysis.ride3d_criterion, for U = x + iy in the inertial frame) seen from the turning frame,
+s − iΩ and their conjugates, beside the axial translation's and the spin's zero pairs.
+
 **Critical spin rate** (:func:`critical_spin`): the spin from which the fastest deformation grows slower than
 a threshold, by default ln 2/(6 s): a shape that grows no faster does not double within the paper's 6 s
 run, the rule behind the critical edge tension (paper.sheet_physics). The spectrum is scanned on a
@@ -37,7 +44,7 @@ import scipy.sparse as sp
 
 from lightsail_mbs.analysis import sheet_spectrum
 from lightsail_mbs.base.validation import ParameterError
-from lightsail_mbs.model import planforms
+from lightsail_mbs.model import planforms, sheet, sheet_payload, sheet_pose
 from lightsail_mbs.model.parameters import SailParameters
 
 TRANSVERSE = (2, 3, 4)  # Δc_z, Δθ_x, Δθ_y of the 6 generalised displacements per tile
@@ -150,18 +157,70 @@ class RotatingSpectrum:
         return float(self.eigenvalues.real[self.tilt_shares < 0.5].max(initial=-np.inf))
 
 
-def rotating_spectrum(p: SailParameters, solver: str = "reduced") -> RotatingSpectrum:
-    """The spectrum of L in the turning frame restricted to the deformations (module docstring; dense,
-    meant for grids up to about 12 × 12)."""
-    L = rotating_linearisation(p, None, solver)
-    rigid = sheet_spectrum._scaled_rigid(p, None)
+def lit_state(p: SailParameters, solver: str = "reduced") -> np.ndarray:
+    """The solver's 13B state of the spinning sheet case p at rest in its turning frame under its beam, centred
+    on the spin axis (the ``spun_equilibrium`` capability, lit; module docstring)."""
+    from lightsail_mbs.solvers import contract
+
+    centres, quaternions = contract.lookup(solver, p).capability("spun_equilibrium")(p, lit=True)
+    rows = np.zeros((len(centres), 13))
+    rows[:, 0:3] = centres - _start(p)[0]
+    rows[:, 3:7] = quaternions
+    return rows.ravel()
+
+
+def _start(p: SailParameters) -> tuple:
+    """(reference points (B, 3), start centres (B, 3), quaternions (B, 4), the payload or None) of every body
+    (the tiles, then a payload) of the case's start (model.sheet_pose.initial_motion; a spun equilibrium's shape
+    with spin_equilibrium)."""
+    from lightsail_mbs.solvers.spun_start import spun_shape
+
+    centres, q = sheet.initial_quaternions(p)
+    payload = sheet_payload.payload(p, centres, q, sheet.connectors(p, centres, q))
+    flat = sheet.flat_centres(p)
+    start, quaternions, _, _ = sheet_pose.initial_motion(p, centres, q, payload, spun_shape(p))
+    return (flat if payload is None else np.vstack([flat, payload.start])), start, quaternions, payload
+
+
+def _bodies(p: SailParameters, state: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
+    """(M's diagonal (6B,), the rigid-body motions scaled, orthonormal in z = M^½ ξ (6B × 6)) of the bodies at
+    `state` (default the case's start): the tiles' kinetic weights (analysis.sheet_spectrum), then a payload's
+    mass and principal inertia; the rigid motions about the bodies' centres and orientations (a supported
+    sheet: none)."""
+    flat, centres, quaternions, payload = _start(p)
+    if state is not None:
+        rows = np.asarray(state, float).reshape(-1, 13)
+        centres, quaternions = flat + rows[:, 0:3], rows[:, 3:7]
+    weights = sheet_spectrum.kinetic_weights(p)
+    if payload is not None:
+        weights = np.r_[weights, [payload.mass] * 3, np.diag(payload.inertia)]
+    rigid = np.sqrt(weights)[:, None] * sheet_spectrum.rigid_motions(centres, quaternions)
+    if p.boundary != "free":
+        return weights, rigid[:, :0]
+    u, sigma, _ = np.linalg.svd(rigid, full_matrices=False)
+    return weights, u[:, sigma > 1e-8 * sigma.max()]
+
+
+def rotating_spectrum(p: SailParameters, solver: str = "reduced", state: np.ndarray | None = None) -> RotatingSpectrum:
+    """The spectrum of L in the turning frame about `state` (default the case's start; :func:`lit_state`: the
+    lit equilibrium) restricted to the deformations (module docstring; dense, meant for grids up to about
+    12 × 12), the case's payload included (a stem, or tethers taut at the state)."""
+    L = rotating_linearisation(p, state, solver)
+    weights, rigid = _bodies(p, state)
     full, _ = np.linalg.qr(rigid, mode="complete")
-    modes = sheet_spectrum._deformation_modes(p, L, full[:, rigid.shape[1] :])
-    energy = (np.abs(modes.vectors) ** 2 * sheet_spectrum.kinetic_weights(p)[:, None]).reshape(
-        -1, 6, modes.vectors.shape[1]
-    )
+    modes = sheet_spectrum._deformation_modes(p, L, full[:, rigid.shape[1] :], weights)
+    energy = (np.abs(modes.vectors) ** 2 * weights[:, None]).reshape(-1, 6, modes.vectors.shape[1])
     shares = energy[:, 3:].sum(axis=(0, 1)) / energy.sum(axis=(0, 1))
     return RotatingSpectrum(modes.eigenvalues, shares)
+
+
+def rigid_modes(p: SailParameters, solver: str = "reduced", state: np.ndarray | None = None) -> np.ndarray:
+    """The eigenvalues λ (12, by descending Re λ; 1/s) of L in the turning frame about `state` restricted to the
+    craft's six rigid-body motions (Galerkin, kinetic metric; module docstring): its beam-riding modes with its
+    shape held."""
+    L = rotating_linearisation(p, state, solver)
+    weights, rigid = _bodies(p, state)
+    return sheet_spectrum._deformation_modes(p, L, rigid, weights).eigenvalues
 
 
 def critical_spin(

@@ -5,15 +5,17 @@ the beam (docs: spinning-beam). ``write(out)`` runs them (python scenarios/spinn
   R_c, stress-free there (billow_rest), a stem payload of the sail's own mass at d = (d/d*) d*, d* the rigid
   criterion's boundary for that cap (analysis.ride3d_criterion), I₀ = 0.1 GW/m², the beam's axis 0.2 w off
   the sail's middle; 1.2 s with the in-house solver at rtol 1e-4, output every 20 ms, stopped where the
-  plane amplitude reaches 3 × its start (a crumpled cap).
+  plane amplitude reaches 3 × its start (a crumpled cap). A spinning cap starts at rest in its turning frame
+  (spin_equilibrium: the unlit shape relaxed under the centrifugal loads, solvers.reduced.sheet_relax), then
+  lit; the flat sheet's centrifugal stress (the spinning sheet's default start) does not hold a deep cap.
 * **Maps** (studies.ride_maps, one store, resumable): d/d* against R_c (w = 0.5 m, Ω = 0), against the
   beam waist w (R_c = 1 m, Ω = 0) and against the spin rate Ω (R_c = 1 m, w = 0.5 m). Verdict: crumples
   once a tile is 5 cm from the rigidly moved cap, drifts out at a waist from the axis, else rides; each
   cell also gives the distance's growth rate (1/s); a run the failure rule ended early past 45° of tilt
   "tips over" (studies.ride_maps). Over each map the rigid criterion's riding region
   (the undamped quartic of analysis.ride3d_criterion, on a 41 × 41 grid) is outlined.
-* **Movie**: the same disc at d = 1.3 d* spinning at 20 rad/s, 5 cm off the axis and tilted by
-  (0.02, −0.01) rad, 1.5 s, as a GIF (viz.ride).
+* **Movie**: the same disc at d = 1.3 d* spinning at 20 rad/s from its spun equilibrium, 5 cm off the axis
+  and tilted by (0.02, −0.01) rad, 1.5 s, as a GIF (viz.ride).
 """
 
 from __future__ import annotations
@@ -60,11 +62,12 @@ def d_star(p) -> float:
 
 
 def make(field: str):
-    """make(base, x, d/d*) of a map along `field`: the field set, the stem at d/d* × d*, the axis 0.2 w off."""
+    """make(base, x, d/d*) of a map along `field`: the field set, the stem at d/d* × d*, the axis 0.2 w off, a
+    spinning cap started at rest in its turning frame (spin_equilibrium)."""
 
     def build(p, value, ratio):
         p = p.replace(**{field: value})
-        p = p.replace(beam_centre=0.5 + OFFSET * p.beam_waist)
+        p = p.replace(beam_centre=0.5 + OFFSET * p.beam_waist, spin_equilibrium=p.spin_rate != 0)
         return p.replace(payload_stem=ratio * d_star(p))
 
     return build
@@ -160,7 +163,7 @@ def movie(out: Path, frames: int = 40, quick: bool = False) -> Path:
     from lightsail_mbs.viz.frames import make_movie
     from lightsail_mbs.viz.ride import render_ride_frames
 
-    p = BASE.replace(**MOVIE).replace(beam_centre=0.5 + MOVIE_OFFSET)
+    p = BASE.replace(**MOVIE).replace(beam_centre=0.5 + MOVIE_OFFSET, spin_equilibrium=True)
     p = p.replace(payload_stem=MOVIE_RATIO * d_star(p))
     settings = RunSettings(t_final=0.1 if quick else MOVIE_TIME, output_interval=0.02, stop_at_failure=False)
     result = solvers.solve(p, "reduced", settings, uncertainty=False, **OPTIONS)

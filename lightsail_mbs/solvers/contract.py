@@ -65,8 +65,8 @@ CAPABILITIES = {
     "linearise": "(params, state, ...) -> ∂ẏ/∂y of the first-order equations at rest in `state`",
     "linearise_rotating": "(params, state) -> the sheet's equations linearised in the frame turning with its spin "
     "about `state`: ξ̇ = η, η̇ = K ξ + C η (centrifugal and Coriolis terms included)",
-    "spun_equilibrium": "(params) -> (centres, quaternions) of every body of the unlit spinning sheet at rest in "
-    "its turning frame",
+    "spun_equilibrium": "(params[, lit]) -> (centres, quaternions) of every body of the spinning sheet at rest in "
+    "its turning frame, unlit (or lit by a beam centred on the spin axis)",
     "mass_stiffness": "(params, load, step, relative_epsilon) -> (M, K) of M q̈ + K q = 0 at the initial state",
     "equations": "(params) -> the chain's equations of motion in minimal coordinates (rhs, accelerations, "
     "coordinates of a state, centres, state scales, slice loads)",

@@ -9,6 +9,7 @@ from lightsail_mbs import RunSettings, SailParameters, solve
 from lightsail_mbs.analysis import sheet_spectrum, spin_spectrum
 from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import failure, sheet, sheet_spin
+from lightsail_mbs.solvers.reduced.sheet import SheetModel
 
 SOFT = dict(model="sheet", planform="rectangle", n=6, ny=6, youngs_modulus=4.5e9, defect_mode_y=1.5)
 
@@ -116,3 +117,32 @@ def test_the_critical_spin_brackets_the_last_crossing_of_the_threshold(monkeypat
     assert spin_spectrum.critical_spin(p, (0.1, 10.0)) == (10.0, np.inf)
     with pytest.raises(ParameterError, match="spins"):
         spin_spectrum.critical_spin(p, (1.0, 0.5))
+
+
+STEM_CAP = dict(billow_radius=1.0, billow_rest=True, payload_mass=7.85e-4, payload_stem=2.0, intensity=1e8)
+
+
+def test_a_payload_is_one_more_body_of_the_turning_frames_linearisation():
+    """The disc on its cap with a stem payload: without spin the turning frame's L is the resting one (the payload
+    its 14th body, after the 13 tiles); the deformation spectrum is the complement of the craft's six rigid motions."""
+    p = SailParameters(model="sheet", planform="disc", n=5, ny=6, **STEM_CAP)
+    rest = sheet_spectrum.linearisation(p)
+    turning = spin_spectrum.rotating_linearisation(p)
+    assert turning.shape == (12 * 14, 12 * 14)
+    assert abs(rest - turning).max() < 1e-8 * abs(rest).max()
+    spectrum = spin_spectrum.rotating_spectrum(p.replace(spin_rate=40.0))
+    assert spectrum.eigenvalues.size == 2 * (6 * 14 - 6)
+
+
+def test_taut_tethers_linearise_and_slack_ones_are_refused():
+    """Six tethers: lit, they start taut (pre-stretched by the payload's share m_p g₀) and couple the payload to
+    their rim tiles in L; unlit they carry nothing (ℓ = ℓ₀, the law's kink) and the linearisation is refused."""
+    p = SailParameters(model="sheet", planform="disc", n=5, ny=6, **STEM_CAP, payload_tethers=6, tether_stiffness=1e3)
+    L = spin_spectrum.rotating_linearisation(p.replace(spin_rate=40.0)).tocsr()
+    payload = 13  # body index: after the 13 tiles
+    rows = L[6 * 14 + 6 * payload : 6 * 14 + 6 * payload + 3, : 6 * 14].toarray().reshape(3, 14, 6)
+    coupled = np.nonzero(np.abs(rows).sum(axis=(0, 2)))[0]
+    model_tiles = set(SheetModel(p).tethers[0].tolist())
+    assert set(coupled) == model_tiles | {payload}
+    with pytest.raises(ParameterError, match="payload_tethers"):
+        spin_spectrum.rotating_linearisation(p.replace(intensity=0.0, spin_rate=40.0))

@@ -11,6 +11,14 @@ ones: the Coriolis force of a body at rest is zero. The springs keep their rest 
 deform from the case's initial shape (unlike initial_equilibrium with spin, model.sheet_spin, which corrects
 the rest state so that the initial shape itself rests and compresses a doubly curved sheet's tiles).
 
+Tethers
+-------
+A payload on tethers has no unlit spun equilibrium: unlit, the tethers start at their rest lengths (they carry
+the payload's share m_p g₀, which is zero without light) and the spinning cap pulls their rim ends in as it
+flattens: relaxed, the map's cap at 80 rad/s with six tethers (k = 1e3 N/m) has five of them slack, by up to
+1.8 cm, the payload floating 4 mm off the axis. ``spin_equilibrium`` refuses tethers; the lit equilibrium
+(``lit=True``, a spectrum's state) holds them taut by the payload's load.
+
 The solve
 ---------
 The same turning-frame equations as a run, unlit (intensity 0: no light, no accelerating frame, the stem
@@ -61,9 +69,11 @@ RELAX_TURNS = 6.0  # the relaxation's length in turns: every deformation decays 
 RTOL = 1e-6
 
 
-def relaxing_case(p: SailParameters) -> SailParameters:
-    """The case whose turning-frame dynamics are relaxed: p unlit, started from its initial shape."""
-    return p.replace(intensity=0.0, spin_equilibrium=False)
+def relaxing_case(p: SailParameters, lit: bool = False) -> SailParameters:
+    """The case whose turning-frame dynamics are relaxed: p untilted, unlit unless `lit`, started from its initial
+    shape (the run's start, model.sheet_pose.initial_motion, tilts the relaxed shape as one body)."""
+    q = p.replace(spin_equilibrium=False, initial_tilt=0.0, initial_tilt_y=0.0)
+    return q if lit else q.replace(intensity=0.0)
 
 
 class DampedTurning:
@@ -102,12 +112,32 @@ class DampedTurning:
         return (self.model.jacobian(t, y) - self.diagonal).tocsc()
 
 
-def spun_equilibrium(p: SailParameters) -> tuple[np.ndarray, np.ndarray]:
+def spun_equilibrium(p: SailParameters, lit: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """(centres (B, 3), quaternions (B, 4)) of every body (the tiles, then the payload) at rest in the frame
-    turning with the spinning sheet case p, unlit (module docstring)."""
+    turning with the spinning sheet case p, unlit (module docstring), or `lit` by a beam centred on the spin
+    axis (the state a spectrum in the turning frame linearises about; the craft's rigid acceleration along
+    the axis, its thrust against the frame's g₀, is left to it)."""
     if p.spin_rate == 0:
         raise ParameterError("spin_rate=0 is invalid for a spun equilibrium: allowed a spinning sheet")
-    model = SheetModel(relaxing_case(p), frame="turning")
+    centred = p.beam_centre in (None, 0.5 * p.length) and p.beam_centre_y in (None, 0.5 * p.width)
+    if lit and not centred:
+        raise ParameterError(
+            f"beam_centre={p.beam_centre!r}, beam_centre_y={p.beam_centre_y!r} are invalid for a lit spun "
+            "equilibrium: allowed the beam on the spin axis (None, or L/2 and W/2)"
+        )
+    if p.payload_tethers and not lit:
+        raise ParameterError(
+            f"spin_equilibrium=True is invalid with payload_tethers={p.payload_tethers}: unlit the tethers carry "
+            "nothing (ℓ₀ = ℓ) and the spinning cap slackens them, leaving the payload no equilibrium; allowed a stem "
+            "payload (payload_tethers=0) or no payload"
+        )
+    return relax(p, lit)
+
+
+def relax(p: SailParameters, lit: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """(centres, quaternions) of every body of the spinning case p's relaxing_case after RELAX_TURNS turns of the
+    damped turning-frame dynamics (module docstring), without spun_equilibrium's checks."""
+    model = SheetModel(relaxing_case(p, lit), frame="turning")
     spin = float(np.linalg.norm(model.turning.spin))
     damped = DampedTurning(model, DAMPING * spin)
     turn = 2.0 * math.pi / spin

@@ -26,6 +26,10 @@ body-frame rate relative to the frame ω_rel. The inertial state the solver inte
 centrifugal softening and the prestress of the spun state; C the damping, Coriolis and the tiles'
 gyroscopic coupling. At Ω = 0 it is ``linearise``'s L.
 
+A payload (model.sheet_payload) is one more body, its ξ and η after the tiles'; the frame turns about the
+tiles' centre of mass, on whose axis it sits. Its tethers linearise where they are taut (their law is smooth
+there); a slack or just-taut tether is refused.
+
 K and C come from central differences of the right-hand side: the tiles of one colour of the solver's
 distance-2 colouring are displaced together (their neighbourhoods do not overlap), 24 evaluations per colour.
 """
@@ -35,6 +39,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
+from lightsail_mbs.base.validation import ParameterError
 from lightsail_mbs.model import sheet, sheet_spin
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.solvers.reduced.sheet import SheetModel, _rotate_quaternions
@@ -42,6 +47,7 @@ from lightsail_mbs.solvers.reduced.sheet_kernels import STATE
 
 DOF = 6  # ξ per tile: Δc (3), Δθ_b (3)
 STEP = 1e-7  # central-difference step, × the sail's size for Δc and w/Ω-scaled rates, rad for angles
+SLACK = 1e-5  # a tether's least stretch for a linearisation, × its rest length (≫ STEP × the sail's size)
 
 
 class TurningFrame:
@@ -54,8 +60,9 @@ class TurningFrame:
         self.count = rows.shape[0]
         self.centres = self.model.flat + rows[:, 0:3]
         self.quaternions = rows[:, 3:7].copy()
-        self.axis = sheet_spin.spin_centre(p, self.centres)
+        self.axis = sheet_spin.spin_centre(p, self.centres[: self.model.lit])  # the tiles' (a payload is on it)
         self.spin = p.spin_rate * np.cos(p.spin_tilt)
+        _require_taut(self.model, self.centres, self.quaternions)
 
     def rates(self, xi: np.ndarray, eta: np.ndarray) -> np.ndarray:
         """(N, 12): (ξ̇, η̇) per tile of the displacements ξ (N, 6) and rates η (N, 6) in the turning frame."""
@@ -79,6 +86,22 @@ class TurningFrame:
         return out
 
 
+def _require_taut(model: SheetModel, centres: np.ndarray, quaternions: np.ndarray) -> None:
+    """A tether's law max(k(ℓ − ℓ₀) + c ℓ̇, 0) has no derivative at ℓ = ℓ₀ and none of slack's use: every
+    tether must be stretched by more than SLACK × its rest length at the linearised state."""
+    tile, point, rest, _ = model.tethers
+    if not len(tile):
+        return
+    ends = centres[tile] + np.einsum("kij,kj->ki", sheet.quaternion_rotation(quaternions[tile]), point)
+    stretch = np.linalg.norm(centres[model.lit] - ends, axis=1) - rest
+    if np.any(stretch <= SLACK * rest):
+        raise ParameterError(
+            f"payload_tethers={len(tile)} is invalid for a linearisation at this state: tether stretches "
+            f"{np.array2string(stretch, precision=2)} m, allowed every tether taut (stretch > {SLACK:g} × its rest "
+            "length; a slack or just-taut cable has no linearisation, e.g. an unlit case, whose tethers carry nothing)"
+        )
+
+
 def linearise_rotating(p: SailParameters, state: np.ndarray | None = None) -> sp.csc_matrix:
     """L (12N × 12N, sparse) of the sheet's equations in the frame turning at Ω cos β about ẑ through the
     centre of mass, about `state` (the solver's 13N state, velocities ignored; default the initial shape,
@@ -89,7 +112,7 @@ def linearise_rotating(p: SailParameters, state: np.ndarray | None = None) -> sp
     rate = max(abs(frame.spin), 1.0)
     scales = np.r_[[size] * 3, [1.0] * 3, [size * rate] * 3, [rate] * 3] * STEP
     neighbours = [{k} for k in range(N)]
-    for a, b in zip(frame.model.ta, frame.model.tb):
+    for a, b in [*zip(frame.model.ta, frame.model.tb), *((k, frame.model.lit) for k in frame.model.tethers[0])]:
         if a >= 0:
             neighbours[a].add(b)
             neighbours[b].add(a)
