@@ -32,6 +32,12 @@ per twin) concurrently with each other and, where their inputs are known before 
   ends, normally or by an exception, KeyboardInterrupt included, so no process outlives it. A twin that ends with
   a solver error is a Result as in process; an exception in a worker is raised again here; a worker that dies
   is a RuntimeError.
+- **Priority.** Every worker runs WORKER_NICENESS below this process (os.nice; the probe's Job.niceness below
+  that): while the base run runs, its core is not shared on equal terms with three or four twins, whose answers
+  wait for it anyway. Measured as whole processes on the quiet machine (eight default runs of the paper's
+  Exudyn rows against the same at equal priority, 6 pairs): wall 0.945 of it (median; 0.92–1.09), a small gain
+  within the noise of a single benchmark row; once the base run has ended the workers have the cores to
+  themselves.
 - **Progress.** A worker's runs draw their bars on the shared stderr, labelled 'twin'.
 - **What comes back.** A twin whose run only its answer is read of (``Job.answer_only``: the loose, probe and film
   twins, the n-twins; not a tightened twin, which may be the run reported) sends its Result back without its
@@ -58,6 +64,7 @@ from dataclasses import dataclass, field
 from lightsail_mbs.solvers import progress as progress_module
 
 CONCURRENT_AFTER = 0.05  # s of the base run's wall time after which its twins go to worker processes ...
+WORKER_NICENESS = 5  # every worker's priority below this process's: the base run, which every answer waits for, first
 MIN_IDLE_CORES = 0.5  # ... if the machine had this many cores idle on average meanwhile
 _local = threading.local()  # .sessions: this thread's open sessions (one per default run; nested solves share it)
 
@@ -71,7 +78,7 @@ class Job:
     args: tuple
     kwargs: dict = field(default_factory=dict)
     speculative: bool = False  # started for the base run's current pass (ended when it is rerun)
-    niceness: int = 0  # its worker's priority below this process's (os.nice): a twin that may not be needed
+    niceness: int = 0  # its worker's priority further below WORKER_NICENESS: a twin that may not be needed
     answer_only: bool = False  # its worker sends its Result back without the trajectories (`slimmed`)
 
 
@@ -160,8 +167,7 @@ def _work(sender, work: Job) -> None:
         ctypes.CDLL(None).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
     _local.sessions = []
     progress_module.watcher, progress_module.prefix = None, "twin "
-    if work.niceness:
-        os.nice(work.niceness)
+    os.nice(WORKER_NICENESS + work.niceness)
     start = time.process_time()
     try:
         value = work.fn(*work.args, **work.kwargs)
