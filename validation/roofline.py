@@ -26,9 +26,11 @@ Operation counts (flops; estimates where marked ≈, from the kernels' arithmeti
   adds a back-substitution (2N²) per evaluation and per Jacobian a dense LU ((2/3)N³) and N evaluations
   (numerical differentiation); DOPRI5 a dense LU and a back-substitution per stage;
 - in-house sheet: ≈ 700 flops per tile per right-hand side (rotation matrices, two edge connectors per
-  tile, the load); the sparse solves counted (2·nnz(L+U) flops real, 8 complex; the bytes of a nonzero and
-  its index streamed from memory when the pair of factors outgrows the last-level cache: 8 and 12 for the
-  single-precision LU, sheet_radau.SINGLE_PRECISION_LU, 12 and 20 in double) and the factorisations from the
+  tile, the load); the triangular solves counted on the 6 × 6 block factors they read (block_lu.BlockFactors:
+  2 flops an entry real, 8 complex; an entry's bytes streamed from memory when the pair of factors outgrows the
+  last-level cache: 4 and 8 for the single-precision LU, sheet_radau.SINGLE_PRECISION_LU, 8 and 16 in double,
+  the blocks' indices a 36th of that; where SuperLU solves, on nnz(L+U) with an index a nonzero: 8 and 12, 12
+  and 20) and the factorisations from the
   factors' structure (Σ_k 2·|L_k|·|U_k|, × 4 complex), plus the two sparse products of each solve (double);
   the factorisations and triangular solves are held to the SGEMM peak when the LU is single;
 - Exudyn sheet: every residual (Newton iterations + steps) ≈ 700 flops per tile as the in-house one, and a
@@ -203,11 +205,14 @@ def sheet_rows(grids, roof: dict, repeats: int) -> list[dict]:
         products = 2.0 * (system.AX.nnz + system.B.nnz)
         info = result.info
         single = sheet_radau.SINGLE_PRECISION_LU
-        real_bytes, complex_bytes = (8.0, 12.0) if single else (12.0, 20.0)
-        lu = info["nlu"] / 2 * lu_flops * (1 + 4) + (counter.solves[False] * 2.0 + counter.solves[True] * 8.0) * nnz
+        if counter.block_nnz:  # the triangular solves read the block factors
+            read, (real_bytes, complex_bytes) = counter.block_nnz, ((4.0, 8.0) if single else (8.0, 16.0))
+        else:
+            read, (real_bytes, complex_bytes) = nnz, ((8.0, 12.0) if single else (12.0, 20.0))
+        lu = info["nlu"] / 2 * lu_flops * (1 + 4) + (counter.solves[False] * 2.0 + counter.solves[True] * 8.0) * read
         flops = info["nfev"] * tiles * TILE_RHS + (counter.solves[False] + 2 * counter.solves[True]) * products
-        streamed = (real_bytes + complex_bytes) * nnz > roof["cache"]  # the pair of factors fits in the cache, or not
-        data = (counter.solves[False] * real_bytes + counter.solves[True] * complex_bytes) * nnz * streamed
+        streamed = (real_bytes + complex_bytes) * read > roof["cache"]  # the pair of factors fits in the cache, or not
+        data = (counter.solves[False] * real_bytes + counter.solves[True] * complex_bytes) * read * streamed
         flops += 0.0 if single else lu
         rows.append(row(label, "in-house", cpu, info, flops, data, roof, single_flops=lu if single else 0.0))
         cpu, result = timed(params, "exudyn", settings, repeats)

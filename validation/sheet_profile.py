@@ -47,6 +47,7 @@ class Counts:
 
     def __init__(self):
         self.solves, self.factorisations, self.nnz = {False: 0, True: 0}, 0, 0
+        self.block_nnz = 0  # entries of the 6 × 6 block factors the triangular solves read (0: SuperLU's own)
         self.factor = {}
 
     def install(self):
@@ -64,6 +65,8 @@ class Counts:
                 counts.factor.setdefault(bool(np.iscomplexobj(mu)), (made[0], system))
                 if not np.iscomplexobj(mu):
                     counts.nnz = max(counts.nnz, self.nnz)
+                    if self.blocks is not None:
+                        counts.block_nnz = max(counts.block_nnz, self.blocks.nnz)
 
             def solve(self, f):
                 counts.solves[bool(np.iscomplexobj(self.mu))] += 1

@@ -67,7 +67,7 @@ def make(field: str):
 
     def build(p, value, ratio):
         p = p.replace(**{field: value})
-        p = p.replace(beam_centre=0.5 + OFFSET * p.beam_waist, spin_equilibrium=p.spin_rate != 0)
+        p = p.replace(beam_centre=0.5 + OFFSET * p.beam_waist, spin_equilibrium=bool(p.spin_rate != 0))
         return p.replace(payload_stem=ratio * d_star(p))
 
     return build

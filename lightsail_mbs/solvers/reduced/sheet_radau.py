@@ -134,7 +134,8 @@ def small_pages():
     measured on this (shared) machine, the first touch of 2 GB took 3.7–5.5 s with the advice and 0.8 s without
     (0.14 s when huge pages were free). The sheet's factors (~0.1 GB each at 100 × 100 tiles, a new pair per step
     level and Jacobian) and its samples (GBs) are written once each, where that compaction dominated."""
-    advise = getattr(getattr(np, "_core", np).multiarray, "_set_madvise_hugepage", None)
+    core = getattr(np, "_core", None) or getattr(np, "core", None)  # numpy ≥ 2: _core; 1.x: core
+    advise = getattr(getattr(core, "multiarray", None), "_set_madvise_hugepage", None)
     previous = advise(False) if advise is not None else None
     try:
         yield
@@ -197,20 +198,28 @@ class ReducedLU:
     converges to the same collocation solution: its residual F is evaluated in double and its convergence
     test is unchanged; the single LU only adds ~κ·6e-8 to each increment's relative error (measured 1e-4 on
     random right-hand sides at 40 × 40 tiles), far below the contraction rates of 1e-2–0.3 it already
-    has."""
+    has. Where a single-precision pivot rounds to exactly 0 (a stiff stem's entries of 1e14 beside a diagonal of
+    1e2, in the spun equilibrium's relaxation of a cap on a stem), that factorisation is made in double."""
 
     def __init__(self, system: ReducedSystem, mu, single: bool | None = None):
         self.system, self.mu = system, mu
         single = SINGLE_PRECISION_LU if single is None else single
         self.complex = bool(np.iscomplexobj(mu))
-        S = (mu * system.identity - system.AV - system.K / mu).tocsc()
-        self.dtype = S.dtype
-        if single:
-            self.dtype = np.dtype(np.complex64 if self.complex else np.float32)
-            S = S.astype(self.dtype)
-        S = S[system.order][:, system.order]
+        S = (mu * system.identity - system.AV - system.K / mu).tocsc()[system.order][:, system.order]
+        precisions = [np.dtype(np.complex64 if self.complex else np.float32), S.dtype] if single else [S.dtype]
         with small_pages():
-            lu = splu(S, permc_spec="NATURAL", diag_pivot_thresh=0.0, options=dict(SymmetricMode=True))
+            for self.dtype in precisions:  # single precision's pivot may round to exactly 0: then double
+                try:
+                    lu = splu(
+                        S.astype(self.dtype, copy=False),
+                        permc_spec="NATURAL",
+                        diag_pivot_thresh=0.0,
+                        options=dict(SymmetricMode=True),
+                    )
+                    break
+                except RuntimeError:  # "Factor is exactly singular"
+                    if self.dtype == precisions[-1]:
+                        raise
             self.nnz = lu.L.nnz + lu.U.nnz
             self.blocks = block_lu.BlockFactors.from_superlu(lu, system.pattern)
         self.lu = lu if self.blocks is None else None  # SuperLU's own factors only where the blocks do not fit

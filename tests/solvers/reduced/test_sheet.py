@@ -196,3 +196,40 @@ def test_complex_solve_products_are_the_real_matrices_products(single):
     assert np.max(np.abs(mu * x_x - system.B @ x_v - f_x)) < 1e-12 * np.max(np.abs(f))
     residual = np.max(np.abs(mu * x_v - system.AX @ x_x - system.AV @ x_v - f_v)) / np.max(np.abs(mu * x_v))
     assert residual < (1e-5 if single else 1e-9)
+
+
+def test_single_precision_lu_falls_back_to_double_on_a_zero_pivot():
+    """A reduced matrix whose single-precision elimination meets a pivot of exactly 0 (2²⁴ + 1 rounds to 2²⁴:
+    the second pivot 2²⁴ − 2²⁴·2²⁴/2²⁴; in double 2²⁴/(2²⁴ + 1)) is factored in double, and solves to 1e-9."""
+    import types
+
+    import scipy.sparse as sp
+    from scipy.sparse.linalg import splu
+
+    from lightsail_mbs.solvers.reduced import block_lu
+    from lightsail_mbs.solvers.reduced.sheet_radau import ReducedLU
+
+    n, big, mu = 12, 2.0**24, 1.0
+    S = sp.lil_matrix(np.eye(n))
+    S[0, 0], S[0, 6], S[6, 0], S[6, 6] = big + 1.0, big, big, big
+    S = S.tocsc()
+    with pytest.raises(RuntimeError, match="singular"):
+        splu(S.astype(np.float32), permc_spec="NATURAL", diag_pivot_thresh=0.0, options=dict(SymmetricMode=True))
+    K = (mu * (mu * sp.identity(n) - S)).tocsc()  # S = μ I − A_V − K/μ with A_V = 0
+    pattern = block_lu.BlockPattern(block_lu.body_graph(abs(K) + sp.identity(n)))
+    system = types.SimpleNamespace(
+        identity=sp.identity(n, format="csc"),
+        AV=sp.csc_matrix((n, n)),
+        K=K,
+        pattern=pattern,
+        order=(6 * pattern.order[:, None] + np.arange(6)).ravel(),
+        X=np.arange(0),
+        V=np.arange(n),
+        n=n,
+        products=lambda complex_: (sp.csr_matrix((n, 0)), sp.csr_matrix((0, n))),
+    )
+    lu = ReducedLU(system, mu, single=True)
+    assert lu.dtype == np.float64
+    f = np.random.default_rng(2).normal(size=n)
+    x = lu.solve(f)
+    assert np.max(np.abs(S @ x - f)) < 1e-9 * np.max(np.abs(S @ x))
