@@ -23,9 +23,11 @@ growth rate of the shape.
 **With a payload** (model.sheet_payload: a stem, or tethers taut at the state) the payload is one more body,
 its mass and principal inertia in the kinetic metric; the rigid-body motions are the whole craft's.
 **Rigid modes** (:func:`rigid_modes`): L restricted to those six motions: the craft's beam-riding modes with
-its shape held. In a round Gaussian beam centred on the spin axis they are the roots s of the rigid criterion's
-quartic (analysis.ride3d_criterion, for U = x + iy in the inertial frame) seen from the turning frame,
-s − iΩ and their conjugates, beside the axial translation's and the spin's zero pairs.
+its shape held. In a round Gaussian beam centred on the spin axis a rigid craft's would be the roots s of the rigid
+criterion's quartic (analysis.ride3d_criterion, for U = x + iy in the inertial frame) seen from the turning frame,
+s − iΩ and their conjugates, beside the axial translation's and the spin's zero pairs; about the lit state of the
+spin map's flexible cap they are not (a real pair ±4.8/s at 40 rad/s where the criterion rides, and the axial
+translation's and the spin's pairs not zero: validation/spin_equilibrium_cells.md), which is not understood.
 
 **Critical spin rate** (:func:`critical_spin`): the spin from which the fastest deformation grows slower than
 a threshold, by default ln 2/(6 s): a shape that grows no faster does not double within the paper's 6 s
