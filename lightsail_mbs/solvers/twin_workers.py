@@ -61,6 +61,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+from lightsail_mbs.result import ARRAYS, TILE_ARRAYS, Result
 from lightsail_mbs.solvers import progress as progress_module
 
 CONCURRENT_AFTER = 0.05  # s of the base run's wall time after which its twins go to worker processes ...
@@ -178,18 +179,15 @@ def _work(sender, work: Job) -> None:
     sender.close()
 
 
-TRAJECTORIES = ("x", "y", "theta", "z", "vx", "vy", "omega", "z_rate")  # a chain's Result: (T, n) arrays
-TILE_TRAJECTORIES = ("tile_centres", "tile_angles", "tile_velocities", "tile_angular_velocities")  # (T, N, 3)
-
-
 def slimmed(value):
-    """A Result without its trajectories (each coordinate's or tile's array cut to no columns; its time,
-    amplitude history, record and so its answer kept), else `value`: what a twin's estimate reads of its run, at a
-    few kB where the whole Result of a 6 s chain pickles to megabytes (tens of ms of CPU on both sides)."""
-    if not dataclasses.is_dataclass(value) or not all(hasattr(value, name) for name in TRAJECTORIES):
+    """A Result without its trajectories (each of its arrays of two or more dimensions, result.ARRAYS and
+    result.TILE_ARRAYS, cut to no columns; its time, amplitude history, record and so its answer kept), else
+    `value`: what a twin's estimate reads of its run, at a few kB where the whole Result of a 6 s chain pickles to
+    megabytes (tens of ms of CPU on both sides)."""
+    if not isinstance(value, Result):
         return value
     cut = {}
-    for name in TRAJECTORIES + TILE_TRAJECTORIES:
+    for name in ARRAYS + TILE_ARRAYS:
         array = getattr(value, name, None)
         if getattr(array, "ndim", 0) >= 2:
             cut[name] = array[:, :0].copy()

@@ -162,6 +162,11 @@ def why_not_case(solver, params: SailParameters) -> str | None:
     return None
 
 
+def probe_level(params: SailParameters) -> float:
+    """The probe twin's roughness amplitude (m): PROBE_LEVEL · a₀."""
+    return PROBE_LEVEL * params.displacement_scale
+
+
 def planned(solver, params, settings, options: dict, info: dict, roles: dict, progress: bool) -> tuple[dict, dict]:
     """(twins, loose options): the twins every estimate starts with, by name, as (case, options, Job): the loose
     twin, the probe at the base run's options (its worker at a lower priority where the film twin may stand for
@@ -170,7 +175,7 @@ def planned(solver, params, settings, options: dict, info: dict, roles: dict, pr
     loose = twin_options.loosened(options, info, roles)
     twins = {"loose": (params, loose)}
     for name in roles["perturbation"][:1]:
-        twins["probe"] = (params, {**options, name: PROBE_LEVEL * params.displacement_scale})
+        twins["probe"] = (params, {**options, name: probe_level(params)})
     film_case, _ = film_twin(params)
     if film_case is not None:
         twins["film"] = (film_case, loose)
@@ -244,8 +249,8 @@ def twin_runs(solver, params, settings, options, result, roles, progress, base_c
         run("film", twins["film"][0], reference)
     estimate = None
     if "probe" in twins:
-        level = PROBE_LEVEL * params.displacement_scale
-        estimate = probe_estimate(params, records, order[0], level, CONDITION_TOL * abs(records["base"]["value"]))
+        limit = CONDITION_TOL * abs(records["base"]["value"])
+        estimate = probe_estimate(params, records, order[0], probe_level(params), limit)
         if estimate is None:
             run("probe", *twins["probe"])
         else:
@@ -273,7 +278,7 @@ def assess(
         return result
     quantity, failed, value = answer(result)
     roles = solver.roles() if hasattr(solver, "roles") else contract.registered_roles()
-    runs, records, order, bound = twin_runs(solver, params, settings, options, result, roles, progress, base_cpu)
+    runs, records, order, estimate = twin_runs(solver, params, settings, options, result, roles, progress, base_cpu)
     total_wall = sum(record["wall_time"] for record in records.values())
     for name, record in records.items():
         if record["error"] is not None and name not in ("film", "loose"):  # the film twin's error is its own record's
@@ -292,7 +297,7 @@ def assess(
     integration = sum(abs(d) for d in steps) if same_verdict else math.inf
     probe, base = records.get("probe"), records["base"]
     if probe is None:
-        sensitivity = bound
+        sensitivity = estimate
     else:
         sensitivity = abs(probe["value"] - base["value"]) if probe["failed"] == base["failed"] else math.inf
     location = sampling_error(reported, settings, failed)
@@ -360,14 +365,14 @@ def floor_note(held: list[str], info: dict) -> str:
     )
 
 
-def explain(params, quantity, value, integration, sensitivity, well, failed, bounded=False) -> str:
-    """One paragraph: how sure the run is and, when it is ill-conditioned, why and what would change it; `bounded`:
+def explain(params, quantity, value, integration, sensitivity, well, failed, from_film=False) -> str:
+    """One paragraph: how sure the run is and, when it is ill-conditioned, why and what would change it; `from_film`:
     the sensitivity is the film twin's estimate (film_twin.probe_estimate), the probe twin not run."""
     what = "failure time" if quantity == "failure_time" else "largest amplitude ratio"
     shortest = 2.0 * params.length / params.n
     if well:
-        how = "by about" if bounded else "by"
-        why = " (from the film twin's change, its perturbation far larger at every wave)" if bounded else ""
+        how = "by about" if from_film else "by"
+        why = " (from the film twin's change, its perturbation far larger at every wave)" if from_film else ""
         return (
             f"well-conditioned: a roughness of {PROBE_LEVEL:g} a₀ moves the {what} {how} "
             f"{sensitivity / abs(value):.1g} relative (≤ {CONDITION_TOL:g}){why}; the uncertainty is dominated by "
