@@ -6,7 +6,9 @@ Every run happens in its own fresh Python process (run twice there; the second, 
 so numba's compilation and cache loading are left out and reported apart; grids above --once-above
 tiles a side run once, that run timed, cache loading included); the table gives the CPU time of the run
 (time.process_time, the least of the repeats: the machine is shared and wall times are noisy), its wall
-time and CPU per step, and fits CPU ∝ N^p over the grids (N = nx² tiles). The large grids take long:
+time and CPU per step, and fits CPU ∝ N^p over the grids (N = nx² tiles). At --fast-grids Exudyn runs a
+third time with its own fast module (the environment variable EXUDYN_MODULE=fast loads exudynCPPfast: no range
+checks, AVX2; the same model and settings, round-off apart). The large grids take long:
 run them niced (`nice -n 10 python validation/sheet_benchmark.py`); every measured row is kept in
 validation/sheet_benchmark_rows.jsonl and reused by a later call (delete it to measure again). Writes
 validation/sheet_benchmark.md.
@@ -39,10 +41,18 @@ print(json.dumps(dict(first=out[0], warm=out[-1], load=os.getloadavg()[0])))
 """
 
 
+FAST = "exudyn-fast"  # Exudyn with its fast module (module docstring)
+LABELS = {"exudyn": "Exudyn", FAST: "Exudyn, fast module", "reduced": "in-house"}
+
+
 def measure(grid: int, solver: str, runs: int = 2) -> dict:
     """The child's record of `runs` runs in one fresh process: the first, the last (warm) and the load; a
-    child that dies (a signal, an exception) gives {"crashed": its exit status, "stderr": its last lines}."""
-    done = subprocess.run([sys.executable, "-c", CHILD, str(grid), solver, str(runs)], capture_output=True, text=True)
+    child that dies (a signal, an exception) gives {"crashed": its exit status, "stderr": its last lines}.
+    solver FAST: Exudyn in a child whose environment selects Exudyn's fast module."""
+    env = dict(os.environ, EXUDYN_MODULE="fast") if solver == FAST else None
+    solver = "exudyn" if solver == FAST else solver
+    command = [sys.executable, "-c", CHILD, str(grid), solver, str(runs)]
+    done = subprocess.run(command, capture_output=True, text=True, env=env)
     if done.returncode:
         return {"crashed": done.returncode, "stderr": done.stderr[-500:], "load": os.getloadavg()[0]}
     return json.loads(done.stdout.strip().splitlines()[-1])
@@ -66,7 +76,7 @@ def measured(path: Path, grid: int, solver: str, runs: int, processes: int) -> l
 
 def table_row(grid: int, solver: str, records: list[dict], once: bool) -> tuple[str, float | None]:
     """(Markdown row, least warm CPU or None when the child crashed) of one grid and solver."""
-    name = "Exudyn" if solver == "exudyn" else "in-house"
+    name = LABELS[solver]
     done = [r for r in records if "crashed" not in r]
     if not done:
         status, last = records[0]["crashed"], records[0]["stderr"].strip().splitlines()[-1:]
@@ -91,16 +101,20 @@ def table_row(grid: int, solver: str, records: list[dict], once: bool) -> tuple[
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--grids", nargs="*", type=int, default=[5, 10, 14, 20, 28, 50, 100])
-    parser.add_argument("--repeats", type=int, default=3, help="processes per grid up to 20 tiles a side")
+    parser.add_argument("--repeats", type=int, default=3, help="processes per grid of --repeat-grids")
+    parser.add_argument("--repeat-grids", nargs="*", type=int, help="grids run in --repeats processes (default: ≤ 20)")
+    parser.add_argument("--fast-grids", nargs="*", type=int, default=[20, 50], help="grids with Exudyn's fast module")
     parser.add_argument("--once-above", type=int, default=28, help="grids above this run once, in one process")
     parser.add_argument("--out", default=str(HERE / "sheet_benchmark.md"))
     parser.add_argument("--rows", default=str(HERE / "sheet_benchmark_rows.jsonl"), help="measured rows (resumed)")
     args = parser.parse_args(argv)
     rows, best = [], {}
     for grid in args.grids:
-        for solver in ("exudyn", "reduced"):
+        for solver in ("exudyn", FAST, "reduced") if grid in args.fast_grids else ("exudyn", "reduced"):
             once = grid > args.once_above
-            records = measured(Path(args.rows), grid, solver, 1 if once else 2, args.repeats if grid <= 20 else 1)
+            repeated = grid <= 20 if args.repeat_grids is None else grid in args.repeat_grids
+            processes = args.repeats if repeated else 1
+            records = measured(Path(args.rows), grid, solver, 1 if once else 2, processes)
             row, cpu = table_row(grid, solver, records, once)
             rows.append(row)
             if cpu is not None:
@@ -114,13 +128,16 @@ def main(argv=None) -> int:
         slope = np.polyfit(np.log(n), np.log(cpu), 1)[0] if len(n) > 1 else math.nan
         fits.append(f"* {label}: CPU ∝ N^{slope:.2f} over N = {int(n[0])}…{int(n[-1])} tiles")
     targets = [
-        f"* {nx} × {nx}: Exudyn / in-house = {best[(nx, 'exudyn')] / best[(nx, 'reduced')]:.2f} (target ≤ 2)"
+        f"* {nx} × {nx}: {LABELS[solver]} / in-house = {best[(nx, solver)] / best[(nx, 'reduced')]:.2f} (target ≤ 2)"
         for nx in (20, 50)
-        if (nx, "exudyn") in best and (nx, "reduced") in best
+        for solver in ("exudyn", FAST)
+        if (nx, solver) in best and (nx, "reduced") in best
     ]
     if (100, "reduced") in best:
         targets.append(f"* 100 × 100: in-house {best[(100, 'reduced')]:.1f} s CPU to failure (target ≤ 120 s)")
     twenty = {s: best.get((20, s)) for s in ("exudyn", "reduced")}
+    repeat = [g for g in args.grids if (g <= 20 if args.repeat_grids is None else g in args.repeat_grids)]
+    repeated_text = "grids " + ", ".join(f"{g} × {g}" for g in repeat) if repeat else "no grid"
     command = "".join(" " + a for a in (argv if argv is not None else sys.argv[1:]))
     text = "\n".join(
         [
@@ -130,11 +147,14 @@ def main(argv=None) -> int:
             "(E = 4.5e9 Pa, 1-D sine ν = 1.5) on nx × nx tiles, to failure, each solver with its defaults (Exudyn: "
             "generalized-α, 1 ms, modified Newton, sparse LU; in-house: Radau IIA, rtol 1e-7). Each run in a fresh "
             f"process, run twice, the second timed (grids above {args.once_above} a side: run once, that run "
-            "timed); CPU = time.process_time of that run, the least of the repeats; 'first − warm' is the extra "
+            f"timed); {repeated_text} in {args.repeats} processes, the other grids in one; "
+            "CPU = time.process_time of that run, the least of the repeats; 'first − warm' is the extra "
             "CPU of the first run in a process (numba's cache loading, Exudyn's first assembly). "
             "The machine is a shared 2-core one (load average in the last column): wall times are noisy. Every "
             "measured row is kept in validation/sheet_benchmark_rows.jsonl and reused by a later call (delete it "
-            "to measure again); a child process that dies is a row that says so.",
+            "to measure again); a child process that dies is a row that says so. 'Exudyn, fast module': the "
+            "same Exudyn runs with Exudyn's fast module (EXUDYN_MODULE=fast: no range checks, AVX2), an opt-in "
+            "for the whole process, not the default.",
             "",
             "| grid | tiles N | solver | CPU (s) | wall (s) | CPU per step (ms) | first − warm CPU (s) "
             "| failure time (s) | steps | repeats | load avg |",
