@@ -79,3 +79,18 @@ def load_into(packed, flat, q, q_t, tiles, time, force):
     for k in range(tiles):
         for i in range(3):
             force[COORDINATES * k + i] = forces[i, k]
+
+
+def add_load_items(mbs, nodes: list, force: np.ndarray, block: int) -> tuple[list, list]:
+    """The load's carriers: one ``ObjectGenericODE2`` per `block` consecutive nodes, each with the constant
+    ``forceVector`` of its nodes' entries of `force` (6 a node); returns (object numbers, node ranges (a, b))."""
+    from exudyn.itemInterface import ObjectGenericODE2
+
+    blocks = [(a, min(a + block, len(nodes))) for a in range(0, len(nodes), block)]
+    items = [
+        mbs.AddObject(
+            ObjectGenericODE2(nodeNumbers=nodes[a:b], forceVector=force[COORDINATES * a : COORDINATES * b].tolist())
+        )
+        for a, b in blocks
+    ]
+    return items, blocks
