@@ -184,23 +184,39 @@ def _start(p: SailParameters) -> tuple:
     return (flat if payload is None else np.vstack([flat, payload.start])), start, quaternions, payload
 
 
-def _bodies(p: SailParameters, state: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
-    """(M's diagonal (6B,), the rigid-body motions scaled, orthonormal in z = M^½ ξ (6B × 6)) of the bodies at
-    `state` (default the case's start): the tiles' kinetic weights (analysis.sheet_spectrum), then a payload's
-    mass and principal inertia; the rigid motions about the bodies' centres and orientations (a supported
-    sheet: none)."""
+def mass_metric(p: SailParameters) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """(M^½, M^-½) (6B × 6B, block diagonal) of the bodies' mass matrix M on ξ: per body m I₃ for Δc and its
+    inertia tensor J (its own axes) for Δθ_b, each tile's own (a polar mesh's differ from tile to tile and are
+    not diagonal), then a payload's."""
+    tiles = sheet.Tiles.of(p)
+    masses, inertias = tiles.masses, tiles.inertias
+    payload = _start(p)[3]
+    if payload is not None:
+        masses, inertias = np.r_[masses, payload.mass], np.concatenate([inertias, payload.inertia[None]])
+    values, axes = np.linalg.eigh(inertias)
+    blocks = []
+    for power in (0.5, -0.5):
+        block = np.zeros((len(masses), 6, 6))
+        block[:, 0:3, 0:3] = (masses**power)[:, None, None] * np.eye(3)
+        block[:, 3:6, 3:6] = np.einsum("kij,kj,klj->kil", axes, values**power, axes)
+        blocks.append(sp.block_diag(list(block), format="csr"))
+    return blocks[0], blocks[1]
+
+
+def _bodies(p: SailParameters, state: np.ndarray | None) -> tuple[tuple, np.ndarray]:
+    """((M^½, M^-½) of :func:`mass_metric`, the rigid-body motions orthonormal in z = M^½ ξ (6B × 6)) of the
+    bodies at `state` (default the case's start): the rigid motions about the bodies' centres and orientations
+    (a supported sheet: none)."""
     flat, centres, quaternions, payload = _start(p)
     if state is not None:
         rows = np.asarray(state, float).reshape(-1, 13)
         centres, quaternions = flat + rows[:, 0:3], rows[:, 3:7]
-    weights = sheet_spectrum.kinetic_weights(p)
-    if payload is not None:
-        weights = np.r_[weights, [payload.mass] * 3, np.diag(payload.inertia)]
-    rigid = np.sqrt(weights)[:, None] * sheet_spectrum.rigid_motions(centres, quaternions)
+    half, inverse = mass_metric(p)
+    rigid = half @ sheet_spectrum.rigid_motions(centres, quaternions)
     if p.boundary != "free":
-        return weights, rigid[:, :0]
+        return (half, inverse), rigid[:, :0]
     u, sigma, _ = np.linalg.svd(rigid, full_matrices=False)
-    return weights, u[:, sigma > 1e-8 * sigma.max()]
+    return (half, inverse), u[:, sigma > 1e-8 * sigma.max()]
 
 
 def rotating_spectrum(p: SailParameters, solver: str = "reduced", state: np.ndarray | None = None) -> RotatingSpectrum:
@@ -208,10 +224,10 @@ def rotating_spectrum(p: SailParameters, solver: str = "reduced", state: np.ndar
     lit equilibrium) restricted to the deformations (module docstring; dense, meant for grids up to about
     12 × 12), the case's payload included (a stem, or tethers taut at the state)."""
     L = rotating_linearisation(p, state, solver)
-    weights, rigid = _bodies(p, state)
+    metric, rigid = _bodies(p, state)
     full, _ = np.linalg.qr(rigid, mode="complete")
-    modes = sheet_spectrum._deformation_modes(p, L, full[:, rigid.shape[1] :], weights)
-    energy = (np.abs(modes.vectors) ** 2 * weights[:, None]).reshape(-1, 6, modes.vectors.shape[1])
+    modes = sheet_spectrum._deformation_modes(p, L, full[:, rigid.shape[1] :], metric)
+    energy = (np.abs(metric[0] @ modes.vectors) ** 2).reshape(-1, 6, modes.vectors.shape[1])
     shares = energy[:, 3:].sum(axis=(0, 1)) / energy.sum(axis=(0, 1))
     return RotatingSpectrum(modes.eigenvalues, shares)
 
@@ -221,8 +237,8 @@ def rigid_modes(p: SailParameters, solver: str = "reduced", state: np.ndarray | 
     craft's six rigid-body motions (Galerkin, kinetic metric; module docstring): its beam-riding modes with its
     shape held."""
     L = rotating_linearisation(p, state, solver)
-    weights, rigid = _bodies(p, state)
-    return sheet_spectrum._deformation_modes(p, L, rigid, weights).eigenvalues
+    metric, rigid = _bodies(p, state)
+    return sheet_spectrum._deformation_modes(p, L, rigid, metric).eigenvalues
 
 
 def critical_spin(
