@@ -18,16 +18,27 @@ closed form they are compared with (Lamb & Southwell).
 
 **Deformation spectrum** (:func:`rotating_spectrum`): L restricted, as analysis.sheet_spectrum restricts
 ``linearise``, to the kinetic-metric complement of the six rigid-body motions; the fastest Re λ is the
-growth rate of the shape.
+growth rate of the shape. The kinetic metric (:func:`mass_metric`) is the bodies' own mass matrix: each tile's
+mass and inertia tensor (a polar mesh's tiles differ, and their tensors are not diagonal in the tiles' axes).
 
 **With a payload** (model.sheet_payload: a stem, or tethers taut at the state) the payload is one more body,
-its mass and principal inertia in the kinetic metric; the rigid-body motions are the whole craft's.
-**Rigid modes** (:func:`rigid_modes`): L restricted to those six motions: the craft's beam-riding modes with
-its shape held. In a round Gaussian beam centred on the spin axis a rigid craft's would be the roots s of the rigid
-criterion's quartic (analysis.ride3d_criterion, for U = x + iy in the inertial frame) seen from the turning frame,
-s − iΩ and their conjugates, beside the axial translation's and the spin's zero pairs; about the lit state of the
-spin map's flexible cap they are not (a real pair ±4.8/s at 40 rad/s where the criterion rides, and the axial
-translation's and the spin's pairs not zero: validation/spin_equilibrium_cells.md), which is not understood.
+its mass and inertia in the kinetic metric; the rigid-body motions are the whole craft's.
+**Rigid modes** (:func:`rigid_modes`): L restricted to those six motions (Galerkin, in that metric): the craft's
+beam-riding modes with its shape held. In a round Gaussian beam centred on the spin axis a rigid craft's are the
+roots s of the rigid criterion's quartic (analysis.ride3d_criterion, for U = x + iy in the inertial frame) seen
+from the turning frame, s − iΩ and their conjugates, beside the axial translation's and the spin's zero pairs.
+The projection is that of the held shape only at an equilibrium: it moves the bodies along the linearised rigid
+motions, whose second derivatives ∂²xᵢ/∂θ_a∂θ_b (the rotations' curvature) the bodies' residual forces rᵢ at
+the state (each body's mass times its acceleration less the mean) work on, so its stiffness differs from the
+held shape's by −Σᵢ rᵢ·∂²xᵢ/∂θ_a∂θ_b; at an equilibrium the connectors' prestress, through L, supplies the
+loads' share of that term exactly. About a start whose connectors carry none of the light's load (Ω = 0, the
+map's cap) the eight beam-riding roots are off by 28 % and the spin is a real pair ±13.7/s; about
+:func:`lit_state` at 40 rad/s they are the criterion's within 0.33 % (validation/spin_spectrum_rigid.md).
+The lit state itself is at rest in a frame turning slightly slower than Ω: its relaxation conserves the
+craft's angular momentum about the axis, so as the lit cap deforms the craft ends up turning at Ω + δ
+(δ = −5.4e-3 rad/s at 40 rad/s), its connectors balancing that rate's centrifugal load. Linearised at Ω, the
+radial residual 2Ωδ mᵢ rᵢ gives the spin a stiffness and a real pair (±0.63/s at 40 rad/s, the whole L's
+fastest Re λ there too); in the frame turning at Ω + δ it is ±0.07i.
 
 **Critical spin rate** (:func:`critical_spin`): the spin from which the fastest deformation grows slower than
 a threshold, by default ln 2/(6 s): a shape that grows no faster does not double within the paper's 6 s
