@@ -37,8 +37,8 @@ map's cap) the eight beam-riding roots are off by 28 % and the spin is a real pa
 The lit state itself is at rest in a frame turning slightly slower than Ω: its relaxation conserves the
 craft's angular momentum about the axis, so as the lit cap deforms the craft ends up turning at Ω + δ
 (δ = −5.4e-3 rad/s at 40 rad/s), its connectors balancing that rate's centrifugal load. Linearised at Ω, the
-radial residual 2Ωδ mᵢ rᵢ gives the spin a stiffness and a real pair (±0.63/s at 40 rad/s, the whole L's
-fastest Re λ there too); in the frame turning at Ω + δ it is ±0.07i.
+radial residual forces 2Ω|δ| mᵢ ρᵢ (ρᵢ a body's distance from the axis) give the spin a stiffness and a real
+pair (±0.63/s at 40 rad/s, the whole L's fastest Re λ there too); in the frame turning at Ω + δ it is ±0.07i.
 
 **Critical spin rate** (:func:`critical_spin`): the spin from which the fastest deformation grows slower than
 a threshold, by default ln 2/(6 s): a shape that grows no faster does not double within the paper's 6 s
@@ -172,7 +172,8 @@ class RotatingSpectrum:
 
 def lit_state(p: SailParameters, solver: str = "reduced") -> np.ndarray:
     """The solver's 13B state of the spinning sheet case p at rest in its turning frame under its beam, centred
-    on the spin axis (the ``spun_equilibrium`` capability, lit; module docstring)."""
+    on the spin axis (the ``spun_equilibrium`` capability, lit; module docstring: the relaxed craft turns at
+    Ω + δ, slightly off the frame's rate)."""
     from lightsail_mbs.solvers import contract
 
     centres, quaternions = contract.lookup(solver, p).capability("spun_equilibrium")(p, lit=True)
