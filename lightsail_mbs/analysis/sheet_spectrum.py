@@ -206,15 +206,27 @@ class Modes:
 def _deformation_modes(p: SailParameters, L: sp.spmatrix, basis: np.ndarray, weights=None) -> Modes:
     """Eigen-decomposition of L restricted (Galerkin, kinetic metric) to the deformations spanned by `basis`
     (columns orthonormal in the scaled coordinates z = M^½ ξ, free of rigid-body motion): with ξ = M^-½ Q η,
-    η̈ = Qᵀ M^½ (K M^-½ Q η + C M^-½ Q η̇). weights: M's diagonal (default the tiles', kinetic_weights)."""
+    η̈ = Qᵀ M^½ (K M^-½ Q η + C M^-½ Q η̇). weights: M's diagonal (default the tiles', kinetic_weights), or
+    the pair (M^½, M^-½) of a mass matrix that is not diagonal."""
     import scipy.linalg as sl
 
     n = L.shape[0] // 2
-    m = np.sqrt(kinetic_weights(p) if weights is None else weights)
+    if isinstance(weights, tuple):
+        root, inverse = weights
+        back = inverse @ basis  # M^-½ Q: ξ of each basis vector
+
+        def half(forces):
+            return root @ forces
+    else:
+        m = np.sqrt(kinetic_weights(p) if weights is None else weights)
+        back = basis / m[:, None]
+
+        def half(forces):
+            return m[:, None] * forces
+
     K, C = L[n:, :n], L[n:, n:]
-    back = basis / m[:, None]  # M^-½ Q: ξ of each basis vector
-    k = basis.T @ (m[:, None] * (K @ back))
-    c = basis.T @ (m[:, None] * (C @ back))
+    k = basis.T @ half(K @ back)
+    c = basis.T @ half(C @ back)
     size = basis.shape[1]
     values, vectors = sl.eig(np.block([[np.zeros((size, size)), np.eye(size)], [k, c]]))
     order = np.argsort(-values.real)

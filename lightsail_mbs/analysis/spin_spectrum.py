@@ -18,16 +18,27 @@ closed form they are compared with (Lamb & Southwell).
 
 **Deformation spectrum** (:func:`rotating_spectrum`): L restricted, as analysis.sheet_spectrum restricts
 ``linearise``, to the kinetic-metric complement of the six rigid-body motions; the fastest Re λ is the
-growth rate of the shape.
+growth rate of the shape. The kinetic metric (:func:`mass_metric`) is the bodies' own mass matrix: each tile's
+mass and inertia tensor (a polar mesh's tiles differ, and their tensors are not diagonal in the tiles' axes).
 
 **With a payload** (model.sheet_payload: a stem, or tethers taut at the state) the payload is one more body,
-its mass and principal inertia in the kinetic metric; the rigid-body motions are the whole craft's.
-**Rigid modes** (:func:`rigid_modes`): L restricted to those six motions: the craft's beam-riding modes with
-its shape held. In a round Gaussian beam centred on the spin axis a rigid craft's would be the roots s of the rigid
-criterion's quartic (analysis.ride3d_criterion, for U = x + iy in the inertial frame) seen from the turning frame,
-s − iΩ and their conjugates, beside the axial translation's and the spin's zero pairs; about the lit state of the
-spin map's flexible cap they are not (a real pair ±4.8/s at 40 rad/s where the criterion rides, and the axial
-translation's and the spin's pairs not zero: validation/spin_equilibrium_cells.md), which is not understood.
+its mass and inertia in the kinetic metric; the rigid-body motions are the whole craft's.
+**Rigid modes** (:func:`rigid_modes`): L restricted to those six motions (Galerkin, in that metric): the craft's
+beam-riding modes with its shape held. In a round Gaussian beam centred on the spin axis a rigid craft's are the
+roots s of the rigid criterion's quartic (analysis.ride3d_criterion, for U = x + iy in the inertial frame) seen
+from the turning frame, s − iΩ and their conjugates, beside the axial translation's and the spin's zero pairs.
+The projection is that of the held shape only at an equilibrium: it moves the bodies along the linearised rigid
+motions, whose second derivatives ∂²xᵢ/∂θ_a∂θ_b (the rotations' curvature) the bodies' residual forces rᵢ at
+the state (each body's mass times its acceleration less the mean) work on, so its stiffness differs from the
+held shape's by −Σᵢ rᵢ·∂²xᵢ/∂θ_a∂θ_b; at an equilibrium the connectors' prestress, through L, supplies the
+loads' share of that term exactly. About a start whose connectors carry none of the light's load (Ω = 0, the
+map's cap) the eight beam-riding roots are off by 28 % and the spin is a real pair ±13.7/s; about
+:func:`lit_state` at 40 rad/s they are the criterion's within 0.33 % (validation/spin_spectrum_rigid.md).
+The lit state itself is at rest in a frame turning slightly slower than Ω: its relaxation conserves the
+craft's angular momentum about the axis, so as the lit cap deforms the craft ends up turning at Ω + δ
+(δ = −5.4e-3 rad/s at 40 rad/s), its connectors balancing that rate's centrifugal load. Linearised at Ω, the
+radial residual forces 2Ω|δ| mᵢ ρᵢ (ρᵢ a body's distance from the axis) give the spin a stiffness and a real
+pair (±0.63/s at 40 rad/s, the whole L's fastest Re λ there too); in the frame turning at Ω + δ it is ±0.07i.
 
 **Critical spin rate** (:func:`critical_spin`): the spin from which the fastest deformation grows slower than
 a threshold, by default ln 2/(6 s): a shape that grows no faster does not double within the paper's 6 s
@@ -161,7 +172,8 @@ class RotatingSpectrum:
 
 def lit_state(p: SailParameters, solver: str = "reduced") -> np.ndarray:
     """The solver's 13B state of the spinning sheet case p at rest in its turning frame under its beam, centred
-    on the spin axis (the ``spun_equilibrium`` capability, lit; module docstring)."""
+    on the spin axis (the ``spun_equilibrium`` capability, lit; module docstring: the relaxed craft turns at
+    Ω + δ, slightly off the frame's rate)."""
     from lightsail_mbs.solvers import contract
 
     centres, quaternions = contract.lookup(solver, p).capability("spun_equilibrium")(p, lit=True)
@@ -184,23 +196,39 @@ def _start(p: SailParameters) -> tuple:
     return (flat if payload is None else np.vstack([flat, payload.start])), start, quaternions, payload
 
 
-def _bodies(p: SailParameters, state: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
-    """(M's diagonal (6B,), the rigid-body motions scaled, orthonormal in z = M^½ ξ (6B × 6)) of the bodies at
-    `state` (default the case's start): the tiles' kinetic weights (analysis.sheet_spectrum), then a payload's
-    mass and principal inertia; the rigid motions about the bodies' centres and orientations (a supported
-    sheet: none)."""
+def mass_metric(p: SailParameters) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """(M^½, M^-½) (6B × 6B, block diagonal) of the bodies' mass matrix M on ξ: per body m I₃ for Δc and its
+    inertia tensor J (its own axes) for Δθ_b, each tile's own (a polar mesh's differ from tile to tile and are
+    not diagonal), then a payload's."""
+    tiles = sheet.Tiles.of(p)
+    masses, inertias = tiles.masses, tiles.inertias
+    payload = _start(p)[3]
+    if payload is not None:
+        masses, inertias = np.r_[masses, payload.mass], np.concatenate([inertias, payload.inertia[None]])
+    values, axes = np.linalg.eigh(inertias)
+    blocks = []
+    for power in (0.5, -0.5):
+        block = np.zeros((len(masses), 6, 6))
+        block[:, 0:3, 0:3] = (masses**power)[:, None, None] * np.eye(3)
+        block[:, 3:6, 3:6] = np.einsum("kij,kj,klj->kil", axes, values**power, axes)
+        blocks.append(sp.block_diag(list(block), format="csr"))
+    return blocks[0], blocks[1]
+
+
+def _bodies(p: SailParameters, state: np.ndarray | None) -> tuple[tuple, np.ndarray]:
+    """((M^½, M^-½) of :func:`mass_metric`, the rigid-body motions orthonormal in z = M^½ ξ (6B × 6)) of the
+    bodies at `state` (default the case's start): the rigid motions about the bodies' centres and orientations
+    (a supported sheet: none)."""
     flat, centres, quaternions, payload = _start(p)
     if state is not None:
         rows = np.asarray(state, float).reshape(-1, 13)
         centres, quaternions = flat + rows[:, 0:3], rows[:, 3:7]
-    weights = sheet_spectrum.kinetic_weights(p)
-    if payload is not None:
-        weights = np.r_[weights, [payload.mass] * 3, np.diag(payload.inertia)]
-    rigid = np.sqrt(weights)[:, None] * sheet_spectrum.rigid_motions(centres, quaternions)
+    half, inverse = mass_metric(p)
+    rigid = half @ sheet_spectrum.rigid_motions(centres, quaternions)
     if p.boundary != "free":
-        return weights, rigid[:, :0]
+        return (half, inverse), rigid[:, :0]
     u, sigma, _ = np.linalg.svd(rigid, full_matrices=False)
-    return weights, u[:, sigma > 1e-8 * sigma.max()]
+    return (half, inverse), u[:, sigma > 1e-8 * sigma.max()]
 
 
 def rotating_spectrum(p: SailParameters, solver: str = "reduced", state: np.ndarray | None = None) -> RotatingSpectrum:
@@ -208,10 +236,10 @@ def rotating_spectrum(p: SailParameters, solver: str = "reduced", state: np.ndar
     lit equilibrium) restricted to the deformations (module docstring; dense, meant for grids up to about
     12 × 12), the case's payload included (a stem, or tethers taut at the state)."""
     L = rotating_linearisation(p, state, solver)
-    weights, rigid = _bodies(p, state)
+    metric, rigid = _bodies(p, state)
     full, _ = np.linalg.qr(rigid, mode="complete")
-    modes = sheet_spectrum._deformation_modes(p, L, full[:, rigid.shape[1] :], weights)
-    energy = (np.abs(modes.vectors) ** 2 * weights[:, None]).reshape(-1, 6, modes.vectors.shape[1])
+    modes = sheet_spectrum._deformation_modes(p, L, full[:, rigid.shape[1] :], metric)
+    energy = (np.abs(metric[0] @ modes.vectors) ** 2).reshape(-1, 6, modes.vectors.shape[1])
     shares = energy[:, 3:].sum(axis=(0, 1)) / energy.sum(axis=(0, 1))
     return RotatingSpectrum(modes.eigenvalues, shares)
 
@@ -221,8 +249,8 @@ def rigid_modes(p: SailParameters, solver: str = "reduced", state: np.ndarray | 
     craft's six rigid-body motions (Galerkin, kinetic metric; module docstring): its beam-riding modes with its
     shape held."""
     L = rotating_linearisation(p, state, solver)
-    weights, rigid = _bodies(p, state)
-    return sheet_spectrum._deformation_modes(p, L, rigid, weights).eigenvalues
+    metric, rigid = _bodies(p, state)
+    return sheet_spectrum._deformation_modes(p, L, rigid, metric).eigenvalues
 
 
 def critical_spin(
