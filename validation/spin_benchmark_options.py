@@ -1,0 +1,81 @@
+"""The in-house solver's opt-in options on the spinning disc of validation/spin_benchmark.py (its `--only options`
+table): solvers.reduced.sheet_options' rate_scale "spin" (the tiles' rates scaled by the spin rate), jacobian
+"split" (the polar disc's centre tile's rows apart from the colouring) and lu "double" (the Newton matrices' LUs in
+double precision).
+
+* **Speed** (SPEED_RUNS): 1009 tiles, the benchmark's centred case at rtol 1e-3 over SPAN, one option added at a
+  time; CPU per simulated second projected as in the speed table.
+* **Accuracy** (RIDE_RUNS): the offset ride of the tolerance table (193 tiles, spin_benchmark_steps.RIDE_OFFSET,
+  RIDE_SPAN) with the options, its end values against the tolerance table's tightest rtol.
+"""
+
+from __future__ import annotations
+
+import spin_benchmark_steps as steps
+
+SPAN = 0.02
+ALL = {"rate_scale": "spin", "jacobian": "split", "lu": "double"}
+SPEED_RUNS = [
+    {"rtol": 1e-3, "jacobian": "split"},
+    {"rtol": 1e-3, "jacobian": "split", "rate_scale": "spin"},
+    {"rtol": 1e-3, **ALL},
+    {"rtol": 1e-2, **ALL},
+]
+RIDE_RUNS = [{"rtol": 1e-3, **ALL}, {"rtol": 1e-2, **ALL}]
+
+
+def option_rows(measure) -> dict:
+    """{"speed": [(options, row)], "ride": [(options, row)]} of SPEED_RUNS and RIDE_RUNS."""
+    changes = dict(beam_centre=0.5 + steps.RIDE_OFFSET)
+    return {
+        "speed": [(o, measure(1009, "reduced", o, SPAN)) for o in SPEED_RUNS],
+        "ride": [(o, measure(193, "reduced", o, steps.RIDE_SPAN, changes)) for o in RIDE_RUNS],
+    }
+
+
+def named(options: dict) -> str:
+    return ", ".join(f"{k} {v:g}" if isinstance(v, float) else f"{k} {v}" for k, v in options.items())
+
+
+def options_table(rows: dict, tolerance: list) -> list[str]:
+    lines = [
+        "| tiles | options | simulated (s) | steps | rejected | Jacobians | CPU (s) | CPU per simulated s "
+        "| Δ lateral | Δ tilt | Δ Ω | Δ amplitude |",
+        "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    for options, row in rows["speed"]:
+        lines.append(
+            f"| 1009 | {named(options)} | {SPAN:g} | {row['steps']} | {row['rejected']} | {row['jacobians']} "
+            f"| {row['cpu']:.2f} | {row['cpu'] / SPAN:,.0f} | – | – | – | – |"
+        )
+    reference = tolerance[-1]
+    for options, row in rows["ride"]:
+        d = steps.deviations([(options["rtol"], row), tuple(reference)])[0]
+        lines.append(
+            f"| 193, offset | {named(options)} | {steps.RIDE_SPAN:g} | {row['steps']} | {row['rejected']} "
+            f"| {row['jacobians']} | {row['cpu']:.2f} | {row['cpu'] / steps.RIDE_SPAN:,.0f} | {d['lateral']:.1e} "
+            f"| {d['tilt']:.1e} | {d['spin']:.1e} | {d['amplitude']:.1e} |"
+        )
+    return lines
+
+
+def options_findings(rows: dict, tolerance: list, target: float) -> list[str]:
+    """What the options' table says: the best projected second at 1009 tiles against the target, and the
+    ride's accuracy with the options against rtol 1e-7's."""
+    best_options, best = min(rows["speed"], key=lambda item: item[1]["cpu"])
+    per_s = best["cpu"] / SPAN
+    out = [
+        f"* 1009 tiles with the options: the fastest ({named(best_options)}) takes {best['steps'] / SPAN:,.0f} steps "
+        f"per simulated second at {1e3 * best['cpu'] / best['steps']:.0f} ms CPU a step, {best['jacobians']} "
+        f"Jacobians in {1e3 * SPAN:g} ms: projected {per_s:,.0f} s for 1 s, {per_s / target:.1f}× the {target:g} s "
+        "target."
+    ]
+    reference = tolerance[-1]
+    for options, row in rows["ride"]:
+        d = steps.deviations([(options["rtol"], row), tuple(reference)])[0]
+        out.append(
+            f"* The offset ride with {named(options)}: end values within {max(d.values()):.1e} of rtol "
+            f"{reference[0]:g}'s ({row['steps']} steps, against {len(tolerance) and tolerance[0][1]['steps']} at rtol "
+            f"{tolerance[0][0]:g} with the component scales)."
+        )
+    return out
