@@ -15,7 +15,7 @@ Python process of its own and records the ride's histories (analysis.ride3d: lat
 rate, shape amplitude) at the output samples.
 
 The options table (validation/spin_benchmark_options.py): the 1009-tile case and the offset ride with the in-house
-solver's opt-in rate_scale, jacobian and lu options. Further tables (validation/spin_benchmark_steps.py): every
+solver's opt-in rate_scale and jacobian options. Further tables (validation/spin_benchmark_steps.py): every
 in-house step traced on 193 and 1009 tiles (what sets its size), the end values of a 0.1 s offset ride on 193 tiles
 against rtol (the tolerance a ride needs), and the CPU of the parts of an in-house step (right-hand side, Jacobian,
 LU, solves) at 193 and 1009 tiles; and the same film unlit in both frames, flat and with the case's default 10 µm
@@ -343,7 +343,7 @@ def main(argv=None) -> int:
         "## The in-house solver's opt-in options",
         "",
         "Measured by validation/spin_benchmark_options.py (`--only options`): solvers.reduced.sheet_options' "
-        "rate_scale spin, jacobian split and lu double, each off by default; the offset ride's Δ against the "
+        "rate_scale spin and jacobian split, each off by default; the offset ride's Δ against the "
         "tolerance table's tightest rtol.",
         "",
         *(opt_in.options_table(kept["options"], kept["tolerance"]) if "options" in kept else []),

@@ -83,13 +83,12 @@ RATE_SCALE = Option(
     "rate_scale", one_of("component", "spin"), "component or spin", None, "error scale of the tiles' rates (spin)"
 )
 JACOBIAN = Option("jacobian", one_of("coloured", "split"), "coloured or split", None, "dense rows apart (polar)")
-LU = Option("lu", one_of("single", "double"), "single or double", None, "precision of the Newton matrices' LUs")
 register(
     Solver(
         "reduced",
         "sheet",
         "reduced.sheet",
-        (RTOL, MAX_STEP, PERTURBATION, FRAME, RATE_SCALE, JACOBIAN, LU),
+        (RTOL, MAX_STEP, PERTURBATION, FRAME, RATE_SCALE, JACOBIAN),
         REDUCED_SHEET_CAPABILITIES,
         SHEET_DEFAULTS,
     )

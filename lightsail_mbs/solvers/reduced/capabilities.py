@@ -183,5 +183,4 @@ def sheet_defaults(params: SailParameters, settings: RunSettings, **options) -> 
         "frame": options.get("frame") or ("turning" if params.spin_rate != 0 else "inertial"),
         "rate_scale": options.get("rate_scale") or "component",
         "jacobian": options.get("jacobian") or "coloured",
-        "lu": options.get("lu") or "single",
     }

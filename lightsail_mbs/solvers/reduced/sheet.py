@@ -253,7 +253,7 @@ class SheetModel:
 
 def run(params: SailParameters, settings: RunSettings, *, progress: bool = False, **options) -> Result:
     """Integrate one sheet case to t_final or to failure and return its Result (solver "reduced");
-    options: rtol, max_step, perturbation, frame (module docstring), rate_scale, jacobian, lu (sheet_options)."""
+    options: rtol, max_step, perturbation, frame (module docstring), rate_scale, jacobian (sheet_options)."""
     chosen = checked_options(options, params)
     rtol, max_step, perturbation, frame = chosen.rtol, chosen.max_step, chosen.perturbation, chosen.frame
     start = _time.perf_counter()
@@ -279,7 +279,6 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         X=model.position_indices,
         V=model.velocity_indices,
         h_max=h_max,
-        single=None if chosen.lu == "single" else False,
     )
     times = settings.sample_times()
     monitor = FailureMonitor(failure.plane_amplitude(model.start), settings)
@@ -322,7 +321,6 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         "frame": frame,
         "rate_scale": chosen.rate_scale,
         "jacobian": chosen.jacobian,
-        "lu": chosen.lu,
         "colours": len(model.groups),
         "steps": solver.nsteps,
         "rejected_steps": solver.nrejected,

@@ -14,11 +14,6 @@ spinning sheet is integrated, both off by default:
   tile) are left out of the colouring's conflicts and computed apart (solvers.reduced.sheet_jacobian): the
   same Jacobian to the round-off of its difference quotients, with 7 colours instead of 57 on a 1009-tile
   disc.
-* ``lu``: "single" (default: the Newton matrices' LUs in single precision, sheet_radau.ReducedLU) or "double".
-  Single precision halves the factors' bytes, but where the factors' fill decays below 1e-38 (float32's least
-  normal number) its arithmetic runs on subnormal numbers, which the processor computes far more slowly: measured
-  on the 1009-tile disc of validation/spin_benchmark.py at 10 ms, one complex LU took 0.50 s in complex64 and
-  0.083 s in complex128, one real LU 0.16 s in float32 and 0.056 s in float64 (one thread).
 """
 
 from __future__ import annotations
@@ -37,8 +32,7 @@ DEFAULT_MAX_STEP = 0.01
 FRAMES = ("inertial", "turning")
 RATE_SCALES = ("component", "spin")
 JACOBIANS = ("coloured", "split")
-LUS = ("single", "double")
-OPTIONS = ("rtol", "max_step", "perturbation", "frame", "rate_scale", "jacobian", "lu")
+OPTIONS = ("rtol", "max_step", "perturbation", "frame", "rate_scale", "jacobian")
 
 
 @dataclass(frozen=True)
@@ -51,7 +45,6 @@ class RunOptions:
     frame: str
     rate_scale: str = "component"
     jacobian: str = "coloured"
-    lu: str = "single"
 
 
 def state_scales(p: SailParameters, rate_scale: str = "component") -> np.ndarray:
@@ -96,7 +89,7 @@ def checked_options(options: dict, p: SailParameters) -> RunOptions:
     if frame not in FRAMES:
         raise ParameterError(f"frame={frame!r} is invalid: allowed inertial or turning")
     choices = {}
-    for name, allowed in (("rate_scale", RATE_SCALES), ("jacobian", JACOBIANS), ("lu", LUS)):
+    for name, allowed in (("rate_scale", RATE_SCALES), ("jacobian", JACOBIANS)):
         choices[name] = options.get(name) or allowed[0]
         if choices[name] not in allowed:
             raise ParameterError(f"{name}={choices[name]!r} is invalid: allowed {' or '.join(allowed)}")

@@ -245,14 +245,12 @@ class ReducedLU:
 class SheetRadau:
     """Adaptive Radau IIA with steps h_max/2^k (module docstring).
 
-    fun(t, y) → ẏ; jac(t, y) → sparse J; kinematics(y) → sparse B; X, V: the index sets of y; single: the
-    LUs' precision (ReducedLU; None: SINGLE_PRECISION_LU).
+    fun(t, y) → ẏ; jac(t, y) → sparse J; kinematics(y) → sparse B; X, V: the index sets of y.
     step() advances one accepted step (returns None, or an error message with status "failed");
     sol(t) evaluates the last step's collocation polynomial (dense output, O(h⁴))."""
 
-    def __init__(self, fun, t0, y0, t_bound, rtol, atol, jac, kinematics, X, V, h_max, first_level=12, single=None):
+    def __init__(self, fun, t0, y0, t_bound, rtol, atol, jac, kinematics, X, V, h_max, first_level=12):
         self.fun, self.jac, self.kinematics = fun, jac, kinematics
-        self.single = single  # the LUs in single precision (None: SINGLE_PRECISION_LU; ReducedLU)
         self.X, self.V = X, V
         self.t, self.y = float(t0), np.asarray(y0, float).copy()
         self.t_bound = float(t_bound)
@@ -283,8 +281,7 @@ class SheetRadau:
         key = level if h is None else ("final", h)
         if key not in self.lus:
             h = self.h_max / 2**level if h is None else h
-            pair = (ReducedLU(self.system, mu, self.single) for mu in (MU_REAL / h, MU_COMPLEX / h))
-            self.lus[key] = tuple(pair)
+            self.lus[key] = (ReducedLU(self.system, MU_REAL / h), ReducedLU(self.system, MU_COMPLEX / h))
             self.nlu += 2
         return self.lus[key]
 
