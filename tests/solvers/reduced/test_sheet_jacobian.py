@@ -71,3 +71,10 @@ def test_split_run_is_the_coloured_run():
 def test_bad_jacobian_option_is_one_line():
     with pytest.raises(ParameterError, match="jacobian='dense' is invalid"):
         solve(film(n=9, ny=12), "reduced", RunSettings(t_final=1e-3), uncertainty=False, jacobian="dense")
+
+
+def test_the_benchmark_disc_takes_7_colours_instead_of_57():
+    """The 1009-tile disc of validation/spin_benchmark.py (1 + 18 rings of 56 tiles)."""
+    p = film(n=37, ny=56)
+    assert len(SheetModel(p, jacobian="split").groups) == 7
+    assert len(SheetModel(p).groups) == 57
