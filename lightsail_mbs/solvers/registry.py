@@ -79,12 +79,16 @@ REDUCED_SHEET_CAPABILITIES = {
     "spun_equilibrium": "sheet_relax:spun_equilibrium",
 }
 FRAME = Option("frame", one_of("inertial", "turning"), "inertial or turning", None, "integration frame (spin)")
+RATE_SCALE = Option(
+    "rate_scale", one_of("component", "spin"), "component or spin", None, "error scale of the tiles' rates (spin)"
+)
+JACOBIAN = Option("jacobian", one_of("coloured", "split"), "coloured or split", None, "dense rows apart (polar)")
 register(
     Solver(
         "reduced",
         "sheet",
         "reduced.sheet",
-        (RTOL, MAX_STEP, PERTURBATION, FRAME),
+        (RTOL, MAX_STEP, PERTURBATION, FRAME, RATE_SCALE, JACOBIAN),
         REDUCED_SHEET_CAPABILITIES,
         SHEET_DEFAULTS,
     )

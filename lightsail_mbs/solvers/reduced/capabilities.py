@@ -181,4 +181,6 @@ def sheet_defaults(params: SailParameters, settings: RunSettings, **options) -> 
         "max_step": options.get("max_step") or sheet.DEFAULT_MAX_STEP,
         "perturbation": options.get("perturbation") or 0.0,
         "frame": options.get("frame") or ("turning" if params.spin_rate != 0 else "inertial"),
+        "rate_scale": options.get("rate_scale") or "component",
+        "jacobian": options.get("jacobian") or "coloured",
     }

@@ -57,23 +57,26 @@ from lightsail_mbs.model import failure, sheet, sheet_payload, sheet_pose, terms
 from lightsail_mbs.model.parameters import SailParameters
 from lightsail_mbs.result import Result
 from lightsail_mbs.solvers.progress import Progress
+from lightsail_mbs.solvers.reduced.sheet_jacobian import DenseRows
 from lightsail_mbs.solvers.reduced.sheet_kernels import STATE, fill_jacobian, rhs_kernel, unpack_into
+from lightsail_mbs.solvers.reduced.sheet_options import (  # noqa: F401 (DEFAULT_*, OPTIONS: this solver's)
+    DEFAULT_MAX_STEP,
+    DEFAULT_RTOL,
+    OPTIONS,
+    checked_options,
+    state_scales,
+)
 from lightsail_mbs.solvers.reduced.sheet_radau import SheetRadau, distance2_colouring, empty_small_pages
 from lightsail_mbs.solvers.reduced.sheet_tethers import append_payload, split_bodies
 from lightsail_mbs.solvers.reduced.sheet_turning import TurningFrame
 from lightsail_mbs.solvers.skeleton import FailureMonitor
 from lightsail_mbs.solvers.spun_start import spun_shape
 
-DEFAULT_RTOL = 1e-7
-DEFAULT_MAX_STEP = 0.01
-OPTIONS = ("rtol", "max_step", "perturbation", "frame")
-FRAMES = ("inertial", "turning")
-
 
 class SheetModel:
     """The right-hand side, sparse Jacobian and initial state of one sheet case."""
 
-    def __init__(self, p: SailParameters, perturbation: float = 0.0, frame: str = "inertial"):
+    def __init__(self, p: SailParameters, perturbation: float = 0.0, frame: str = "inertial", jacobian="coloured"):
         self.p = p
         self.tiles = sheet.Tiles.of(p)
         self.flat = sheet.flat_centres(p)
@@ -101,7 +104,7 @@ class SheetModel:
         self.count = len(self.flat)  # bodies: the tiles, then the payload
         self.n = STATE * self.count
         self.calls = 0
-        self._pattern()
+        self._pattern(jacobian)
         self.shape = spun_shape(p)  # None, or the spun equilibrium to start from (solvers.spun_start)
         self.turning = TurningFrame(self) if frame == "turning" else None  # the state's frame (sheet_turning)
 
@@ -158,9 +161,10 @@ class SheetModel:
         )
         return out
 
-    def _pattern(self):
+    def _pattern(self, jacobian: str):
         """CSC sparsity of ∂ẏ/∂y (each tile's 13 rows depend on its own and its neighbours' 13 columns) and
-        the colouring of the tiles (distance2_colouring of the mesh's adjacency)."""
+        the colouring of the tiles (distance2_colouring of the mesh's adjacency; jacobian "split": the dense
+        rows apart, sheet_jacobian.DenseRows)."""
         N = self.count
         neighbours = [{k} for k in range(N)]
         for a, b in [*zip(self.ta, self.tb), *((k, self.lit) for k in self.tethers[0])]:
@@ -174,7 +178,8 @@ class SheetModel:
         M = sp.csc_matrix((np.ones(rows.size), (rows, cols)), shape=(self.n, self.n))
         M.sort_indices()
         self.indptr, self.indices = M.indptr.astype(np.int64), M.indices.astype(np.int64)
-        colour = distance2_colouring(neighbours)
+        self.dense = DenseRows.of(self, neighbours) if jacobian == "split" else None
+        colour = distance2_colouring(neighbours, () if self.dense is None else self.dense.tiles)
         self.groups = [np.nonzero(colour == col)[0] for col in range(colour.max() + 1)]
         size = max(self.p.length, self.p.width)
         self.scale = np.tile(np.r_[[size] * 3, [1.0] * 4, [size] * 3, [1.0] * 3], N)
@@ -186,13 +191,17 @@ class SheetModel:
         for tiles in self.groups:
             for s in range(STATE):
                 cols = STATE * tiles + s
-                eps = 1e-8 * np.maximum(np.abs(y[cols]), 1e-3 * self.scale[cols])
                 yp = y.copy()
-                yp[cols] += eps
-                eps = yp[cols] - y[cols]
+                yp[cols] += self.increments(y, cols)
                 self.rhs(t, yp, fp)
-                fill_jacobian(data, self.indptr, self.indices, f0, fp, cols.astype(np.int64), eps)
+                fill_jacobian(data, self.indptr, self.indices, f0, fp, cols.astype(np.int64), yp[cols] - y[cols])
+        if self.dense is not None:
+            self.dense.fill(data, t, y)
         return sp.csc_matrix((data, self.indices, self.indptr), shape=(self.n, self.n))
+
+    def increments(self, y, cols):
+        """The difference quotients' increments of the state entries `cols` (before rounding to y + ε)."""
+        return 1e-8 * np.maximum(np.abs(y[cols]), 1e-3 * self.scale[cols])
 
     @property
     def position_indices(self) -> np.ndarray:
@@ -242,58 +251,16 @@ class SheetModel:
         return (J[self.velocity_indices][:, self.position_indices] @ self.kinematics(y)).tocsc()
 
 
-def state_scales(p: SailParameters) -> np.ndarray:
-    """Absolute-tolerance scales per state component: a₀ for u, the defect slope for q, and both over the
-    instability time √(L/g₀) for the rates; a billowed sheet's at least its cap's sag and largest slope (the
-    round-off of its tilted springs' forces, ~1e-16 of them, must sit below the tolerance). A spinning sail's
-    in-plane motion is its rotation: u_x, u_y and v_x, v_y are scaled by the rim's radius and speed (a tile
-    near the axis moves little, but the round-off of its in-plane forces, ~ε k_∥ R, is that of the whole
-    sheet's)."""
-    a0 = p.displacement_scale
-    mode = p.defect_mode if p.defect_mode_y is None else max(p.defect_mode, p.defect_mode_y)
-    slope = max(2 * math.pi * mode * p.defect_amplitude / p.length, a0 / p.length)
-    if not math.isinf(p.billow_radius):
-        points, normals = sheet.cap(p, sheet.flat_centres(p))
-        a0 = max(a0, float(np.ptp(points[:, 2])))
-        slope = max(slope, float(np.max(np.hypot(normals[:, 0], normals[:, 1]))))
-    tc = math.sqrt(p.length / p.nominal_acceleration) if p.nominal_acceleration > 0 else 1.0
-    scales = np.tile(np.r_[[a0] * 3, [slope] * 4, [a0 / tc] * 3, [slope / tc] * 3], (sheet.tile_count(p), 1))
-    if p.spin_rate != 0:
-        rim = 0.5 * max(p.length, p.width)
-        scales[:, 0:2] = np.maximum(scales[:, 0:2], rim)
-        scales[:, 7:9] = np.maximum(scales[:, 7:9], abs(p.spin_rate) * rim)
-        scales[:, 6] = np.maximum(scales[:, 6], 1.0)
-        scales[:, 12] = np.maximum(scales[:, 12], abs(p.spin_rate))
-    return scales.ravel()
-
-
-def _checked_options(options: dict, p: SailParameters) -> tuple[float, float, float, str]:
-    """rtol, max_step, perturbation and frame of a run's options (defaults for those not given: the turning frame
-    for a spinning sheet); one line on a bad one."""
-    unknown = sorted(set(options) - set(OPTIONS))
-    if unknown:
-        raise ParameterError(f"option {unknown[0]!r} is invalid for a sheet: allowed {', '.join(OPTIONS)}")
-    rtol = float(options.get("rtol") or DEFAULT_RTOL)
-    if not 0 < rtol < 1:
-        raise ParameterError(f"rtol={rtol!r} is invalid: allowed 0 < rtol < 1")
-    max_step = float(options.get("max_step") or DEFAULT_MAX_STEP)
-    if not (max_step > 0 and math.isfinite(max_step)):
-        raise ParameterError(f"max_step={max_step!r} is invalid: allowed a finite value > 0 (s)")
-    frame = options.get("frame") or ("turning" if p.spin_rate != 0 else "inertial")
-    if frame not in FRAMES:
-        raise ParameterError(f"frame={frame!r} is invalid: allowed inertial or turning")
-    return rtol, max_step, float(options.get("perturbation") or 0.0), frame
-
-
 def run(params: SailParameters, settings: RunSettings, *, progress: bool = False, **options) -> Result:
     """Integrate one sheet case to t_final or to failure and return its Result (solver "reduced");
-    options: rtol, max_step, perturbation, frame (module docstring)."""
-    rtol, max_step, perturbation, frame = _checked_options(options, params)
+    options: rtol, max_step, perturbation, frame (module docstring), rate_scale, jacobian (sheet_options)."""
+    chosen = checked_options(options, params)
+    rtol, max_step, perturbation, frame = chosen.rtol, chosen.max_step, chosen.perturbation, chosen.frame
     start = _time.perf_counter()
     cpu = _time.process_time()
-    model = SheetModel(params, perturbation, frame)
+    model = SheetModel(params, perturbation, frame, chosen.jacobian)
     y0 = model.y0()
-    scales = state_scales(params).reshape(-1, STATE)
+    scales = state_scales(params, chosen.rate_scale).reshape(-1, STATE)
     atol = rtol * np.vstack([scales, scales[: model.count - model.lit]]).ravel()  # the payload as a tile
     dt = settings.sample_interval
     if max_step >= dt:
@@ -352,6 +319,9 @@ def run(params: SailParameters, settings: RunSettings, *, progress: bool = False
         "max_step": h_max,
         "perturbation": perturbation,
         "frame": frame,
+        "rate_scale": chosen.rate_scale,
+        "jacobian": chosen.jacobian,
+        "colours": len(model.groups),
         "steps": solver.nsteps,
         "rejected_steps": solver.nrejected,
         "nfev": model.calls,

@@ -367,17 +367,19 @@ class SheetRadau:
         return None
 
 
-def distance2_colouring(neighbours: list) -> np.ndarray:
+def distance2_colouring(neighbours: list, apart=()) -> np.ndarray:
     """Colours (N,) of a graph given by its closed neighbourhoods (sets, each holding its own vertex) such
     that no two vertices of one colour share a neighbour (a distance-2 colouring: one right-hand side per
-    colour and state component gives every column of the Jacobian).
+    colour and state component gives every column of the Jacobian). Vertices `apart` (rows computed apart:
+    sheet_jacobian.DenseRows) may be shared; two neighbours never share a colour.
 
     Greedy in DSATUR order (Brélaz 1979) on the distance-2 graph: next the uncoloured vertex with the most
     distinct colours within distance 2 (ties: the most vertices within distance 2, then the lowest index),
     given the smallest colour free there. A rectangular grid takes 5 colours, the least possible (a tile
     and its 4 neighbours must all differ); greedy in index order takes 6–7."""
     N = len(neighbours)
-    reach = [set().union(*(neighbours[j] for j in neighbours[k])) - {k} for k in range(N)]
+    apart = set(apart)
+    reach = [neighbours[k].union(*(neighbours[j] for j in neighbours[k] - apart)) - {k} for k in range(N)]
     colour = np.full(N, -1)
     seen = [set() for _ in range(N)]
     heap = [(0, -len(reach[k]), k) for k in range(N)]
