@@ -17,7 +17,8 @@ B. **Cells**. The spin map's spinning cells (Ω = 40–160 rad/s, d/d* = 0.7–1
 Run from the repository root:
 ``nice -n 10 python validation/spin_equilibrium_cells.py [--out validation/spin_equilibrium_cells.md]
 [--store scenarios/figures/store/spinning_maps] [--stored-only] [--spins 40 ...] [--cells-only] [--workers 2]``
-(--cells-only with --store fills the store with the chosen cells and writes no report).
+(--cells-only: part B alone, printed, or written as a report of the cells to --out where that is given; with
+--store and without --out it fills the store with the chosen cells).
 """
 
 from __future__ import annotations
@@ -38,6 +39,7 @@ from lightsail_mbs.studies.tables import markdown_table
 
 SPECTRUM_SPINS, SPECTRUM_RATIO = (40.0, 80.0, 120.0), 1.15
 MAP_TABLE = "scenarios/figures/spinning_maps.md"  # the map's table as committed
+REPORT = Path("validation/spin_equilibrium_cells.md")
 
 
 def fastest(values) -> str:
@@ -122,7 +124,7 @@ def cell_rows(store: Path | None, stored_only: bool, workers: int, spins=None) -
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--out", type=Path, default=Path("validation/spin_equilibrium_cells.md"))
+    parser.add_argument("--out", type=Path, help=f"the report [default: {REPORT}; none with --cells-only]")
     parser.add_argument("--store", type=Path, help="the map's store (default: a scratch store, every cell run)")
     parser.add_argument("--stored-only", action="store_true", help="only the cells finished in --store")
     parser.add_argument("--spins", type=float, nargs="+", help="only these spin rates' cells (rad/s)")
@@ -132,23 +134,46 @@ def main() -> None:
     if args.stored_only and args.store is None:
         parser.error("--stored-only needs --store")
     cells = cell_rows(args.store, args.stored_only, args.workers, args.spins)
-    if args.cells_only:
+    if args.cells_only and args.out is None:
         print(markdown_table(cells))
         return
-    spectrum = spectrum_rows()
-    total = len(maps.SPIN_RATIOS) * (len(maps.MAPS["spin"][2]) - 1)
     text = [
-        "# The spin map's cap from the spun equilibrium",
+        "# The spin map's cap from the spun equilibrium" + (": its spinning cells" if args.cells_only else ""),
         "",
-        "Made by `nice -n 10 python validation/spin_equilibrium_cells.py"
-        + (f" --store {args.store} --stored-only`" if args.stored_only else "`")
-        + " (its docstring says what it runs).",
+        f"Made by `nice -n 10 python {command(args)}` (its docstring says what it runs).",
+    ]
+    if not args.cells_only:
+        text += spectrum_section(spectrum_rows())
+    text += cells_section(cells)
+    (args.out or REPORT).write_text("\n".join(text) + "\n")
+    print("\n".join(text))
+
+
+def command(args) -> str:
+    """The report's command line: the script and the options that chose its content."""
+    parts = ["validation/spin_equilibrium_cells.py"]
+    if args.store is not None:
+        parts += ["--store", str(args.store)] + (["--stored-only"] if args.stored_only else [])
+    if args.spins:
+        parts += ["--spins"] + [f"{w:g}" for w in args.spins]
+    parts += ["--cells-only"] if args.cells_only else []
+    return " ".join(parts + (["--out", str(args.out)] if args.out is not None else []))
+
+
+def spectrum_section(spectrum: list[dict]) -> list[str]:
+    return [
         "",
         f"## A. Spectrum in the turning frame (d = {SPECTRUM_RATIO:g} d*, beam centred, lit spun equilibrium)",
         "",
         "λ = Re λ ± |Im λ| i (1/s); the rigid criterion's s is in the inertial frame (its Re the same).",
         "",
         markdown_table(spectrum),
+    ]
+
+
+def cells_section(cells: list[dict]) -> list[str]:
+    total = len(maps.SPIN_RATIOS) * (len(maps.MAPS["spin"][2]) - 1)
+    return [
         "",
         f"## B. The spin map's spinning cells ({len(cells)} of {total})",
         "",
@@ -157,8 +182,6 @@ def main() -> None:
         "",
         markdown_table(cells) if cells else "(none finished)",
     ]
-    args.out.write_text("\n".join(text) + "\n")
-    print("\n".join(text))
 
 
 if __name__ == "__main__":

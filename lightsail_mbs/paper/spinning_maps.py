@@ -15,7 +15,7 @@ the beam (docs: spinning-beam). ``write(out)`` runs them (python scenarios/spinn
   "tips over" (studies.ride_maps). Over each map the rigid criterion's riding region
   (the undamped quartic of analysis.ride3d_criterion, on a 41 × 41 grid) is outlined.
 * **Movie**: the same disc at d = 1.3 d* spinning at 20 rad/s from its spun equilibrium, 5 cm off the axis
-  and tilted by (0.02, −0.01) rad, 1.5 s, as a GIF (viz.ride).
+  and tilted by (0.02, −0.01) rad, 1.5 s, as a GIF (viz.ride), its ride histories (studies.ride_maps) as a CSV.
 """
 
 from __future__ import annotations
@@ -28,8 +28,8 @@ from lightsail_mbs import solvers
 from lightsail_mbs.analysis.ride3d_criterion import cap_criterion
 from lightsail_mbs.base.settings import RunSettings
 from lightsail_mbs.paper.spinning_beam import CAP, SAIL_MASS
-from lightsail_mbs.studies.ride_maps import grid, ride_map
-from lightsail_mbs.studies.tables import markdown_table, write_csv
+from lightsail_mbs.studies.ride_maps import grid, ride_histories, ride_map
+from lightsail_mbs.studies.tables import markdown_table, series_csv, write_csv
 
 BASE = CAP.replace(n=7, ny=8, payload_mass=SAIL_MASS, beam_centre=None)
 SETTINGS = RunSettings(t_final=1.2, output_interval=0.02, failure_ratio=3.0)
@@ -159,7 +159,9 @@ def run_maps(store, workers=None, quick: bool = False, progress: bool = True) ->
 
 
 def movie(out: Path, frames: int = 40, quick: bool = False) -> Path:
-    """The movie's run (module docstring) rendered as OUT/spinning_ride.gif."""
+    """The movie's run (module docstring) rendered as OUT/spinning_ride.gif; its ride histories in
+    OUT/spinning_ride.csv: the centre of mass's distance from the beam's axis (m), the deformation (m), the
+    tilt (rad) and the spin rate (rad/s) against time."""
     from lightsail_mbs.viz.frames import make_movie
     from lightsail_mbs.viz.ride import render_ride_frames
 
@@ -167,6 +169,9 @@ def movie(out: Path, frames: int = 40, quick: bool = False) -> Path:
     p = p.replace(payload_stem=MOVIE_RATIO * d_star(p))
     settings = RunSettings(t_final=0.1 if quick else MOVIE_TIME, output_interval=0.02, stop_at_failure=False)
     result = solvers.solve(p, "reduced", settings, uncertainty=False, **OPTIONS)
+    ride = ride_histories(result)
+    units = {"distance": "m", "deformation": "m", "tilt": "rad", "spin_rate": "rad_s"}
+    series_csv(out / "spinning_ride.csv", np.asarray(ride["time"]), {f"{k}_{u}": ride[k] for k, u in units.items()})
     paths = render_ride_frames(
         result, out / "spinning_ride_frames", frames=min(frames, len(result.time)), size=(640, 320)
     )

@@ -122,8 +122,8 @@ def test_sheet_long_horizon_writes_its_table(tmp_path):
 
 @pytest.mark.slow
 def test_spinning_maps_quick_writes_its_maps_and_movie(tmp_path):
-    """The maps' pipeline on 2 × 2 maps of 0.1 s runs: its table, figure, CSV and a GIF under 2 MB; a rerun
-    reads every cell back from the store."""
+    """The maps' pipeline on 2 × 2 maps of 0.1 s runs: its table, figure, CSV, a GIF under 2 MB and the movie's
+    ride histories (spinning at 20 rad/s); a rerun reads every cell back from the store."""
     from lightsail_mbs.paper import spinning_maps
 
     path = spinning_maps.write(tmp_path, workers=1, quick=True)
@@ -131,6 +131,9 @@ def test_spinning_maps_quick_writes_its_maps_and_movie(tmp_path):
     assert text.count("| 0.85 |") == 3 and "spin rate" in text
     assert (tmp_path / "spinning_maps.png").stat().st_size > 10_000
     assert 10_000 < (tmp_path / "spinning_ride.gif").stat().st_size < 2_000_000
+    header, *ride = (tmp_path / "spinning_ride.csv").read_text().splitlines()
+    assert header == "time_s,distance_m,deformation_m,tilt_rad,spin_rate_rad_s" and len(ride) == 6  # 0.1 s by 20 ms
+    assert all(abs(float(row.split(",")[4]) - 20.0) < 0.2 for row in ride)  # the movie's 20 rad/s kept
     stored = sorted((tmp_path / "store" / "spinning_maps").glob("*.json"))
     assert len(stored) == 10  # 3 maps of 4 cells, two shared between the R_c and the spin map
     before = [p.stat().st_mtime_ns for p in stored]
