@@ -53,6 +53,12 @@ def named(options: dict) -> str:
     return ", ".join(f"{k} {v:g}" if isinstance(v, float) else f"{k} {v}" for k, v in options.items())
 
 
+def ride_deviations(rows: dict, tolerance: list) -> list[tuple]:
+    """(options, row, deviations) of each offset-ride row: its end values against the tightest tolerance's run."""
+    reference = tuple(tolerance[-1])
+    return [(o, row, steps.deviations([(o["rtol"], row), reference])[0]) for o, row in rows["ride"]]
+
+
 def options_table(rows: dict, tolerance: list) -> list[str]:
     lines = [
         "| tiles | options | simulated (s) | steps | rejected | Jacobians | CPU (s) | CPU per simulated s "
@@ -64,9 +70,7 @@ def options_table(rows: dict, tolerance: list) -> list[str]:
             f"| 1009 | {named(options)} | {SPAN:g} | {row['steps']} | {row['rejected']} | {row['jacobians']} "
             f"| {row['cpu']:.2f} | {row['cpu'] / SPAN:,.0f} | – | – | – | – |"
         )
-    reference = tolerance[-1]
-    for options, row in rows["ride"]:
-        d = steps.deviations([(options["rtol"], row), tuple(reference)])[0]
+    for options, row, d in ride_deviations(rows, tolerance):
         lines.append(
             f"| 193, offset | {named(options)} | {steps.RIDE_SPAN:g} | {row['steps']} | {row['rejected']} "
             f"| {row['jacobians']} | {row['cpu']:.2f} | {row['cpu'] / steps.RIDE_SPAN:,.0f} | {d['lateral']:.1e} "
@@ -98,8 +102,7 @@ def options_findings(rows: dict, tolerance: list, target: float) -> list[str]:
     if "traced" in rows:
         out.append(traced_finding(rows["traced"]))
     reference = tolerance[-1]
-    for options, row in rows["ride"]:
-        d = steps.deviations([(options["rtol"], row), tuple(reference)])[0]
+    for options, row, d in ride_deviations(rows, tolerance):
         out.append(
             f"* The offset ride with {named(options)}: end values within {max(d.values()):.1e} of rtol "
             f"{reference[0]:g}'s ({row['steps']} steps, against {tolerance[0][1]['steps']} at rtol "
