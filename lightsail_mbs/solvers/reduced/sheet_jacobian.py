@@ -52,6 +52,7 @@ class DenseRows:
                     ends.append((2 * p, 2 * p + 1) if a == ta[c] else (2 * p + 1, 2 * p))
         self.connectors = np.array(connectors, dtype=np.int64)
         self.ends = np.array(ends, dtype=np.int64).reshape(-1, 2)
+        self.ta, self.tb = np.ascontiguousarray(self.ends[:, 0]), np.ascontiguousarray(self.ends[:, 1])
         self.bodies = tuple(
             np.ascontiguousarray(getattr(model, name)[self.sources])
             for name in ("flat", "masses", "inertia", "inverse", "diagonal")
@@ -90,9 +91,8 @@ class DenseRows:
             to_inertial(ys, flat, m.turning.axis, m.turning.spin, Q, QmI, qQ, state)
         out = np.empty_like(ys)
         none = np.zeros(0, np.int64)
-        ta, tb = self.ends[:, 0].copy(), self.ends[:, 1].copy()
         rhs_kernel(
-            state, flat, masses, inertia, inverse, diagonal, ta, tb, la, lb, gap, K, Dm, off, frame, framed,
+            state, flat, masses, inertia, inverse, diagonal, self.ta, self.tb, la, lb, gap, K, Dm, off, frame, framed,
             none, np.zeros((0, 3)), np.zeros((0, 3)), m.load, float(t), 0, 0.0,
             none, np.zeros((0, 3)), np.zeros(0), np.zeros(2), out,
         )  # fmt: skip
