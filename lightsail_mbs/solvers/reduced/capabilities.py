@@ -17,6 +17,8 @@ chain and sheet runs. Analysis reaches them through ``lookup("reduced", params).
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from lightsail_mbs.base.settings import RunSettings
@@ -172,15 +174,8 @@ def chain_defaults(params: SailParameters, settings: RunSettings, **options) -> 
 
 
 def sheet_defaults(params: SailParameters, settings: RunSettings, **options) -> dict:
-    """The options of a reduced sheet run given `options` (contract rule 10; sheet.DEFAULT_RTOL,
-    sheet.DEFAULT_MAX_STEP; the turning frame for a spinning sheet)."""
-    from lightsail_mbs.solvers.reduced import sheet
+    """The options of a reduced sheet run given `options` (contract rule 10): those the run takes, checked and
+    completed with its defaults (sheet_options.checked_options; the turning frame for a spinning sheet)."""
+    from lightsail_mbs.solvers.reduced.sheet_options import checked_options
 
-    return {
-        "rtol": options.get("rtol") or sheet.DEFAULT_RTOL,
-        "max_step": options.get("max_step") or sheet.DEFAULT_MAX_STEP,
-        "perturbation": options.get("perturbation") or 0.0,
-        "frame": options.get("frame") or ("turning" if params.spin_rate != 0 else "inertial"),
-        "rate_scale": options.get("rate_scale") or "component",
-        "jacobian": options.get("jacobian") or "coloured",
-    }
+    return dataclasses.asdict(checked_options(options, params))
