@@ -65,11 +65,12 @@ DOF = 6  # generalised displacements per tile
 
 
 def require_square(p: SailParameters) -> None:
-    """The families need the square's symmetries: a sheet of n = ny tiles with L = W."""
-    if p.model != "sheet" or p.n != p.ny or p.length != p.width:
+    """The families need the square's symmetries: a rectangular sheet (its grid of tiles) of n = ny tiles with
+    L = W."""
+    if p.model != "sheet" or p.planform != "rectangle" or p.n != p.ny or p.length != p.width:
         raise ParameterError(
-            f"model={p.model!r}, n={p.n}, ny={p.ny}, length={p.length}, width={p.width} is invalid for the symmetry "
-            "families: allowed a sheet with n = ny and length = width"
+            f"model={p.model!r}, planform={p.planform!r}, n={p.n}, ny={p.ny}, length={p.length}, width={p.width} "
+            "is invalid for the symmetry families: allowed a rectangular sheet with n = ny and length = width"
         )
 
 
@@ -155,7 +156,8 @@ def commutator_defects(p: SailParameters, L: sp.spmatrix) -> dict[str, float]:
 
 
 def kinetic_weights(p: SailParameters) -> np.ndarray:
-    """The kinetic-energy metric's diagonal M on ξ (6N): tile mass for Δu, principal inertia for Δθ_b."""
+    """The kinetic-energy metric's diagonal M on ξ (6N): tile mass for Δu, principal inertia for Δθ_b, of the
+    rectangle's grid, whose tiles are all alike (other planforms' tiles differ: spin_spectrum.mass_metric)."""
     tiles = sheet.Tiles.of(p)
     return np.tile(np.r_[[tiles.mass] * 3, np.asarray(tiles.inertia, float)], tiles.count)
 
@@ -253,6 +255,7 @@ def family_spectrum(p: SailParameters, state: np.ndarray | None = None, solver: 
     with the symmetries, else of its symmetric part (the group average of G L G⁻¹)."""
     import scipy.linalg as sl
 
+    require_square(p)
     L = linearisation(p, state, solver)
     proj = projectors(p)
     m = np.sqrt(kinetic_weights(p))[:, None]
@@ -286,6 +289,7 @@ class SheetSpectrum:
 def spectrum(p: SailParameters, state: np.ndarray | None = None, solver: str = "reduced") -> SheetSpectrum:
     """The whole deformation spectrum of L (dense: 12(N − 1) × 12(N − 1), meant for grids up to about 16 × 16),
     every mode classified by family; checks :func:`family_spectrum` where L is not symmetric."""
+    require_square(p)
     L = linearisation(p, state, solver)
     rigid = _scaled_rigid(p, state)
     full, _ = np.linalg.qr(rigid, mode="complete")

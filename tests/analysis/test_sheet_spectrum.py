@@ -155,6 +155,14 @@ def test_families_need_a_square_sheet():
         ss.generators(doubly().replace(ny=GRID + 1))
 
 
+def test_families_and_the_diagonal_metric_need_the_rectangles_grid():
+    """A disc of n = ny rings and sectors with L = W has neither the grid's mirrors nor tiles all alike."""
+    disc = SailParameters(model="sheet", planform="disc", n=6, ny=6, youngs_modulus=4.5e9, defect_amplitude=0.0)
+    assert np.ptp(sheet.Tiles.of(disc).masses) > 0
+    with pytest.raises(ParameterError, match="planform='disc'"):
+        ss.spectrum(disc)
+
+
 def test_run_state_is_the_solvers_state():
     """A run's first sample rebuilt as the solver's state (quaternions from the xyz angles) is its start: the same
     centres, the same rotations, the same growth rates."""
