@@ -52,10 +52,7 @@ def spectrum_rows() -> list[dict]:
         whole = whole[np.abs(whole) > 1e-6]  # the rigid motions' zero eigenvalues (axial, spin)
         rigid = spin_spectrum.rigid_modes(p, state=state)
         shape = spin_spectrum.rotating_spectrum(p, state=state)
-        tiles = spin_spectrum._start(p)[0][:-1] + state.reshape(-1, 13)[:-1, 0:3]
-        radius = np.hypot(*(tiles[:, :2] - tiles[:, :2].mean(axis=0)).T)
-        sag = float(tiles[np.argmax(radius), 2] - tiles[np.argmin(radius), 2])
-        fit = (radius.max() ** 2 + sag**2) / (2 * abs(sag))
+        sag, fit = lit_fit(p, state)
         unlit = spin_spectrum.rotating_spectrum(p.replace(payload_mass=0.0, payload_stem=0.0, spin_equilibrium=True))
         rows.append(
             {
@@ -64,7 +61,7 @@ def spectrum_rows() -> list[dict]:
                 "rigid motions: fastest λ": fastest(rigid),
                 "deformations: fastest λ": fastest(shape.eigenvalues),
                 "criterion on R_c = 1 m: fastest s": fastest(cap_criterion(p, maps.SAIL_MASS, d).roots),
-                "sag (mm), start → spun": f"{spin_sag(p):.1f} → {abs(sag) * 1e3:.1f}",
+                "sag (mm), start → spun": f"{spin_sag(p):.1f} → {sag * 1e3:.1f}",
                 "R_fit (m)": f"{fit:.2f}",
                 "d/d* on R_fit": f"{d / maps.d_star(p.replace(billow_radius=fit)):.2f}",
                 "no payload, unlit: deformations' fastest Re λ": f"{np.max(np.real(unlit.eigenvalues)):+.2g}",
@@ -72,6 +69,15 @@ def spectrum_rows() -> list[dict]:
         )
         print(rows[-1], flush=True)
     return rows
+
+
+def lit_fit(p, state: np.ndarray) -> tuple[float, float]:
+    """(sag s (m), R_fit (m)) of the tiles of case p at its lit state: the rim tile's height above the middle
+    tile's, and the radius (r² + s²)/(2s) of the sphere through the middle and the rim (r the rim's radius)."""
+    tiles = spin_spectrum._start(p)[0][:-1] + state.reshape(-1, 13)[:-1, 0:3]
+    radius = np.hypot(*(tiles[:, :2] - tiles[:, :2].mean(axis=0)).T)
+    sag = abs(float(tiles[np.argmax(radius), 2] - tiles[np.argmin(radius), 2]))
+    return sag, (radius.max() ** 2 + sag**2) / (2 * sag)
 
 
 def spin_sag(p) -> float:
