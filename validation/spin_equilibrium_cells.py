@@ -74,7 +74,12 @@ def spectrum_rows() -> list[dict]:
 def lit_fit(p, state: np.ndarray) -> tuple[float, float]:
     """(sag s (m), R_fit (m)) of the tiles of case p at its lit state: the rim tile's height above the middle
     tile's, and the radius (r² + s²)/(2s) of the sphere through the middle and the rim (r the rim's radius)."""
-    tiles = spin_spectrum._start(p)[0][:-1] + state.reshape(-1, 13)[:-1, 0:3]
+    return cap_fit(spin_spectrum._start(p)[0][:-1] + state.reshape(-1, 13)[:-1, 0:3])
+
+
+def cap_fit(tiles: np.ndarray) -> tuple[float, float]:
+    """(sag s (m), R_fit (m)) of tile centres (N, 3): the rim tile's height above the middle tile's and the radius
+    (r² + s²)/(2s) of the sphere through them (r the rim's radius)."""
     radius = np.hypot(*(tiles[:, :2] - tiles[:, :2].mean(axis=0)).T)
     sag = abs(float(tiles[np.argmax(radius), 2] - tiles[np.argmin(radius), 2]))
     return sag, (radius.max() ** 2 + sag**2) / (2 * sag)
@@ -82,9 +87,7 @@ def lit_fit(p, state: np.ndarray) -> tuple[float, float]:
 
 def spin_sag(p) -> float:
     """The start's sag (mm) of the case's tiles: the rim tile's height above the middle tile's."""
-    tiles = spin_spectrum._start(p.replace(spin_rate=0.0))[1][:-1]
-    radius = np.hypot(*(tiles[:, :2] - tiles[:, :2].mean(axis=0)).T)
-    return abs(float(tiles[np.argmax(radius), 2] - tiles[np.argmin(radius), 2])) * 1e3
+    return cap_fit(spin_spectrum._start(p.replace(spin_rate=0.0))[1][:-1])[0] * 1e3
 
 
 def main() -> None:

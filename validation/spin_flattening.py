@@ -130,9 +130,8 @@ def damping_rows(cells: list[dict], workers: int) -> list[dict]:
 
 
 def verdict(run) -> str:
-    """A cell's verdict as in the map: its letter, the time it was decided and the distance's growth rate."""
-    when = "" if run.decided_at is None else f" {run.decided_at:.2f} s"
-    return run.error if run.verdict is None else f"{maps.SHORT[run.verdict]}{when} ({run.growth:.1f}/s)"
+    """A cell's verdict as in the map (spinning_maps.cell_text), or the solver's message where the run failed."""
+    return run.error if run.verdict is None else maps.cell_text(run)
 
 
 def main() -> None:

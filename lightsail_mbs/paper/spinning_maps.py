@@ -129,17 +129,15 @@ def draw(path: Path, maps: dict) -> Path:
     return path
 
 
+def cell_text(c) -> str:
+    """A map cell as the tables print it: its verdict (SHORT), decision time and growth, or "error"."""
+    when = "" if c.decided_at is None else f" {c.decided_at:.2f} s"
+    return "error" if c.verdict is None else f"{SHORT[c.verdict]}{when} ({c.growth:.1f}/s)"
+
+
 def table(name: str, xs, ys, cells) -> list[dict]:
     """Rows d/d* (top: the largest), one column per x: verdict (SHORT), decision time, growth."""
-    rows = []
-    for v in sorted(ys, reverse=True):
-        row = {"d/d*": v}
-        for u in xs:
-            c = cells[(u, v)]
-            when = "" if c.decided_at is None else f" {c.decided_at:.2f} s"
-            row[f"{u:g}"] = "error" if c.verdict is None else f"{SHORT[c.verdict]}{when} ({c.growth:.1f}/s)"
-        rows.append(row)
-    return rows
+    return [{"d/d*": v, **{f"{u:g}": cell_text(cells[(u, v)]) for u in xs}} for v in sorted(ys, reverse=True)]
 
 
 def run_maps(store, workers=None, quick: bool = False, progress: bool = True) -> dict:
